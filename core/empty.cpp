@@ -1,0 +1,1 @@
+// Translation unit for library folders that have no sources yet (keeps CMake targets valid).

@@ -1,0 +1,39 @@
+// Test helpers: temporary folders and running the tm-<verb> programs as a user would.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tissuemesh::testing {
+
+/// A fresh folder under the system's temporary directory, removed with its contents on destruction.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+    /// Names of the files in the folder, sorted (to check that failures leave nothing behind).
+    std::vector<std::string> files() const;
+
+private:
+    std::filesystem::path path_;
+};
+
+struct CliResult {
+    int exit_code = -1;
+    std::string out;  ///< standard output
+    std::string err;  ///< standard error
+};
+
+/// Runs the program `tool` (e.g. "tm-info") from the build's bin folder with `args` (no shell
+/// interpretation) and returns its exit code and output.
+CliResult run_cli(const std::string& tool, const std::vector<std::string>& args);
+
+/// Path of a file under the repository's data/ folder.
+std::filesystem::path data_path(const std::string& relative);
+
+} // namespace tissuemesh::testing

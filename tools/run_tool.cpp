@@ -1,0 +1,145 @@
+#include "tools/run_tool.h"
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <new>
+#include <unistd.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace tissuemesh::tools {
+namespace {
+
+std::string one_line(std::string text)
+{
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    return text;
+}
+
+/// Prints progress on stderr: a rewritten line on a terminal, a line per tenth otherwise.
+class StderrProgress {
+public:
+    explicit StderrProgress(int verbosity) : verbosity_(verbosity), terminal_(::isatty(STDERR_FILENO) != 0) {}
+
+    void fraction(std::string_view stage, double value)
+    {
+        if (verbosity_ < 1) return;
+        std::lock_guard lock(mutex_);
+        const int percent = static_cast<int>(value * 100.0 + 0.5);
+        if (terminal_) {
+            std::fprintf(stderr, "\r[%.*s] %3d%%%s", static_cast<int>(stage.size()), stage.data(), percent,
+                         percent >= 100 ? "\n" : "");
+            return;
+        }
+        int& last = last_decile_[std::string(stage)];
+        const int decile = percent / 10;
+        if (decile > last || (last == 0 && decile == 0 && percent == 0)) {
+            last = decile;
+            std::fprintf(stderr, "[%.*s] %d%%\n", static_cast<int>(stage.size()), stage.data(), decile * 10);
+        }
+    }
+
+    void message(LogLevel level, std::string_view stage, std::string_view text)
+    {
+        if (level == LogLevel::debug && verbosity_ < 2) return;
+        if (level == LogLevel::info && verbosity_ < 1) return;
+        std::lock_guard lock(mutex_);
+        std::fprintf(stderr, "[%.*s] %s%.*s\n", static_cast<int>(stage.size()), stage.data(),
+                     level == LogLevel::warning ? "warning: " : "", static_cast<int>(text.size()), text.data());
+    }
+
+private:
+    int verbosity_;
+    bool terminal_;
+    std::mutex mutex_;
+    std::map<std::string, int> last_decile_;
+};
+
+void write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
+{
+    try {
+        write_text_atomically(path, summary.dump(2) + "\n");
+    } catch (const Error& error) {
+        std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), one_line(error.what()).c_str());
+    }
+}
+
+} // namespace
+
+void ToolContext::log(std::string_view text) const { progress.info(tool, text); }
+
+int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<void(CLI::App&)>& add_options,
+             const std::function<void(ToolContext&)>& body)
+{
+    CLI::App app(spec.description, spec.name);
+    app.footer(spec.examples);
+    app.set_version_flag("--version", std::string(spec.name) + " (tissuemesh) " TM_VERSION);
+    app.get_formatter()->column_width(34);
+    std::string json_path;
+    bool verbose = false;
+    bool quiet = false;
+    app.add_option("--json", json_path, "Write a JSON summary (counts, measures, timings) to FILE")
+        ->type_name("FILE");
+    app.add_flag("-v,--verbose", verbose, "More detail on stderr");
+    app.add_flag("-q,--quiet", quiet, "Only errors on stderr");
+    add_options(app);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "%s: error: %s; see %s --help\n", spec.name.c_str(), one_line(e.what()).c_str(),
+                     spec.name.c_str());
+        return 2;
+    }
+
+    ToolContext context;
+    context.tool = spec.name;
+    context.verbosity = quiet ? 0 : (verbose ? 2 : 1);
+    auto printer = std::make_shared<StderrProgress>(context.verbosity);
+    context.progress = Progress(
+        [printer](std::string_view stage, double fraction) { printer->fraction(stage, fraction); },
+        [printer](LogLevel level, std::string_view stage, std::string_view text) {
+            printer->message(level, stage, text);
+        });
+
+    const auto start = std::chrono::steady_clock::now();
+    int code = 0;
+    std::string message;
+    try {
+        body(context);
+    } catch (const InputError& e) {
+        code = 2, message = e.what();
+    } catch (const IoError& e) {
+        code = 2, message = e.what();
+    } catch (const AlgorithmError& e) {
+        code = 1, message = e.what();
+    } catch (const std::bad_alloc&) {
+        code = 1, message = "out of memory; try a coarser spacing (tm-prep --spacing) or a smaller crop";
+    } catch (const std::exception& e) {
+        code = 1, message = concat("internal error: ", e.what(), "; please report it with the input");
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (code != 0) std::fprintf(stderr, "%s: error: %s\n", spec.name.c_str(), one_line(message).c_str());
+
+    if (!json_path.empty()) {
+        nlohmann::json summary = {{"tool", spec.name}, {"version", TM_VERSION}, {"status", code == 0 ? "ok" : "failed"},
+                                  {"exit_code", code}, {"seconds", seconds}};
+        if (code != 0) summary["error"] = message;
+        summary.update(context.summary);
+        write_summary(json_path, summary, spec.name);
+    }
+    return code;
+}
+
+} // namespace tissuemesh::tools
