@@ -1,0 +1,313 @@
+#include "surface/extract_interfaces.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <set>
+
+#include "core/error.h"
+
+namespace tissuemesh::surface {
+namespace {
+
+constexpr std::uint32_t no_vertex = std::numeric_limits<std::uint32_t>::max();
+
+/// Positions inside one cube in twelfths of a voxel (edge midpoints are multiples of 6, face centroids of
+/// 4, tetrahedron centroids of 3), so orientation tests are exact integer determinants.
+using Local = std::array<int, 3>;
+
+Local corner_local(int corner) { return {12 * (corner & 1), 12 * (corner >> 1 & 1), 12 * (corner >> 2 & 1)}; }
+
+/// The 6 Kuhn tetrahedra of a cube, as chains of cube corners (bit 0: +x, bit 1: +y, bit 2: +z): every
+/// tetrahedron runs from corner 0 to corner 7 adding one axis at a time, so each corner is a subset of the
+/// next and every tetrahedron edge goes in a non-negative grid direction.
+constexpr std::array<std::array<int, 4>, 6> kuhn_tets{{
+    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+}};
+
+/// Slot of a triangle of the triangulation with corners base, base + a, base + b (a subset of b, as axis
+/// bit sets): 12 triangle kinds per grid point.
+constexpr std::array<std::int8_t, 64> face_slots = [] {
+    std::array<std::int8_t, 64> slots{};
+    std::int8_t next = 0;
+    for (int b = 1; b < 8; ++b)
+        for (int a = 1; a < 8; ++a) slots[static_cast<std::size_t>(8 * a + b)] = ((a & b) == a && a != b) ? next++ : -1;
+    return slots;
+}();
+
+long long orientation(const Local& p, const Local& q, const Local& r, const Local& s)
+{
+    const long long a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    const long long b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+    const long long c[3] = {s[0] - p[0], s[1] - p[1], s[2] - p[2]};
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+           a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+struct DualPoint {
+    std::uint32_t id = no_vertex;
+    Local local{};
+};
+
+/// Walks the padded cube grid one slab (cube layer) at a time. Padded grid point (i, j, k) is voxel
+/// (i - 1, j - 1, k - 1); vertex ids of grid edges and triangles are kept for the two grid layers of
+/// the current slab only.
+class SlabExtractor {
+public:
+    SlabExtractor(const LabelImage& image, std::vector<Label> label_map, Label background)
+        : image_(image), map_(std::move(label_map)), background_(background),
+          px_(image.dims()[0] + 2), py_(image.dims()[1] + 2), flip_(determinant(image.direction()) < 0)
+    {
+        for (int layer = 0; layer < 2; ++layer) {
+            labels_[layer].assign(px_ * py_, background_);
+            edges_[layer].assign(px_ * py_ * 8, no_vertex);
+            faces_[layer].assign(px_ * py_ * 12, no_vertex);
+        }
+    }
+
+    InterfaceComplex run(const Progress& progress)
+    {
+        const std::size_t slabs = image_.dims()[2] + 1;
+        ProgressTicker ticker(progress, "extract", slabs);
+        load_layer(1, 0);
+        for (std::size_t k = 0; k < slabs; ++k) {
+            std::swap(labels_[0], labels_[1]);
+            std::swap(edges_[0], edges_[1]);
+            std::swap(faces_[0], faces_[1]);
+            std::fill(edges_[1].begin(), edges_[1].end(), no_vertex);
+            std::fill(faces_[1].begin(), faces_[1].end(), no_vertex);
+            load_layer(1, k + 1);
+            k_ = k;
+            extract_slab();
+            ticker.step();
+        }
+        out_.background = background_;
+        out_.names = image_.names();
+        return std::move(out_);
+    }
+
+private:
+    /// Fills labels_[slot] with padded grid layer `k` (all background outside the image).
+    void load_layer(int slot, std::size_t k)
+    {
+        std::vector<Label>& layer = labels_[slot];
+        std::fill(layer.begin(), layer.end(), background_);
+        if (k == 0 || k > image_.dims()[2]) return;
+        const Dims& dims = image_.dims();
+        for (std::size_t j = 0; j < dims[1]; ++j) {
+            const Label* row = &image_.labels()[image_.linear_index(0, j, k - 1)];
+            Label* target = &layer[(j + 1) * px_ + 1];
+            for (std::size_t i = 0; i < dims[0]; ++i) target[i] = map_[row[i]];
+        }
+    }
+
+    void extract_slab()
+    {
+        const Label* bottom = labels_[0].data();
+        const Label* top = labels_[1].data();
+        for (std::size_t j = 0; j + 1 < py_; ++j) {
+            for (std::size_t i = 0; i + 1 < px_; ++i) {
+                const std::size_t at = j * px_ + i;
+                const std::array<Label, 8> corners{bottom[at], bottom[at + 1], bottom[at + px_],
+                                                   bottom[at + px_ + 1], top[at], top[at + 1],
+                                                   top[at + px_], top[at + px_ + 1]};
+                bool uniform = true;
+                for (int c = 1; c < 8; ++c) uniform = uniform && corners[c] == corners[0];
+                if (uniform) continue;
+                i_ = i, j_ = j;
+                for (const auto& tet : kuhn_tets) extract_tet(tet, corners);
+            }
+        }
+    }
+
+    void extract_tet(const std::array<int, 4>& tet, const std::array<Label, 8>& corners)
+    {
+        std::array<Label, 4> labels{};
+        for (int v = 0; v < 4; ++v) labels[v] = corners[tet[v]];
+        std::array<Label, 4> distinct = labels;
+        std::sort(distinct.begin(), distinct.end());
+        const auto count = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
+        if (count == 1) return;
+        if (count == 2) return extract_two_label_tet(tet, labels);
+        DualPoint centroid;
+        for (int v = 0; v < 4; ++v)
+            for (int axis = 0; axis < 3; ++axis) centroid.local[axis] += corner_local(tet[v])[axis] / 4;
+        centroid.id = new_vertex(centroid.local);
+        for (int omitted = 3; omitted >= 0; --omitted) {
+            std::array<int, 3> face{};
+            for (int v = 0, n = 0; v < 4; ++v)
+                if (v != omitted) face[n++] = v;
+            cone_face(tet, labels, face, centroid);
+        }
+    }
+
+    /// Marching tetrahedra: one triangle around a lone corner, or the planar quad between two pairs.
+    void extract_two_label_tet(const std::array<int, 4>& tet, const std::array<Label, 4>& labels)
+    {
+        std::array<int, 4> side_a{}, side_b{};
+        int na = 0, nb = 0;
+        for (int v = 0; v < 4; ++v) (labels[v] == labels[0] ? side_a[na++] : side_b[nb++]) = v;
+        if (na == 1 || nb == 1) {
+            const std::array<int, 4>& lone = na == 1 ? side_a : side_b;
+            const std::array<int, 4>& rest = na == 1 ? side_b : side_a;
+            const int w = lone[0];
+            emit(edge_point(tet, w, rest[0]), edge_point(tet, w, rest[1]), edge_point(tet, w, rest[2]), tet[w],
+                 labels[w], labels[rest[0]]);
+            return;
+        }
+        const int a = side_a[0], b = side_a[1], c = side_b[0], d = side_b[1];
+        const DualPoint ac = edge_point(tet, a, c), bd = edge_point(tet, b, d);
+        emit(ac, edge_point(tet, a, d), bd, tet[a], labels[a], labels[c]);
+        emit(ac, bd, edge_point(tet, b, c), tet[a], labels[a], labels[c]);
+    }
+
+    /// The triangles from the tetrahedron's centroid to the separating curve on one face.
+    void cone_face(const std::array<int, 4>& tet, const std::array<Label, 4>& labels,
+                   const std::array<int, 3>& face, const DualPoint& centroid)
+    {
+        const Label l0 = labels[face[0]], l1 = labels[face[1]], l2 = labels[face[2]];
+        if (l0 == l1 && l1 == l2) return;
+        if (l0 != l1 && l1 != l2 && l0 != l2) {
+            const DualPoint middle = face_point(tet, face);
+            for (int e = 0; e < 3; ++e) {
+                const int x = face[e], y = face[(e + 1) % 3];
+                emit(edge_point(tet, x, y), middle, centroid, tet[x], labels[x], labels[y]);
+            }
+            return;
+        }
+        // Two labels: the lone corner w against the pair (v1, v2).
+        const int w = l1 == l2 ? face[0] : (l0 == l2 ? face[1] : face[2]);
+        std::array<int, 2> pair{};
+        for (int v = 0, n = 0; v < 3; ++v)
+            if (face[v] != w) pair[n++] = face[v];
+        emit(edge_point(tet, w, pair[0]), edge_point(tet, w, pair[1]), centroid, tet[w], labels[w],
+             labels[pair[0]]);
+    }
+
+    /// Appends triangle (p, q, r) separating `reference_label` (the label of cube corner `reference`, which
+    /// lies strictly on one side of the triangle's plane) from `other`, oriented from `from` into `to`.
+    void emit(const DualPoint& p, DualPoint q, DualPoint r, int reference, Label reference_label, Label other)
+    {
+        const LabelPair pair = sides_of(reference_label, other);
+        const long long side = orientation(p.local, q.local, r.local, corner_local(reference));
+        if (side == 0)
+            throw AlgorithmError("extract_interfaces: degenerate dual triangle; this is a bug, please report it");
+        // side > 0: the reference corner is in front of the triangle; `from` must be behind it.
+        if ((side > 0) == (reference_label == pair.from)) std::swap(q, r);
+        if (flip_) std::swap(q, r);
+        out_.add_triangle({p.id, q.id, r.id}, pair);
+    }
+
+    LabelPair sides_of(Label a, Label b) const
+    {
+        if (a == background_) return {b, a};
+        if (b == background_) return {a, b};
+        return a > b ? LabelPair{a, b} : LabelPair{b, a};
+    }
+
+    /// Midpoint of the tetrahedron edge between local corners u < v (cube corner tet[u] is a subset of
+    /// tet[v], so the grid edge starts at tet[u] and goes in direction tet[v] - tet[u]).
+    DualPoint edge_point(const std::array<int, 4>& tet, int u, int v)
+    {
+        const int low = tet[std::min(u, v)], high = tet[std::max(u, v)];
+        DualPoint point;
+        for (int axis = 0; axis < 3; ++axis) point.local[axis] = (corner_local(low)[axis] + corner_local(high)[axis]) / 2;
+        std::uint32_t& slot = edges_[low >> 2][grid_index(low) * 8 + static_cast<std::size_t>(high & ~low)];
+        if (slot == no_vertex) slot = new_vertex(point.local);
+        point.id = slot;
+        return point;
+    }
+
+    /// Centroid of a tetrahedron face given by local corners f0 < f1 < f2.
+    DualPoint face_point(const std::array<int, 4>& tet, const std::array<int, 3>& face)
+    {
+        const int c0 = tet[face[0]], c1 = tet[face[1]], c2 = tet[face[2]];
+        DualPoint point;
+        for (int axis = 0; axis < 3; ++axis)
+            point.local[axis] = (corner_local(c0)[axis] + corner_local(c1)[axis] + corner_local(c2)[axis]) / 3;
+        const auto kind = face_slots[static_cast<std::size_t>(8 * (c1 & ~c0) + (c2 & ~c0))];
+        std::uint32_t& slot = faces_[c0 >> 2][grid_index(c0) * 12 + static_cast<std::size_t>(kind)];
+        if (slot == no_vertex) slot = new_vertex(point.local);
+        point.id = slot;
+        return point;
+    }
+
+    std::size_t grid_index(int corner) const
+    {
+        return (j_ + static_cast<std::size_t>(corner >> 1 & 1)) * px_ + i_ + static_cast<std::size_t>(corner & 1);
+    }
+
+    std::uint32_t new_vertex(const Local& local)
+    {
+        if (out_.vertices.size() >= no_vertex)
+            throw InputError("extract_interfaces: more than 4 294 967 294 vertices; crop or coarsen the image");
+        const Vec3 index{static_cast<double>(i_) - 1 + local[0] / 12.0, static_cast<double>(j_) - 1 + local[1] / 12.0,
+                         static_cast<double>(k_) - 1 + local[2] / 12.0};
+        out_.vertices.push_back(image_.index_to_world(index));
+        return static_cast<std::uint32_t>(out_.vertices.size() - 1);
+    }
+
+    const LabelImage& image_;
+    std::vector<Label> map_;
+    Label background_;
+    std::size_t px_, py_;
+    bool flip_;
+    std::size_t i_ = 0, j_ = 0, k_ = 0;
+    std::array<std::vector<Label>, 2> labels_;
+    std::array<std::vector<std::uint32_t>, 2> edges_;
+    std::array<std::vector<std::uint32_t>, 2> faces_;
+    InterfaceComplex out_;
+};
+
+/// The label each image label becomes: itself when kept, `background` otherwise.
+std::vector<Label> label_map(const LabelImage& image, const ExtractOptions& options)
+{
+    std::vector<Label> map(std::size_t{1} << 16);
+    for (std::size_t l = 0; l < map.size(); ++l) map[l] = static_cast<Label>(l);
+    if (options.tissues.empty()) return map;
+    const std::map<Label, std::size_t> present = count_labels(image);
+    const std::set<Label> kept(options.tissues.begin(), options.tissues.end());
+    for (const Label tissue : kept) {
+        if (tissue == options.background)
+            throw InputError(concat("extract_interfaces: tissue ", tissue, " is also the background label; "
+                                    "choose another background or drop it from the tissue list"));
+        if (!present.contains(tissue))
+            throw InputError(concat("extract_interfaces: tissue ", tissue, " does not occur in the image; "
+                                    "check the tissue list against tm-info"));
+    }
+    for (std::size_t l = 0; l < map.size(); ++l)
+        if (!kept.contains(static_cast<Label>(l))) map[l] = options.background;
+    return map;
+}
+
+} // namespace
+
+InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options, const Progress& progress)
+{
+    if (image.empty()) throw InputError("extract_interfaces: the image has no voxels; give a non-empty image");
+    std::vector<Label> map = label_map(image, options);
+    std::set<Label> tissues;
+    for (const auto& [label, count] : count_labels(image))
+        if (map[label] != options.background) tissues.insert(map[label]);
+    if (tissues.empty())
+        throw InputError(concat("extract_interfaces: the image holds only background (label ", options.background,
+                                "); there is no tissue to extract. Check --background and --tissues"));
+    SlabExtractor extractor(image, std::move(map), options.background);
+    InterfaceComplex complex = extractor.run(progress);
+    // No tissue may be lost: padding gives every tissue a boundary, so this is a guard against bugs.
+    std::set<Label> seen;
+    for (const LabelPair& pair : complex.sides) {
+        seen.insert(pair.from);
+        seen.insert(pair.to);
+    }
+    for (const Label tissue : tissues)
+        if (!seen.contains(tissue))
+            throw AlgorithmError(concat("extract_interfaces: tissue ", tissue, " produced no triangles; this is "
+                                        "a bug, please report it with the image"));
+    progress.info("extract", concat(complex.triangle_count(), " triangles, ", complex.vertex_count(),
+                                    " vertices, ", tissues.size(), " tissues"));
+    return complex;
+}
+
+} // namespace tissuemesh::surface
