@@ -1,0 +1,152 @@
+#include "io/detail/nifti_header.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include <zlib.h>
+
+#include "core/error.h"
+#include "io/detail/voxel_decode.h"
+
+namespace tissuemesh::io::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::size_t nifti1_size = 348;
+constexpr std::size_t nifti2_size = 540;
+
+/// The fields of either header version that the check needs, in host byte order.
+struct NiftiFields {
+    std::array<std::int64_t, 8> dim{};
+    std::array<double, 8> pixdim{};
+    std::int64_t vox_offset = 0;
+    int datatype = 0;
+    int bitpix = 0;
+    std::int64_t header_size = 348;
+};
+
+template <typename T>
+T field(const unsigned char* header, std::size_t offset, bool swap)
+{
+    std::array<unsigned char, sizeof(T)> bytes;
+    std::memcpy(bytes.data(), header + offset, sizeof(T));
+    if (swap)
+        for (std::size_t b = 0; b < sizeof(T) / 2; ++b) std::swap(bytes[b], bytes[sizeof(T) - 1 - b]);
+    T value;
+    std::memcpy(&value, bytes.data(), sizeof(T));
+    return value;
+}
+
+std::size_t read_header_bytes(const fs::path& path, std::array<unsigned char, nifti2_size>& header)
+{
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (file == nullptr) throw IoError(concat(path.string(), ": cannot be opened; check the permissions"));
+    const int got = gzread(file, header.data(), static_cast<unsigned>(header.size()));
+    gzclose(file);
+    if (got < 0)
+        throw IoError(concat(path.string(), ": corrupt gzip data; the file is damaged, copy or export it again"));
+    return static_cast<std::size_t>(got);
+}
+
+NiftiFields parse_fields(const std::string& name, const unsigned char* header, std::size_t got)
+{
+    const std::string not_nifti = ": not a NIfTI file (";
+    const std::string fix = "); check that the file is a .nii image and not renamed or damaged";
+    if (got < 4) throw IoError(concat(name, not_nifti, "only ", got, " bytes, a header needs 348", fix));
+    const auto size = field<std::int32_t>(header, 0, false);
+    const auto swapped = field<std::int32_t>(header, 0, true);
+    const bool swap = size != 348 && size != 540;
+    const std::int32_t header_size = swap ? swapped : size;
+    if (header_size != 348 && header_size != 540)
+        throw IoError(concat(name, not_nifti, "wrong magic: header size field is ", size,
+                             ", expected 348 or 540", fix));
+    NiftiFields f;
+    f.header_size = header_size;
+    if (header_size == 348) {
+        if (got < nifti1_size) throw IoError(concat(name, ": truncated NIfTI header (", got,
+                                                    " of 348 bytes); the file is incomplete, copy it again"));
+        if (std::memcmp(header + 344, "n+1", 4) != 0)
+            throw IoError(concat(name, not_nifti, "wrong magic: expected \"n+1\" at byte 344; a "
+                                 "two-file .hdr/.img pair must be converted to .nii", fix));
+        for (std::size_t n = 0; n < 8; ++n) {
+            f.dim[n] = field<std::int16_t>(header, 40 + 2 * n, swap);
+            f.pixdim[n] = field<float>(header, 76 + 4 * n, swap);
+        }
+        f.datatype = field<std::int16_t>(header, 70, swap);
+        f.bitpix = field<std::int16_t>(header, 72, swap);
+        const float offset = field<float>(header, 108, swap);
+        // NaN or absurd offsets become -1 so that the vox_offset check below rejects them.
+        f.vox_offset = std::isfinite(offset) && offset >= 0 && offset < 1e15f ? static_cast<std::int64_t>(offset) : -1;
+    } else {
+        if (got < nifti2_size) throw IoError(concat(name, ": truncated NIfTI-2 header (", got,
+                                                    " of 540 bytes); the file is incomplete, copy it again"));
+        if (std::memcmp(header + 4, "n+2", 4) != 0)
+            throw IoError(concat(name, not_nifti, "wrong magic: expected \"n+2\" at byte 4", fix));
+        for (std::size_t n = 0; n < 8; ++n) {
+            f.dim[n] = field<std::int64_t>(header, 16 + 8 * n, swap);
+            f.pixdim[n] = field<double>(header, 104 + 8 * n, swap);
+        }
+        f.datatype = field<std::int16_t>(header, 12, swap);
+        f.bitpix = field<std::int16_t>(header, 14, swap);
+        f.vox_offset = field<std::int64_t>(header, 168, swap);
+    }
+    return f;
+}
+
+// NIfTI datatypes holding several values per voxel: complex and RGB(A).
+bool is_multi_valued(int datatype)
+{
+    return datatype == 32 || datatype == 128 || datatype == 1792 || datatype == 2048 || datatype == 2304;
+}
+
+} // namespace
+
+std::uint64_t check_nifti_header(const fs::path& path)
+{
+    const std::string name = path.string();
+    std::array<unsigned char, nifti2_size> header{};
+    const std::size_t got = read_header_bytes(path, header);
+    if (got == 0) throw IoError(concat(name, ": the file is empty; write or copy it again"));
+    const NiftiFields f = parse_fields(name, header.data(), got);
+
+    const std::int64_t rank = f.dim[0];
+    if (rank < 1 || rank > 7)
+        throw IoError(concat(name, ": corrupt NIfTI header, dim[0] (the number of axes) is ", rank,
+                             ", expected 1..7; the file is damaged"));
+    Dims dims{1, 1, 1};
+    for (std::int64_t axis = 1; axis <= rank; ++axis) {
+        if (f.dim[axis] <= 0)
+            throw InputError(concat(name, ": dimension ", axis - 1, " is ", f.dim[axis],
+                                    "; every axis needs at least one voxel. The header is corrupt"));
+        if (axis > 3 && f.dim[axis] > 1)
+            throw InputError(concat(name, ": a ", rank, "D image with ", f.dim[axis], " values along axis ",
+                                    axis - 1, "; a label map holds one value per voxel. Extract one volume"));
+        if (axis <= 3) dims[axis - 1] = static_cast<std::size_t>(f.dim[axis]);
+    }
+    if (is_multi_valued(f.datatype))
+        throw InputError(concat(name, ": NIfTI datatype ", f.datatype, " stores several values per voxel "
+                                "(a vector, RGB or complex image); a label map holds one value per voxel"));
+    for (std::int64_t axis = 1; axis <= std::min<std::int64_t>(rank, 3); ++axis) {
+        const double s = f.pixdim[axis];
+        if (!std::isfinite(s) || s <= 0)
+            throw InputError(concat(name, ": spacing along axis ", axis - 1, " is ", s,
+                                    " mm (pixdim[", axis, "]); it must be a positive finite number. Fix "
+                                    "the header or the writer that produced it"));
+    }
+    if (f.bitpix <= 0 || f.bitpix % 8 != 0)
+        throw IoError(concat(name, ": corrupt NIfTI header, bitpix is ", f.bitpix,
+                             "; expected a multiple of 8"));
+    if (f.vox_offset < f.header_size)
+        throw IoError(concat(name, ": corrupt NIfTI header, vox_offset is ", f.vox_offset,
+                             ", inside the header; the file is damaged"));
+    const std::uint64_t needed = checked_voxel_bytes(name, dims, static_cast<std::size_t>(f.bitpix / 8));
+    const std::uint64_t size = uncompressed_size(path);
+    const auto data_start = static_cast<std::uint64_t>(f.vox_offset);
+    require_payload(name, needed, size > data_start ? size - data_start : 0);
+    return needed;
+}
+
+} // namespace tissuemesh::io::detail

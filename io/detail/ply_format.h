@@ -1,0 +1,20 @@
+// PLY for interface complexes: binary little-endian on write; ascii and binary (either endianness) on read.
+#pragma once
+
+#include <string>
+
+#include "core/interface_complex.h"
+
+namespace tissuemesh::io::detail {
+
+/// The whole PLY file for `complex`: vertex x, y, z (float64), face vertex_indices (uchar count, uint32
+/// indices), label_a and label_b (ushort: the triangle's `from` and `to`), tissue names as
+/// `comment tissue <label> <name>` and the background as `comment background <label>`.
+std::string format_ply(const InterfaceComplex& complex);
+
+/// Parses PLY `bytes`; `what` names the file in messages. Faces must be triangles; without label_a and
+/// label_b every triangle gets {1, 0}. Other elements and properties are skipped.
+/// @throws IoError when the file is not PLY, is truncated or malformed
+InterfaceComplex parse_ply(const std::string& bytes, const std::string& what);
+
+} // namespace tissuemesh::io::detail

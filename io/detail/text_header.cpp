@@ -1,0 +1,129 @@
+#include "io/detail/text_header.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace tissuemesh::io::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The largest expansion of a deflate (gzip, zlib) stream: 1032 output bytes per input byte.
+constexpr std::uint64_t deflate_ratio = 1032;
+
+struct TextHeader {
+    std::map<std::string, std::string> fields;  ///< lower-case keys without spaces
+    std::uint64_t header_bytes = 0;             ///< where attached data starts
+};
+
+std::string trim(const std::string& text)
+{
+    const auto first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos) return {};
+    return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+std::string normal_key(std::string key)
+{
+    key.erase(std::remove(key.begin(), key.end(), ' '), key.end());
+    std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return std::tolower(c); });
+    return key;
+}
+
+/// NRRD: "NRRD000N" then "key: value" lines up to an empty line (attached data follows it).
+/// MetaImage: "Key = Value" lines, the last of which is ElementDataFile.
+TextHeader parse_header(const fs::path& path, bool nrrd)
+{
+    std::ifstream in(path, std::ios::binary);
+    TextHeader header;
+    std::string line;
+    bool first = true;
+    // Headers are small; a line longer than this is binary data, not header.
+    constexpr std::size_t max_line = 1 << 16;
+    while (std::getline(in, line) && line.size() < max_line) {
+        header.header_bytes += line.size() + 1;
+        if (first && nrrd && !line.starts_with("NRRD"))
+            throw IoError(concat(path.string(), ": not a NRRD file (wrong magic, it does not start with "
+                                 "\"NRRD\"); check that the file is not renamed or damaged"));
+        first = false;
+        const std::string text = trim(line);
+        if (nrrd && text.empty()) break;
+        if (text.empty() || text[0] == '#') continue;
+        const auto colon = text.find(nrrd ? ":" : "=");
+        if (colon == std::string::npos || (nrrd && text.compare(colon, 2, ":=") == 0)) continue;
+        const std::string key = normal_key(text.substr(0, colon));
+        header.fields[key] = trim(text.substr(colon + 1));
+        if (!nrrd && key == "elementdatafile") break;
+    }
+    return header;
+}
+
+std::uint64_t data_file_size(const fs::path& header_path, const std::string& data_file)
+{
+    if (data_file == "LIST" || data_file.starts_with("LIST ") || data_file.find('%') != std::string::npos ||
+        data_file.find(' ') != std::string::npos)
+        throw IoError(concat(header_path.string(), ": voxel data split over several files ('", data_file,
+                             "') is not supported; save the volume as one file"));
+    const fs::path data = header_path.parent_path() / data_file;
+    std::error_code ec;
+    if (!fs::is_regular_file(data, ec))
+        throw IoError(concat(header_path.string(), ": its data file ", data.string(),
+                             " does not exist; keep the header and its data file together"));
+    return fs::file_size(data, ec);
+}
+
+std::uint64_t nrrd_bound(const fs::path& path)
+{
+    const TextHeader header = parse_header(path, true);
+    std::uint64_t stored = 0;
+    const auto data_file = header.fields.count("datafile") ? header.fields.at("datafile") : std::string();
+    if (!data_file.empty()) {
+        stored = data_file_size(path, data_file);
+    } else {
+        const auto size = fs::file_size(path);
+        stored = size > header.header_bytes ? size - header.header_bytes : 0;
+    }
+    const std::string encoding = header.fields.count("encoding") ? header.fields.at("encoding") : "raw";
+    if (encoding == "raw") return stored;
+    if (encoding == "hex") return stored / 2;
+    // Text voxels take at least two characters ("0 ") for up to eight bytes.
+    if (encoding == "ascii" || encoding == "text" || encoding == "txt") return stored * 4;
+    return stored * deflate_ratio;
+}
+
+std::uint64_t meta_image_bound(const fs::path& path)
+{
+    const TextHeader header = parse_header(path, false);
+    if (!header.fields.count("elementdatafile") || !header.fields.count("dimsize"))
+        throw IoError(concat(path.string(), ": not a MetaImage file (wrong magic: no DimSize or "
+                             "ElementDataFile line); check that the file is not renamed or damaged"));
+    const std::string data_file = header.fields.at("elementdatafile");
+    std::uint64_t stored = 0;
+    if (data_file == "LOCAL") {
+        const auto size = fs::file_size(path);
+        stored = size > header.header_bytes ? size - header.header_bytes : 0;
+    } else {
+        stored = data_file_size(path, data_file);
+    }
+    const auto compressed = header.fields.find("compresseddata");
+    if (compressed != header.fields.end() && normal_key(compressed->second) == "true")
+        return stored * deflate_ratio;
+    return stored;
+}
+
+} // namespace
+
+std::uint64_t text_header_payload_bound(const fs::path& path)
+{
+    const std::string extension = full_extension(path);
+    if (extension == ".mha" || extension == ".mhd") return meta_image_bound(path);
+    return nrrd_bound(path);
+}
+
+} // namespace tissuemesh::io::detail

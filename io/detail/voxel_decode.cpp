@@ -1,0 +1,190 @@
+#include "io/detail/voxel_decode.h"
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <type_traits>
+
+#include <zlib.h>
+
+#include "core/error.h"
+
+namespace tissuemesh::io::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TypeInfo {
+    VoxelType type;
+    const char* name;
+    std::size_t size;
+};
+
+constexpr std::array<TypeInfo, 10> type_table{{
+    {VoxelType::u8, "uint8", 1},   {VoxelType::i8, "int8", 1},     {VoxelType::u16, "uint16", 2},
+    {VoxelType::i16, "int16", 2},  {VoxelType::u32, "uint32", 4},  {VoxelType::i32, "int32", 4},
+    {VoxelType::u64, "uint64", 8}, {VoxelType::i64, "int64", 8},   {VoxelType::f32, "float32", 4},
+    {VoxelType::f64, "float64", 8},
+}};
+
+const TypeInfo& info(VoxelType type)
+{
+    for (const TypeInfo& entry : type_table)
+        if (entry.type == type) return entry;
+    return type_table[0];
+}
+
+std::string voxel_text(const Dims& dims, std::size_t linear)
+{
+    const std::size_t i = linear % dims[0];
+    const std::size_t j = linear / dims[0] % dims[1];
+    const std::size_t k = linear / dims[0] / dims[1];
+    return concat("voxel (", i, ", ", j, ", ", k, ")");
+}
+
+template <typename T>
+T load(const unsigned char* bytes, std::size_t linear, bool swap)
+{
+    std::array<unsigned char, sizeof(T)> buffer;
+    std::memcpy(buffer.data(), bytes + linear * sizeof(T), sizeof(T));
+    if (swap)
+        for (std::size_t b = 0; b < sizeof(T) / 2; ++b) std::swap(buffer[b], buffer[sizeof(T) - 1 - b]);
+    T value;
+    std::memcpy(&value, buffer.data(), sizeof(T));
+    return value;
+}
+
+[[noreturn]] void reject_value(const std::string& file, const Dims& dims, std::size_t linear,
+                               const std::string& value_text, bool fractional)
+{
+    if (fractional)
+        throw InputError(concat(file, ": ", voxel_text(dims, linear), " holds ", value_text,
+                                "; labels must be whole numbers. The image looks like intensities or "
+                                "probabilities: threshold or round it into an integer label map"));
+    throw InputError(concat(file, ": ", voxel_text(dims, linear), " holds ", value_text,
+                            "; labels must lie in 0..65535. Renumber the tissues into that range"));
+}
+
+template <typename T>
+void decode(const std::string& file, const unsigned char* bytes, bool swap, const Dims& dims,
+            std::vector<Label>& labels)
+{
+    for (std::size_t n = 0; n < labels.size(); ++n) {
+        const T value = load<T>(bytes, n, swap);
+        if constexpr (std::is_floating_point_v<T>) {
+            if (!std::isfinite(value) || value != std::floor(value))
+                reject_value(file, dims, n, concat(static_cast<double>(value)), true);
+            if (value < 0 || value > 65535) reject_value(file, dims, n, concat(static_cast<double>(value)), false);
+        } else {
+            if constexpr (std::is_signed_v<T>) {
+                if (value < 0) reject_value(file, dims, n, std::to_string(value), false);
+            }
+            if (static_cast<std::uint64_t>(value) > 65535) reject_value(file, dims, n, std::to_string(value), false);
+        }
+        labels[n] = static_cast<Label>(value);
+    }
+}
+
+bool host_is_big_endian()
+{
+    const std::uint16_t probe = 1;
+    unsigned char first;
+    std::memcpy(&first, &probe, 1);
+    return first == 0;
+}
+
+} // namespace
+
+std::size_t voxel_type_size(VoxelType type) { return info(type).size; }
+
+std::string voxel_type_name(VoxelType type) { return info(type).name; }
+
+std::optional<VoxelType> parse_voxel_type(const std::string& name)
+{
+    for (const TypeInfo& entry : type_table)
+        if (name == entry.name) return entry.type;
+    return std::nullopt;
+}
+
+std::uint64_t checked_voxel_bytes(const std::string& file, const Dims& dims, std::size_t bytes_per_voxel)
+{
+    std::uint64_t total = bytes_per_voxel;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (dims[axis] == 0)
+            throw InputError(concat(file, ": dimension ", axis, " is 0; an image needs at least one voxel "
+                                    "along every axis. The header is corrupt"));
+        if (total > std::numeric_limits<std::uint64_t>::max() / dims[axis])
+            throw InputError(concat(file, ": dimensions ", dims[0], " x ", dims[1], " x ", dims[2],
+                                    " overflow the voxel count; the header is corrupt"));
+        total *= dims[axis];
+    }
+    return total;
+}
+
+void require_payload(const std::string& file, std::uint64_t needed_bytes, std::uint64_t available_bytes)
+{
+    if (needed_bytes > available_bytes)
+        throw IoError(concat(file, ": truncated, the header's dimensions need ", needed_bytes,
+                             " bytes of voxel data but the file holds ", available_bytes,
+                             "; the file is incomplete or its header is corrupt. Copy or export it again"));
+}
+
+bool is_gzip_file(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    unsigned char magic[2] = {0, 0};
+    in.read(reinterpret_cast<char*>(magic), 2);
+    return in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+}
+
+std::uint64_t uncompressed_size(const fs::path& path)
+{
+    std::error_code ec;
+    if (!is_gzip_file(path)) {
+        const auto size = fs::file_size(path, ec);
+        if (ec) throw IoError(concat(path.string(), ": cannot read (", ec.message(), "); check the path"));
+        return size;
+    }
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (file == nullptr) throw IoError(concat(path.string(), ": cannot be opened; check the permissions"));
+    std::vector<char> buffer(1 << 20);
+    std::uint64_t total = 0;
+    for (;;) {
+        const int got = gzread(file, buffer.data(), static_cast<unsigned>(buffer.size()));
+        if (got < 0) {
+            int code = 0;
+            const std::string reason = gzerror(file, &code);
+            gzclose(file);
+            throw IoError(concat(path.string(), ": corrupt gzip data (", reason,
+                                 "); the file is damaged, copy or export it again"));
+        }
+        if (got == 0) break;
+        total += static_cast<std::uint64_t>(got);
+    }
+    gzclose(file);
+    return total;
+}
+
+std::vector<Label> decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type,
+                                 bool big_endian, const Dims& dims)
+{
+    std::vector<Label> labels(dims[0] * dims[1] * dims[2]);
+    const bool swap = big_endian != host_is_big_endian();
+    switch (type) {
+    case VoxelType::u8: decode<std::uint8_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::i8: decode<std::int8_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::u16: decode<std::uint16_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::i16: decode<std::int16_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::u32: decode<std::uint32_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::i32: decode<std::int32_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::u64: decode<std::uint64_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::i64: decode<std::int64_t>(file, bytes, swap, dims, labels); break;
+    case VoxelType::f32: decode<float>(file, bytes, swap, dims, labels); break;
+    case VoxelType::f64: decode<double>(file, bytes, swap, dims, labels); break;
+    }
+    return labels;
+}
+
+} // namespace tissuemesh::io::detail

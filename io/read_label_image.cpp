@@ -1,0 +1,98 @@
+#include "io/read_label_image.h"
+
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/detail/itk_image_io.h"
+#include "io/detail/nifti_header.h"
+#include "io/detail/text_header.h"
+
+namespace tissuemesh::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string extension_list()
+{
+    std::string list;
+    for (const std::string& extension : label_image_extensions()) list += (list.empty() ? "" : ", ") + extension;
+    return list;
+}
+
+Label parse_label_key(const std::string& name, const std::string& key)
+{
+    std::size_t used = 0;
+    long value = -1;
+    try {
+        value = std::stol(key, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != key.size() || key.empty() || value < 0 || value > std::numeric_limits<Label>::max())
+        throw InputError(concat(name, ": tissue-name key '", key, "' is not a label number in 0..65535; "
+                                "write the names as {\"1\": \"scalp\", ...}"));
+    return static_cast<Label>(value);
+}
+
+} // namespace
+
+TissueNames parse_tissue_names(const std::string& name, const nlohmann::json& table);
+
+TissueNames parse_tissue_names(const std::string& name, const nlohmann::json& table)
+{
+    if (!table.is_object())
+        throw InputError(concat(name, ": tissue names must be a JSON object such as {\"1\": \"scalp\"}; "
+                                "found ", table.type_name()));
+    TissueNames names;
+    for (const auto& [key, value] : table.items()) {
+        if (!value.is_string())
+            throw InputError(concat(name, ": the name of label ", key, " is not a string; write it as \"",
+                                    key, "\": \"scalp\""));
+        names[parse_label_key(name, key)] = value.get<std::string>();
+    }
+    return names;
+}
+
+TissueNames read_tissue_names(const fs::path& path)
+{
+    require_readable_file(path);
+    const std::string name = path.string();
+    std::ifstream in(path, std::ios::binary);
+    const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+    if (document.is_discarded())
+        throw IoError(concat(name, ": not valid JSON; check the syntax (quotes, commas, braces)"));
+    if (document.is_object() && document.contains("labels")) return parse_tissue_names(name, document["labels"]);
+    return parse_tissue_names(name, document);
+}
+
+std::vector<std::string> label_image_extensions()
+{
+    return {".nii", ".nii.gz", ".nrrd", ".nhdr", ".seg.nrrd", ".mha", ".mhd", ".inr", ".inr.gz", ".json"};
+}
+
+LabelImage read_label_image(const fs::path& path, const ReadImageOptions& options)
+{
+    require_readable_file(path);
+    const std::string name = path.string();
+    if (fs::file_size(path) == 0) throw IoError(concat(name, ": the file is empty; write or copy it again"));
+    const std::string extension = full_extension(path);
+    LabelImage image;
+    if (extension == ".nii" || extension == ".nii.gz") {
+        image = detail::read_itk_label_image(path, detail::check_nifti_header(path));
+    } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||
+               extension == ".mhd") {
+        image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path));
+    } else {
+        throw IoError(concat(name, ": unknown image format '", extension, "'; use one of ", extension_list()));
+    }
+    if (!options.names_json.empty())
+        for (const auto& [label, tissue] : read_tissue_names(options.names_json)) image.names()[label] = tissue;
+    return image;
+}
+
+} // namespace tissuemesh::io

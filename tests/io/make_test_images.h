@@ -1,0 +1,83 @@
+// Test inputs generated in code: a small label image with known geometry, and hand-made (possibly
+// broken) files in the formats read_label_image() reads. Header-only: test_io and test_io_cli share it.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/label_image.h"
+
+namespace tissuemesh::testing {
+
+/// A 5 x 4 x 3 image, anisotropic spacing, axes permuted and flipped (i -> -y, j -> +x, k -> +z),
+/// labels i + 2 j + 7 k (0..25) times `scale` so that scale > 10 needs uint16.
+inline LabelImage make_oriented_image(Label scale = 1)
+{
+    const Mat3 direction{0, 1, 0, -1, 0, 0, 0, 0, 1};
+    LabelImage image({5, 4, 3}, {0.5, 1.25, 2.0}, {-10.5, 20.25, 3.0}, direction);
+    for (std::size_t k = 0; k < 3; ++k)
+        for (std::size_t j = 0; j < 4; ++j)
+            for (std::size_t i = 0; i < 5; ++i) image.at(i, j, k) = static_cast<Label>((i + 2 * j + 7 * k) * scale);
+    return image;
+}
+
+inline void write_bytes(const std::filesystem::path& path, const std::vector<unsigned char>& bytes)
+{
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+template <typename T>
+void put(std::vector<unsigned char>& bytes, std::size_t offset, T value)
+{
+    std::memcpy(bytes.data() + offset, &value, sizeof(T));
+}
+
+/// Fields of a hand-made single-file NIfTI-1 image (little-endian, as on the test machines).
+struct NiftiSpec {
+    std::int16_t dims[4] = {3, 2, 2, 2};  ///< dim[0] (rank), then the sizes
+    float spacing[3] = {1, 1, 1};
+    std::int16_t datatype = 2;            ///< 2 uint8, 4 int16, 16 float32, 512 uint16, 128 RGB
+    std::int16_t bitpix = 8;
+    std::int16_t vectors = 1;             ///< dim[5]: values per voxel (rank becomes 5 when > 1)
+    char magic[4] = {'n', '+', '1', '\0'};
+};
+
+/// A NIfTI-1 file: 348-byte header, 4 bytes of extension flag, voxel data from byte 352. `data` is
+/// written as given (it may be shorter than the header asks for, to make truncated files).
+inline void write_nifti(const std::filesystem::path& path, const NiftiSpec& spec,
+                        const std::vector<unsigned char>& data)
+{
+    std::vector<unsigned char> bytes(352, 0);
+    put<std::int32_t>(bytes, 0, 348);
+    const std::int16_t rank = spec.vectors > 1 ? 5 : spec.dims[0];
+    put<std::int16_t>(bytes, 40, rank);
+    for (int axis = 1; axis <= 7; ++axis)
+        put<std::int16_t>(bytes, 40 + 2 * axis, axis <= 3 ? spec.dims[axis] : axis == 5 ? spec.vectors : 1);
+    put<std::int16_t>(bytes, 70, spec.datatype);
+    put<std::int16_t>(bytes, 72, spec.bitpix);
+    put<float>(bytes, 76, 1.0f);  // pixdim[0]: qfac
+    for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis]);
+    put<float>(bytes, 108, 352.0f);   // vox_offset
+    put<float>(bytes, 112, 1.0f);     // scl_slope
+    put<std::int16_t>(bytes, 252, 1); // qform_code: scanner
+    put<float>(bytes, 256, 0.0f);     // quatern_b, c, d = 0: identity rotation
+    std::memcpy(bytes.data() + 344, spec.magic, 4);
+    bytes.insert(bytes.end(), data.begin(), data.end());
+    write_bytes(path, bytes);
+}
+
+/// `count` little-endian values of type T as bytes.
+template <typename T>
+std::vector<unsigned char> voxel_bytes(const std::vector<T>& values)
+{
+    std::vector<unsigned char> bytes(values.size() * sizeof(T));
+    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+    return bytes;
+}
+
+} // namespace tissuemesh::testing

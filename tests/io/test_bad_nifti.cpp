@@ -1,0 +1,140 @@
+// Broken and invalid NIfTI files: the reader names the file and the problem, and allocates nothing
+// beyond what the file holds.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "io/read_label_image.h"
+#include "tests/io/expect_error.h"
+#include "tests/io/make_test_images.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+using testing::expect_error;
+
+std::vector<unsigned char> eight_voxels() { return {0, 1, 2, 3, 4, 5, 6, 7}; }
+
+TEST(BadInput, MissingFileDirectoryAndEmptyFile)
+{
+    testing::TempDir dir;
+    expect_error<IoError>([&] { io::read_label_image(dir / "none.nii.gz"); }, {"none.nii.gz: no such file"});
+    expect_error<IoError>([&] { io::read_label_image(dir.path()); }, {"is a directory"});
+    testing::write_bytes(dir / "empty.nii", {});
+    expect_error<IoError>([&] { io::read_label_image(dir / "empty.nii"); }, {"empty.nii: the file is empty"});
+}
+
+TEST(BadInput, UnknownExtension)
+{
+    testing::TempDir dir;
+    testing::write_bytes(dir / "head.png", {1, 2, 3});
+    expect_error<IoError>([&] { io::read_label_image(dir / "head.png"); },
+                          {"head.png: unknown image format '.png'", ".nii.gz"});
+}
+
+TEST(BadInput, ValidHandMadeNiftiReads)
+{
+    // The control for the broken files below: the same writer with sane fields reads fine.
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.spacing[2] = 2.5f;
+    testing::write_nifti(dir / "ok.nii", spec, eight_voxels());
+    const LabelImage image = io::read_label_image(dir / "ok.nii");
+    EXPECT_EQ(image.dims(), (Dims{2, 2, 2}));
+    EXPECT_EQ(image.at(1, 1, 1), 7);
+    EXPECT_FLOAT_EQ(static_cast<float>(image.spacing_mm()[2]), 2.5f);
+}
+
+TEST(BadInput, TruncatedNifti)
+{
+    testing::TempDir dir;
+    testing::write_nifti(dir / "short.nii", {}, {0, 1, 2});
+    expect_error<IoError>([&] { io::read_label_image(dir / "short.nii"); },
+                          {"short.nii: truncated", "need 8 bytes", "holds 3"});
+    testing::write_bytes(dir / "header.nii", {0x5c, 0x01, 0, 0, 0, 0});
+    expect_error<IoError>([&] { io::read_label_image(dir / "header.nii"); }, {"header.nii: truncated NIfTI header"});
+}
+
+TEST(BadInput, WrongMagic)
+{
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.magic[1] = 'x';
+    testing::write_nifti(dir / "magic.nii", spec, eight_voxels());
+    expect_error<IoError>([&] { io::read_label_image(dir / "magic.nii"); }, {"magic.nii: not a NIfTI file", "magic"});
+    testing::write_bytes(dir / "text.nii.gz", std::vector<unsigned char>(400, 'a'));
+    expect_error<IoError>([&] { io::read_label_image(dir / "text.nii.gz"); }, {"text.nii.gz: not a NIfTI file"});
+}
+
+TEST(BadInput, BadSpacing)
+{
+    testing::TempDir dir;
+    const std::vector<std::pair<float, std::string>> cases{
+        {0.0f, "is 0 mm"}, {-1.5f, "is -1.5 mm"}, {std::nanf(""), "is nan mm"}, {INFINITY, "is inf mm"}};
+    for (const auto& [value, text] : cases) {
+        testing::NiftiSpec spec;
+        spec.spacing[1] = value;
+        testing::write_nifti(dir / "spacing.nii", spec, eight_voxels());
+        expect_error<InputError>([&] { io::read_label_image(dir / "spacing.nii"); },
+                                 {"spacing.nii: spacing along axis 1 " + text, "positive finite"});
+    }
+}
+
+TEST(BadInput, DimsExceedingTheFile)
+{
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.dims[1] = spec.dims[2] = spec.dims[3] = 30000;  // 2.7e13 voxels from a 360-byte file
+    testing::write_nifti(dir / "huge.nii", spec, eight_voxels());
+    expect_error<IoError>([&] { io::read_label_image(dir / "huge.nii"); }, {"huge.nii: truncated", "27000000000000"});
+    spec.dims[1] = -4;
+    testing::write_nifti(dir / "negative.nii", spec, eight_voxels());
+    expect_error<InputError>([&] { io::read_label_image(dir / "negative.nii"); },
+                             {"negative.nii: dimension 0 is -4"});
+}
+
+TEST(BadInput, FloatLabelsMustBeWholeNumbers)
+{
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.datatype = 16;
+    spec.bitpix = 32;
+    testing::write_nifti(dir / "whole.nii", spec, testing::voxel_bytes<float>({0, 1, 2, 3, 4, 5, 6, 300}));
+    EXPECT_EQ(io::read_label_image(dir / "whole.nii").at(1, 1, 1), 300);
+    testing::write_nifti(dir / "prob.nii", spec, testing::voxel_bytes<float>({0, 1, 2, 3, 4, 2.5f, 6, 7}));
+    expect_error<InputError>([&] { io::read_label_image(dir / "prob.nii"); },
+                             {"prob.nii: voxel (1, 0, 1) holds 2.5", "whole numbers"});
+}
+
+TEST(BadInput, LabelsOutsideUint16)
+{
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.datatype = 8;  // int32
+    spec.bitpix = 32;
+    testing::write_nifti(dir / "big.nii", spec, testing::voxel_bytes<std::int32_t>({0, 1, 2, 70000, 4, 5, 6, 7}));
+    expect_error<InputError>([&] { io::read_label_image(dir / "big.nii"); },
+                             {"big.nii: voxel (1, 1, 0) holds 70000", "0..65535"});
+    testing::write_nifti(dir / "neg.nii", spec, testing::voxel_bytes<std::int32_t>({0, -3, 2, 3, 4, 5, 6, 7}));
+    expect_error<InputError>([&] { io::read_label_image(dir / "neg.nii"); },
+                             {"neg.nii: voxel (1, 0, 0) holds -3", "0..65535"});
+}
+
+TEST(BadInput, VectorImages)
+{
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.vectors = 3;
+    testing::write_nifti(dir / "vector.nii", spec, std::vector<unsigned char>(24, 1));
+    expect_error<InputError>([&] { io::read_label_image(dir / "vector.nii"); },
+                             {"vector.nii: a 5D image with 3 values", "one value per voxel"});
+    testing::NiftiSpec rgb;
+    rgb.datatype = 128;
+    rgb.bitpix = 24;
+    testing::write_nifti(dir / "rgb.nii", rgb, std::vector<unsigned char>(24, 1));
+    expect_error<InputError>([&] { io::read_label_image(dir / "rgb.nii"); },
+                             {"rgb.nii: NIfTI datatype 128", "one value per voxel"});
+}
+
+} // namespace
+} // namespace tissuemesh
