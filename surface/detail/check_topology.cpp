@@ -1,0 +1,220 @@
+#include "surface/detail/check_topology.h"
+
+#include <numeric>
+
+namespace tissuemesh::surface::detail {
+namespace {
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b)
+{
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+}
+std::uint32_t key_low(std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); }
+std::uint32_t key_high(std::uint64_t key) { return static_cast<std::uint32_t>(key & 0xffffffffu); }
+
+/// One use of an undirected edge by a triangle of a tissue's outward surface.
+struct EdgeUse {
+    std::uint64_t key;
+    std::uint32_t local;     ///< the triangle's index in the tissue's triangle list
+    std::int32_t direction;  ///< +1 when traversed from the lower to the higher vertex index
+};
+
+class UnionFind {
+public:
+    explicit UnionFind(std::size_t size) : parent_(size) { std::iota(parent_.begin(), parent_.end(), 0u); }
+    std::uint32_t find(std::uint32_t x)
+    {
+        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+        return x;
+    }
+    void unite(std::uint32_t a, std::uint32_t b) { parent_[find(a)] = find(b); }
+    std::size_t roots()
+    {
+        std::size_t count = 0;
+        for (std::uint32_t x = 0; x < parent_.size(); ++x) count += find(x) == x ? 1 : 0;
+        return count;
+    }
+
+private:
+    std::vector<std::uint32_t> parent_;
+};
+
+/// The triangle as seen from `tissue`: normal pointing out of it.
+Triangle outward(const InterfaceComplex& complex, std::uint32_t t, Label tissue)
+{
+    const Triangle& tri = complex.triangles[t];
+    return complex.sides[t].from == tissue ? tri : Triangle{tri[0], tri[2], tri[1]};
+}
+
+std::vector<EdgeUse> edge_uses(const InterfaceComplex& complex, Label tissue,
+                               const std::vector<std::uint32_t>& triangles)
+{
+    std::vector<EdgeUse> uses;
+    uses.reserve(3 * triangles.size());
+    for (std::uint32_t local = 0; local < triangles.size(); ++local) {
+        const Triangle tri = outward(complex, triangles[local], tissue);
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
+            if (a != b) uses.push_back({edge_key(a, b), local, a < b ? 1 : -1});
+        }
+    }
+    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return x.key != y.key ? x.key < y.key : x.local < y.local;
+    });
+    return uses;
+}
+
+/// Signed volume enclosed by the tissue's outward triangles, relative to `origin` (which cancels for
+/// a closed surface but keeps the terms small).
+double enclosed_volume(const InterfaceComplex& complex, Label tissue, const std::vector<std::uint32_t>& triangles,
+                       const Vec3& origin)
+{
+    double sum = 0;
+    for (const std::uint32_t t : triangles) {
+        const Triangle tri = outward(complex, t, tissue);
+        const Vec3 a = complex.vertices[tri[0]] - origin;
+        const Vec3 b = complex.vertices[tri[1]] - origin;
+        const Vec3 c = complex.vertices[tri[2]] - origin;
+        sum += dot(a, cross(b, c));
+    }
+    return sum / 6.0;
+}
+
+/// Logs the defects of one edge of a tissue's surface, given its uses [begin, end).
+void check_edge(DefectLog& log, Label tissue, const std::vector<std::uint32_t>& triangles,
+                const EdgeUse* begin, const EdgeUse* end, TissueCheck& check)
+{
+    const auto count = static_cast<std::size_t>(end - begin);
+    int balance = 0;
+    for (const EdgeUse* use = begin; use != end; ++use) balance += use->direction;
+    const InterfaceComplex& complex = log.complex();
+    const std::uint32_t a = key_low(begin->key), b = key_high(begin->key);
+    const auto make = [&](const std::string& what) {
+        return [&, what] {
+            Defect defect;
+            defect.location_mm = 0.5 * (complex.vertices[a] + complex.vertices[b]);
+            defect.tissues.push_back(tissue);
+            std::string examples;
+            for (const EdgeUse* use = begin; use != end && use - begin < 2; ++use) {
+                const std::uint32_t t = triangles[use->local];
+                defect.triangles.push_back(t);
+                const LabelPair& pair = complex.sides[t];
+                defect.tissues.push_back(pair.from == tissue ? pair.to : pair.from);
+                examples += concat(examples.empty() ? "" : ", ", log.triangle(t));
+            }
+            defect.description = concat(what, ' ', a, '-', b, " in the surface of ", log.tissue(tissue),
+                                        " (used by ", count, " of its triangles: ", examples, count > 2 ? ", ..." : "",
+                                        ") ", DefectLog::near(defect.location_mm));
+            return defect;
+        };
+    };
+    if (count % 2 == 1) {
+        ++check.open_edges;
+        log.add(DefectKind::open_edge, make("open edge"));
+    } else if (balance != 0) {
+        ++check.orientation_conflicts;
+        log.add(DefectKind::orientation_conflict, make("orientation conflict (uses not in opposite pairs) at edge"));
+    }
+    if (count > 2) {
+        ++check.non_manifold_edges;
+        log.add(DefectKind::non_manifold_edge, make("non-manifold edge (the tissue touches itself)"));
+    }
+}
+
+std::uint32_t first_triangle_of(const InterfaceComplex& complex, Label tissue)
+{
+    std::uint32_t t = 0;
+    while (t + 1 < complex.sides.size() && complex.sides[t].from != tissue && complex.sides[t].to != tissue) ++t;
+    return t;
+}
+
+void check_sign(DefectLog& log, Label tissue, const TissueCheck& check)
+{
+    const bool background = tissue == log.complex().background;
+    if (!check.closed || !check.oriented || (background ? check.volume_mm3 < 0 : check.volume_mm3 > 0)) return;
+    log.add(DefectKind::inverted_tissue, [&] {
+        const std::uint32_t first_triangle = first_triangle_of(log.complex(), tissue);
+        Defect defect;
+        defect.location_mm = log.centroid(first_triangle);
+        defect.tissues = {tissue};
+        defect.triangles = {first_triangle};
+        const std::string name = log.tissue(tissue);
+        defect.description =
+            background ? concat("the surface of the background (", name, ") encloses ", format_mm(check.volume_mm3),
+                                " mm3 instead of a negative volume: the triangles' from/to labels are swapped ",
+                                DefectLog::near(defect.location_mm))
+                       : concat("the surface of ", name, " encloses ", format_mm(check.volume_mm3),
+                                " mm3 (not positive): its triangles' from/to labels are swapped, or ", name,
+                                " is unbounded but is not the background ", DefectLog::near(defect.location_mm));
+        return defect;
+    });
+}
+
+Vec3 bounding_box_centre(const InterfaceComplex& complex)
+{
+    if (complex.vertices.empty()) return {0, 0, 0};
+    Vec3 low = complex.vertices[0], high = complex.vertices[0];
+    for (const Vec3& v : complex.vertices)
+        for (int axis = 0; axis < 3; ++axis) {
+            low[axis] = std::min(low[axis], v[axis]);
+            high[axis] = std::max(high[axis], v[axis]);
+        }
+    return 0.5 * (low + high);
+}
+
+} // namespace
+
+void check_tissue_surfaces(DefectLog& log, CheckReport& report)
+{
+    const InterfaceComplex& complex = log.complex();
+    std::map<Label, std::vector<std::uint32_t>> by_tissue;
+    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t) {
+        by_tissue[complex.sides[t].from].push_back(t);
+        by_tissue[complex.sides[t].to].push_back(t);
+    }
+    const Vec3 origin = bounding_box_centre(complex);
+    for (const auto& [tissue, triangles] : by_tissue) {
+        TissueCheck& check = report.tissues[tissue];
+        check.triangles = triangles.size();
+        const std::vector<EdgeUse> uses = edge_uses(complex, tissue, triangles);
+        UnionFind components(triangles.size());
+        for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
+            end = begin;
+            while (end < uses.size() && uses[end].key == uses[begin].key) {
+                components.unite(uses[begin].local, uses[end].local);
+                ++end;
+            }
+            check_edge(log, tissue, triangles, uses.data() + begin, uses.data() + end, check);
+        }
+        check.closed = check.open_edges == 0;
+        check.oriented = check.orientation_conflicts == 0;
+        check.components = components.roots();
+        check.volume_mm3 = enclosed_volume(complex, tissue, triangles, origin);
+    }
+}
+
+void check_volume_signs(DefectLog& log, const CheckReport& report, const std::set<Label>& crossing)
+{
+    for (const auto& [tissue, check] : report.tissues)
+        if (crossing.count(tissue) == 0) check_sign(log, tissue, check);
+}
+
+void count_edges(const InterfaceComplex& complex, CheckReport& report)
+{
+    std::vector<std::uint64_t> keys;
+    keys.reserve(3 * complex.triangles.size());
+    for (const Triangle& tri : complex.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (tri[k] != tri[(k + 1) % 3]) keys.push_back(edge_key(tri[k], tri[(k + 1) % 3]));
+    std::sort(keys.begin(), keys.end());
+    report.edges = 0;
+    report.junction_edges = 0;
+    for (std::size_t begin = 0, end = 0; begin < keys.size(); begin = end) {
+        end = begin;
+        while (end < keys.size() && keys[end] == keys[begin]) ++end;
+        ++report.edges;
+        if (end - begin >= 3) ++report.junction_edges;
+    }
+}
+
+} // namespace tissuemesh::surface::detail
