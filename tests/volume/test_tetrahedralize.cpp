@@ -1,0 +1,204 @@
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "volume/tetrahedralize.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+/// Builds complexes from axis-aligned box faces, sharing vertices by exact coordinates.
+class BoxComplex {
+public:
+    InterfaceComplex complex;
+
+    /// Adds the faces of box [lo, hi] with tissue `inside` behind them; `outside(face)` gives the tissue in
+    /// front of each face (0..5: -x, +x, -y, +y, -z, +z); a face whose outside is `skip` is left out.
+    void add_box(const Vec3& lo, const Vec3& hi, Label inside, const std::array<Label, 6>& outside, Label skip = 65535)
+    {
+        auto v = [&](int i, int j, int k) { return vertex({i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]}); };
+        // Corners of each face counter-clockwise seen from outside (normal outward).
+        const int faces[6][4][3] = {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+                                    {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+                                    {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+        for (int f = 0; f < 6; ++f) {
+            if (outside[f] == skip) continue;
+            std::array<std::uint32_t, 4> q;
+            for (int c = 0; c < 4; ++c) q[c] = v(faces[f][c][0], faces[f][c][1], faces[f][c][2]);
+            complex.add_triangle({q[0], q[1], q[2]}, {inside, outside[f]});
+            complex.add_triangle({q[0], q[2], q[3]}, {inside, outside[f]});
+        }
+    }
+    /// Adds the faces of box [lo, hi] reversed: `outside` behind, `inside` in front (a cavity wall seen from outside).
+    void add_box_reversed(const Vec3& lo, const Vec3& hi, Label inside, Label outside)
+    {
+        const std::size_t first = complex.triangles.size();
+        add_box(lo, hi, inside, {outside, outside, outside, outside, outside, outside});
+        for (std::size_t t = first; t < complex.triangles.size(); ++t) {
+            std::swap(complex.triangles[t][1], complex.triangles[t][2]);
+            complex.sides[t] = {complex.sides[t].to, complex.sides[t].from};
+        }
+    }
+
+private:
+    std::map<Vec3, std::uint32_t> index_;
+    std::uint32_t vertex(const Vec3& p)
+    {
+        const auto [it, inserted] = index_.emplace(p, static_cast<std::uint32_t>(complex.vertices.size()));
+        if (inserted) complex.vertices.push_back(p);
+        return it->second;
+    }
+};
+
+std::map<Label, double> volumes_by_tissue(const TetMesh& mesh)
+{
+    std::map<Label, double> volumes;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) volumes[mesh.tet_labels[t]] += signed_volume(mesh, t);
+    return volumes;
+}
+
+/// Two nested boxes: tissue 1 (10 mm cube) around tissue 2 (4 mm cube), background 0 outside.
+InterfaceComplex nested_boxes()
+{
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {10, 10, 10}, 1, {0, 0, 0, 0, 0, 0});
+    boxes.add_box({3, 3, 3}, {7, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
+    return boxes.complex;
+}
+
+TEST(Tetrahedralize, NestedBoxesGetExactTissueVolumesAndPositiveTets)
+{
+    TetrahedralizeReport report;
+    const TetMesh mesh = tetrahedralize(nested_boxes(), {}, {}, &report);
+    ASSERT_GT(mesh.tets.size(), 0u);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) ASSERT_GT(signed_volume(mesh, t), 0) << "tet " << t;
+    const auto volumes = volumes_by_tissue(mesh);
+    // Boxes are represented exactly by flat facets: volumes agree to round-off.
+    EXPECT_NEAR(volumes.at(1), 1000.0 - 64.0, 1e-9);
+    EXPECT_NEAR(volumes.at(2), 64.0, 1e-9);
+    EXPECT_EQ(volumes.count(0), 0u) << "the background outside the object must not be meshed";
+    EXPECT_EQ(report.tets, mesh.tets.size());
+}
+
+TEST(Tetrahedralize, PreservedInterfacesAreTetFacesWithTheirTissues)
+{
+    const InterfaceComplex complex = nested_boxes();
+    const TetMesh mesh = tetrahedralize(complex, {.preserve_interfaces = true});
+    // With -Y every input triangle is an output face, unchanged, with the same tissue pair.
+    std::set<std::pair<std::array<Vec3, 3>, std::pair<Label, Label>>> input;
+    auto key = [](std::array<Vec3, 3> corners) {
+        std::sort(corners.begin(), corners.end());
+        return corners;
+    };
+    for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
+        const Triangle& tri = complex.triangles[t];
+        input.insert({key({complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]}),
+                      {complex.sides[t].from, complex.sides[t].to}});
+    }
+    std::set<std::pair<std::array<Vec3, 3>, std::pair<Label, Label>>> output;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Triangle& tri = mesh.faces[f];
+        output.insert({key({mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]}),
+                       {mesh.face_sides[f].from, mesh.face_sides[f].to}});
+    }
+    EXPECT_EQ(input, output);
+    // Each interface face is a face of a tet of each of its tissues, on the right side of it.
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Triangle& tri = mesh.faces[f];
+        const std::set<std::uint32_t> corners(tri.begin(), tri.end());
+        const Vec3 normal = cross(mesh.vertices[tri[1]] - mesh.vertices[tri[0]], mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
+        int behind = 0, in_front = 0;
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+            int shared = 0, apex = -1;
+            for (const std::uint32_t v : mesh.tets[t]) corners.count(v) ? ++shared : apex = static_cast<int>(v);
+            if (shared != 3) continue;
+            const bool front = dot(mesh.vertices[apex] - mesh.vertices[tri[0]], normal) > 0;
+            const Label expected = front ? mesh.face_sides[f].to : mesh.face_sides[f].from;
+            EXPECT_EQ(mesh.tet_labels[t], expected) << "face " << f;
+            front ? ++in_front : ++behind;
+        }
+        EXPECT_EQ(behind, 1) << "face " << f;
+        EXPECT_EQ(in_front, mesh.face_sides[f].to == 0 ? 0 : 1) << "face " << f;
+    }
+}
+
+TEST(Tetrahedralize, BoxesSideBySideShareTheirJunction)
+{
+    // Tissues 1 and 2 touch along x = 5; background 0, 1 and 2 meet along the square's edges.
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {5, 5, 5}, 1, {0, 2, 0, 0, 0, 0});
+    boxes.add_box({5, 0, 0}, {10, 5, 5}, 2, {1, 0, 0, 0, 0, 0}, /*skip=*/1);
+    const TetMesh mesh = tetrahedralize(boxes.complex);
+    const auto volumes = volumes_by_tissue(mesh);
+    EXPECT_NEAR(volumes.at(1), 125.0, 1e-9);
+    EXPECT_NEAR(volumes.at(2), 125.0, 1e-9);
+}
+
+TEST(Tetrahedralize, BackgroundCavityIsMeshedOrDropped)
+{
+    // A 10 mm cube of tissue 1 with a 4 mm cavity of background inside.
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {10, 10, 10}, 1, {0, 0, 0, 0, 0, 0});
+    // The cavity wall: normals point into the cavity (from tissue 1 into background 0).
+    boxes.add_box_reversed({3, 3, 3}, {7, 7, 7}, 0, 1);
+    const auto kept = volumes_by_tissue(tetrahedralize(boxes.complex, {.mesh_background_cavities = true}));
+    EXPECT_NEAR(kept.at(1), 936.0, 1e-9);
+    EXPECT_NEAR(kept.at(0), 64.0, 1e-9);
+    const auto dropped = volumes_by_tissue(tetrahedralize(boxes.complex, {.mesh_background_cavities = false}));
+    EXPECT_NEAR(dropped.at(1), 936.0, 1e-9);
+    EXPECT_EQ(dropped.count(0), 0u);
+}
+
+TEST(Tetrahedralize, PerTissueVolumeBoundHoldsInThatTissueOnly)
+{
+    // Without -Y: TetGen 1.5 refuses every point that encroaches a preserved interface triangle, and in a
+    // 4 mm box every circumcentre does, so the bound could not be met there with -Y.
+    TetrahedralizeOptions options;
+    options.preserve_interfaces = false;
+    options.max_volume_per_tissue_mm3 = {{2, 0.5}};
+    const TetMesh mesh = tetrahedralize(nested_boxes(), options);
+    double largest_inner = 0, largest_outer = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        (mesh.tet_labels[t] == 2 ? largest_inner : largest_outer) =
+            std::max(mesh.tet_labels[t] == 2 ? largest_inner : largest_outer, signed_volume(mesh, t));
+    EXPECT_LE(largest_inner, 0.5 * (1 + 1e-9));
+    EXPECT_GT(largest_outer, 0.5) << "the bound must not spread to the other tissue";
+}
+
+TEST(Tetrahedralize, QualityBoundsHoldAwayFromFixedInterfaces)
+{
+    // Without -Y TetGen may split interface triangles, so it can meet the radius-edge bound everywhere.
+    const TetMesh mesh = tetrahedralize(nested_boxes(), {.preserve_interfaces = false, .max_radius_edge_ratio = 1.5});
+    const auto volumes = volumes_by_tissue(mesh);
+    EXPECT_NEAR(volumes.at(2), 64.0, 1e-9);
+    EXPECT_GT(mesh.vertices.size(), nested_boxes().vertices.size());
+}
+
+TEST(Tetrahedralize, IntersectingBoxesAreRejectedNamingTissues)
+{
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {10, 10, 10}, 1, {0, 0, 0, 0, 0, 0});
+    boxes.add_box({5, 5, 5}, {15, 15, 15}, 2, {0, 0, 0, 0, 0, 0});
+    try {
+        tetrahedralize(boxes.complex);
+        FAIL() << "an intersecting complex was accepted";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("intersect"), std::string::npos) << message;
+        EXPECT_NE(message.find("mm"), std::string::npos) << message;
+    }
+}
+
+TEST(Tetrahedralize, RejectsBadOptions)
+{
+    EXPECT_THROW(tetrahedralize(nested_boxes(), {.max_radius_edge_ratio = 0.5}), InputError);
+    TetrahedralizeOptions options;
+    options.max_volume_per_tissue_mm3 = {{7, 1.0}};
+    EXPECT_THROW(tetrahedralize(nested_boxes(), options), InputError);
+}
+
+} // namespace
+} // namespace tissuemesh::volume

@@ -1,0 +1,190 @@
+#include "volume/check_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "volume/detail/face_map.h"
+#include "volume/rasterize.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+using detail::face_key;
+using detail::local_faces;
+
+constexpr double pi = 3.14159265358979323846;
+constexpr std::size_t max_problems = 20;
+
+std::string where(const Vec3& p)
+{
+    return concat("(", format_mm(p[0], 1), ", ", format_mm(p[1], 1), ", ", format_mm(p[2], 1), ") mm");
+}
+
+void note(MeshCheckReport& report, std::string text)
+{
+    if (report.problems.size() < max_problems) report.problems.push_back(std::move(text));
+}
+
+std::size_t find(std::vector<std::size_t>& parent, std::size_t x)
+{
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+}
+
+} // namespace
+
+TetShape tet_shape(const TetMesh& mesh, std::size_t t)
+{
+    const Tet& tet = mesh.tets[t];
+    std::array<Vec3, 4> p;
+    for (int c = 0; c < 4; ++c) p[c] = mesh.vertices[tet[c]];
+    // Dihedral angle at edge (i, j) from the normals of the two faces that share it.
+    std::array<Vec3, 4> normals;
+    for (int f = 0; f < 4; ++f) {
+        const Vec3& a = p[local_faces[f][0]];
+        Vec3 n = cross(p[local_faces[f][1]] - a, p[local_faces[f][2]] - a);
+        const double length = norm(n);
+        normals[f] = length > 0 ? (1.0 / length) * n : Vec3{0, 0, 0};
+    }
+    double min_angle = 180, max_angle = 0;
+    for (int f = 0; f < 4; ++f)
+        for (int g = f + 1; g < 4; ++g) {
+            const double angle = 180.0 - std::acos(std::clamp(dot(normals[f], normals[g]), -1.0, 1.0)) * 180.0 / pi;
+            min_angle = std::min(min_angle, angle), max_angle = std::max(max_angle, angle);
+        }
+    double shortest = std::numeric_limits<double>::max();
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, distance(p[i], p[j]));
+    // Circumradius from the standard formula |a|^2 (b x c) + |b|^2 (c x a) + |c|^2 (a x b) / (2 a.(b x c)).
+    const Vec3 a = p[1] - p[0], b = p[2] - p[0], c = p[3] - p[0];
+    const double det = 2 * dot(a, cross(b, c));
+    const Vec3 centre = (1.0 / det) * (dot(a, a) * cross(b, c) + dot(b, b) * cross(c, a) + dot(c, c) * cross(a, b));
+    const double ratio = det != 0 && shortest > 0 ? norm(centre) / shortest : std::numeric_limits<double>::infinity();
+    return {min_angle, max_angle, ratio};
+}
+
+MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const Progress& progress)
+{
+    validate_indices(mesh, "mesh");
+    MeshCheckReport report;
+    report.nodes = mesh.vertices.size(), report.tets = mesh.tets.size(), report.faces = mesh.faces.size();
+
+    std::vector<bool> used(mesh.vertices.size(), false);
+    const auto faces = detail::map_faces(mesh.tets);
+    double ratio_sum = 0;
+    report.quality.min_dihedral_deg = 180;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& tet = mesh.tets[t];
+        for (const std::uint32_t v : tet) used[v] = true;
+        const double volume = signed_volume(mesh, t);
+        TissueMeshStats& tissue = report.tissues[mesh.tet_labels[t]];
+        ++tissue.tets, tissue.volume_mm3 += volume;
+        if (!(volume > 0)) {
+            ++report.inverted_tets;
+            note(report, concat("tetrahedron ", t, " (", mesh.names.count(mesh.tet_labels[t]) ? mesh.names.at(mesh.tet_labels[t])
+                                : std::to_string(mesh.tet_labels[t]), ") has volume ", volume, " mm^3 at ", where(mesh.vertices[tet[0]])));
+        }
+        const TetShape shape = tet_shape(mesh, t);
+        report.quality.min_dihedral_deg = std::min(report.quality.min_dihedral_deg, shape.min_dihedral_deg);
+        report.quality.max_dihedral_deg = std::max(report.quality.max_dihedral_deg, shape.max_dihedral_deg);
+        report.quality.max_radius_edge_ratio = std::max(report.quality.max_radius_edge_ratio, shape.radius_edge_ratio);
+        ratio_sum += shape.radius_edge_ratio;
+        ++report.quality.min_dihedral_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(shape.min_dihedral_deg / 10))];
+    }
+    report.quality.mean_radius_edge_ratio = mesh.tets.empty() ? 0 : ratio_sum / static_cast<double>(mesh.tets.size());
+    if (mesh.tets.empty()) report.quality.min_dihedral_deg = 0;
+    report.unused_nodes = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+    if (report.unused_nodes > 0) note(report, concat(report.unused_nodes, " nodes belong to no tetrahedron"));
+    progress.update("check-mesh", 0.3);
+
+    // Marked faces: each must be a tet face with `from` behind and `to` in front (or nothing / background).
+    std::unordered_map<detail::FaceKey, std::size_t, detail::FaceKeyHash> marked;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Triangle& tri = mesh.faces[f];
+        const detail::FaceKey key = face_key(tri[0], tri[1], tri[2]);
+        marked[key] = f;
+        const auto found = faces.find(key);
+        const Vec3& a = mesh.vertices[tri[0]];
+        if (found == faces.end()) {
+            ++report.missing_interface_faces;
+            note(report, concat("interface face ", f, " near ", where(a), " is not a face of any tetrahedron"));
+            continue;
+        }
+        const Vec3 normal = cross(mesh.vertices[tri[1]] - a, mesh.vertices[tri[2]] - a);
+        for (const std::int64_t t : found->second.tets) {
+            if (t < 0) continue;
+            Vec3 centroid{0, 0, 0};
+            for (const std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)]) centroid = centroid + 0.25 * mesh.vertices[v];
+            const Label expected = dot(centroid - a, normal) > 0 ? mesh.face_sides[f].to : mesh.face_sides[f].from;
+            if (mesh.tet_labels[static_cast<std::size_t>(t)] != expected) {
+                ++report.mislabelled_interface_faces;
+                note(report, concat("interface face ", f, " (", mesh.face_sides[f].from, "|", mesh.face_sides[f].to, ") near ",
+                                    where(a), " has a tetrahedron of tissue ", mesh.tet_labels[static_cast<std::size_t>(t)],
+                                    " on the side of tissue ", expected));
+                break;
+            }
+        }
+    }
+
+    // Conformity, tissue changes across unmarked faces, closed outer boundary, tissue components.
+    std::vector<std::size_t> parent(mesh.tets.size());
+    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    std::unordered_map<std::uint64_t, int> boundary_edges;
+    for (const auto& [key, use] : faces) {
+        if (use.count > 2) {
+            ++report.nonconforming_faces;
+            note(report, concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", use.count, " tetrahedra"));
+        } else if (use.count == 2) {
+            const auto t0 = static_cast<std::size_t>(use.tets[0]), t1 = static_cast<std::size_t>(use.tets[1]);
+            if (mesh.tet_labels[t0] == mesh.tet_labels[t1]) parent[find(parent, t0)] = find(parent, t1);
+            else if (!marked.count(key)) {
+                ++report.unmarked_interfaces;
+                note(report, concat("tissues ", mesh.tet_labels[t0], " and ", mesh.tet_labels[t1], " meet near ",
+                                    where(mesh.vertices[key.v[0]]), " across a face that is not marked as an interface"));
+            }
+        } else {
+            // An outer-boundary face: orient it outward from its tet and count directed edges.
+            const Tet& tet = mesh.tets[static_cast<std::size_t>(use.tets[0])];
+            for (const auto& local : local_faces) {
+                if (face_key(tet[local[0]], tet[local[1]], tet[local[2]]) != key) continue;
+                for (int e = 0; e < 3; ++e) {
+                    const std::uint64_t from = tet[local[e]], to = tet[local[(e + 1) % 3]];
+                    boundary_edges[from << 32 | to] += 1;
+                    boundary_edges[to << 32 | from] -= 1;
+                }
+            }
+        }
+    }
+    for (const auto& [edge, balance] : boundary_edges)
+        if (balance != 0) ++report.open_boundary_edges;
+    report.open_boundary_edges /= 2;  // each unmatched edge was counted in both directions
+    if (report.open_boundary_edges > 0) note(report, concat(report.open_boundary_edges, " edges of the outer boundary are open"));
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (find(parent, t) == t) ++report.tissues[mesh.tet_labels[t]].components;
+    progress.update("check-mesh", 0.6);
+
+    if (image != nullptr && !image->empty()) {
+        const std::vector<std::int32_t> owner = rasterize_tets(mesh, *image, progress);
+        std::map<Label, std::size_t> in_image, in_mesh, both;
+        for (std::size_t v = 0; v < owner.size(); ++v) {
+            const Label truth = image->labels()[v];
+            ++in_image[truth];
+            if (owner[v] < 0) continue;
+            const Label meshed = mesh.tet_labels[static_cast<std::size_t>(owner[v])];
+            ++in_mesh[meshed];
+            if (meshed == truth) ++both[truth];
+        }
+        for (auto& [label, stats] : report.tissues) {
+            const double a = static_cast<double>(in_image[label]), b = static_cast<double>(in_mesh[label]);
+            stats.voxel_volume_mm3 = a * image->voxel_volume_mm3();
+            stats.dice = a + b > 0 ? 2.0 * static_cast<double>(both[label]) / (a + b) : 1.0;
+        }
+    }
+    progress.update("check-mesh", 1.0);
+    return report;
+}
+
+} // namespace tissuemesh::volume

@@ -1,0 +1,62 @@
+// The tet-mesh checker: conformity, interfaces, tissues, quality, and agreement with the voxels.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+
+namespace tissuemesh::volume {
+
+struct TissueMeshStats {
+    std::size_t tets = 0;
+    double volume_mm3 = 0;
+    std::size_t components = 0;      ///< face-connected pieces of this tissue's tets
+    double voxel_volume_mm3 = -1;    ///< with an image: the tissue's voxel volume, else -1
+    double dice = -1;                ///< with an image: Dice of (voxel centres in this tissue's tets) vs voxels
+};
+
+struct QualityStats {
+    double min_dihedral_deg = 0;     ///< smallest dihedral angle over all tets
+    double max_dihedral_deg = 0;
+    double max_radius_edge_ratio = 0;  ///< circumradius / shortest edge (regular tet: 0.612)
+    double mean_radius_edge_ratio = 0;
+    std::array<std::size_t, 18> min_dihedral_histogram{};  ///< tets by their smallest dihedral, 10 deg bins
+};
+
+struct MeshCheckReport {
+    std::size_t nodes = 0, tets = 0, faces = 0;
+    std::size_t inverted_tets = 0;          ///< signed volume <= 0
+    std::size_t nonconforming_faces = 0;    ///< faces shared by more than two tets
+    std::size_t open_boundary_edges = 0;    ///< edges of the outer boundary not matched by a reverse edge
+    std::size_t unused_nodes = 0;
+    std::size_t missing_interface_faces = 0;  ///< marked faces that are not tet faces
+    std::size_t mislabelled_interface_faces = 0;  ///< marked faces whose tets disagree with the face's tissues
+    std::size_t unmarked_interfaces = 0;    ///< faces between tets of different tissues that are not marked
+    std::map<Label, TissueMeshStats> tissues;
+    QualityStats quality;
+    std::vector<std::string> problems;      ///< one line each, with a location in mm (capped)
+
+    /// True when the mesh is fit for FEM: conforming, no inverted tets, closed boundary, interfaces right.
+    bool ok() const
+    {
+        return inverted_tets == 0 && nonconforming_faces == 0 && open_boundary_edges == 0 && unused_nodes == 0 &&
+               missing_interface_faces == 0 && mislabelled_interface_faces == 0 && unmarked_interfaces == 0;
+    }
+};
+
+/// Checks `mesh`; with a non-empty `image`, also each tissue's voxel agreement (Dice), by rasterize_tets().
+MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image = nullptr, const Progress& progress = {});
+
+/// Smallest and largest dihedral angle (degrees) and radius-edge ratio of tet `t`.
+struct TetShape {
+    double min_dihedral_deg, max_dihedral_deg, radius_edge_ratio;
+};
+TetShape tet_shape(const TetMesh& mesh, std::size_t t);
+
+} // namespace tissuemesh::volume

@@ -1,0 +1,236 @@
+#include "volume/tetrahedralize.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include "core/error.h"
+#include "surface/check_complex.h"
+#include "volume/check_mesh.h"
+#include "volume/detail/face_map.h"
+#include "volume/detail/tetgen_adapter.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+constexpr Label unlabelled = std::numeric_limits<Label>::max();
+
+std::string build_switches(const TetrahedralizeOptions& options, bool with_regions)
+{
+    // p: the input is a PLC; z: zero-based; Q: quiet; M: never merge coplanar facets, so every output
+    // face keeps the marker of its own input triangle.
+    std::string switches = "pzQM";
+    if (options.preserve_interfaces) switches += "Y";
+    if (options.improve_quality) switches += concat("q", options.max_radius_edge_ratio, "/", options.min_dihedral_deg);
+    if (with_regions) switches += "Aa";
+    if (options.max_volume_mm3 > 0) switches += concat("a", options.max_volume_mm3);
+    switches += concat("O", std::clamp(options.optimisation_level, 0, 10));
+    return switches;
+}
+
+Vec3 triangle_normal(const InterfaceComplex& complex, std::size_t t)
+{
+    const Triangle& tri = complex.triangles[t];
+    const Vec3& a = complex.vertices[tri[0]];
+    return cross(complex.vertices[tri[1]] - a, complex.vertices[tri[2]] - a);
+}
+
+/// One seed per connected piece of each sized tissue's surface, just behind its roomiest triangle.
+std::vector<detail::TetgenRegion> region_seeds(const InterfaceComplex& complex, const TetrahedralizeOptions& options)
+{
+    std::vector<detail::TetgenRegion> regions;
+    for (const auto& [tissue, max_volume] : options.max_volume_per_tissue_mm3) {
+        std::size_t best = complex.triangles.size();
+        double best_area = 0;
+        for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
+            if (complex.sides[t].from != tissue && complex.sides[t].to != tissue) continue;
+            const double area = norm(triangle_normal(complex, t));
+            if (area > best_area) best_area = area, best = t;
+        }
+        if (best == complex.triangles.size())
+            throw InputError(concat("--max-volume names tissue ", tissue, ", which the surface does not contain"));
+        // A point a small fraction of the triangle's size away from its centroid, on the tissue's side.
+        const Triangle& tri = complex.triangles[best];
+        const Vec3 centroid = (1.0 / 3.0) * (complex.vertices[tri[0]] + complex.vertices[tri[1]] + complex.vertices[tri[2]]);
+        Vec3 normal = triangle_normal(complex, best);
+        normal = (1.0 / norm(normal)) * normal;
+        const double offset = 0.05 * std::sqrt(best_area);
+        const double side = complex.sides[best].to == tissue ? 1.0 : -1.0;
+        regions.push_back({centroid + (side * offset) * normal, tissue, max_volume});
+    }
+    return regions;
+}
+
+Vec3 point(const std::vector<double>& points, int index)
+{
+    return {points[3 * index], points[3 * index + 1], points[3 * index + 2]};
+}
+
+Vec3 tet_centroid(const detail::TetgenOutput& out, int t)
+{
+    Vec3 sum{0, 0, 0};
+    for (const int v : out.tets[t]) sum = sum + point(out.points, v);
+    return 0.25 * sum;
+}
+
+/// The local face index (opposite vertex i) of tet t that has the three given vertices.
+int local_face(const std::array<int, 4>& tet, const std::array<int, 3>& face)
+{
+    for (int i = 0; i < 4; ++i)
+        if (std::find(face.begin(), face.end(), tet[i]) == face.end()) return i;
+    return -1;
+}
+
+/// Labels every tet: tets on interface faces take the tissue on their side, the rest by flooding.
+std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::TetgenOutput& out)
+{
+    const std::size_t tet_count = out.tets.size();
+    std::vector<Label> labels(tet_count, unlabelled);
+    std::vector<std::uint8_t> interface_mask(tet_count, 0);
+    std::deque<int> queue;
+    // TetGen's own face-to-tet list is not reliable with every switch combination: build it here.
+    const auto tets_of_face = detail::map_faces(out.tets);
+    for (std::size_t f = 0; f < out.faces.size(); ++f) {
+        const int marker = out.face_markers[f];
+        if (marker <= 0 || static_cast<std::size_t>(marker) > complex.triangles.size())
+            throw AlgorithmError(concat("TetGen returned a boundary face without its input triangle (marker ", marker,
+                                        "); please report this input"));
+        const std::size_t source = static_cast<std::size_t>(marker - 1);
+        const Vec3 normal = triangle_normal(complex, source);
+        const Vec3 anchor = complex.vertices[complex.triangles[source][0]];
+        const auto found = tets_of_face.find(detail::face_key(static_cast<std::uint32_t>(out.faces[f][0]),
+                                                               static_cast<std::uint32_t>(out.faces[f][1]),
+                                                               static_cast<std::uint32_t>(out.faces[f][2])));
+        if (found == tets_of_face.end())
+            throw AlgorithmError("TetGen returned an interface face that is no tetrahedron's face; please report this input");
+        for (const std::int64_t tet_index : found->second.tets) {
+            if (tet_index < 0) continue;
+            const int t = static_cast<int>(tet_index);
+            interface_mask[t] |= static_cast<std::uint8_t>(1u << local_face(out.tets[t], out.faces[f]));
+            const Label side = dot(tet_centroid(out, t) - anchor, normal) > 0 ? complex.sides[source].to
+                                                                              : complex.sides[source].from;
+            if (labels[t] != unlabelled && labels[t] != side) {
+                const Vec3 where = tet_centroid(out, t);
+                throw AlgorithmError(concat("a tetrahedron near (", format_mm(where[0], 1), ", ", format_mm(where[1], 1), ", ",
+                                            format_mm(where[2], 1), ") mm lies between interfaces that disagree on its "
+                                            "tissue (", complex.sides[source].from, "|", complex.sides[source].to,
+                                            "); the surface orientation is inconsistent: run tm-check-surface"));
+            }
+            if (labels[t] == unlabelled) queue.push_back(t);
+            labels[t] = side;
+        }
+    }
+    // Flood across faces that are not interfaces; such faces never separate tissues.
+    while (!queue.empty()) {
+        const int t = queue.front();
+        queue.pop_front();
+        for (int i = 0; i < 4; ++i) {
+            if (interface_mask[t] >> i & 1u) continue;
+            const auto& tet = out.tets[t];
+            const auto& local = detail::local_faces[i];
+            const detail::FaceUse& use = tets_of_face.at(detail::face_key(static_cast<std::uint32_t>(tet[local[0]]),
+                static_cast<std::uint32_t>(tet[local[1]]), static_cast<std::uint32_t>(tet[local[2]])));
+            const int n = static_cast<int>(use.tets[0] == t ? use.tets[1] : use.tets[0]);
+            if (n < 0) continue;
+            if (labels[n] == unlabelled) {
+                labels[n] = labels[t];
+                queue.push_back(n);
+            }
+        }
+    }
+    if (std::count(labels.begin(), labels.end(), unlabelled) > 0)
+        throw AlgorithmError("some tetrahedra are not enclosed by any interface; run tm-check-surface on the input");
+    return labels;
+}
+
+/// Copies TetGen's arrays into a TetMesh: tets positively oriented, faces oriented as their input triangle.
+TetMesh assemble(const InterfaceComplex& complex, const detail::TetgenOutput& out, const std::vector<Label>& labels,
+                 bool keep_background)
+{
+    TetMesh mesh;
+    mesh.names = complex.names;
+    std::vector<std::uint32_t> new_index(out.points.size() / 3, std::numeric_limits<std::uint32_t>::max());
+    auto use = [&](int v) {
+        if (new_index[v] == std::numeric_limits<std::uint32_t>::max()) {
+            new_index[v] = static_cast<std::uint32_t>(mesh.vertices.size());
+            mesh.vertices.push_back(point(out.points, v));
+        }
+        return new_index[v];
+    };
+    for (std::size_t t = 0; t < out.tets.size(); ++t) {
+        if (!keep_background && labels[t] == complex.background) continue;
+        Tet tet{use(out.tets[t][0]), use(out.tets[t][1]), use(out.tets[t][2]), use(out.tets[t][3])};
+        mesh.tets.push_back(tet);
+        mesh.tet_labels.push_back(labels[t]);
+        if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+    }
+    for (std::size_t f = 0; f < out.faces.size(); ++f) {
+        const std::size_t source = static_cast<std::size_t>(out.face_markers[f] - 1);
+        // Every face has a non-background tissue on one side at least, so none is dropped with its tets.
+        const LabelPair pair = complex.sides[source];
+        Triangle face{use(out.faces[f][0]), use(out.faces[f][1]), use(out.faces[f][2])};
+        const Vec3& a = mesh.vertices[face[0]];
+        const Vec3 normal = cross(mesh.vertices[face[1]] - a, mesh.vertices[face[2]] - a);
+        if (dot(normal, triangle_normal(complex, source)) < 0) std::swap(face[1], face[2]);
+        mesh.faces.push_back(face);
+        mesh.face_sides.push_back(pair);
+    }
+    return mesh;
+}
+
+} // namespace
+
+TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOptions& options, const Progress& progress,
+                       TetrahedralizeReport* report)
+{
+    const auto start = std::chrono::steady_clock::now();
+    if (options.improve_quality && options.max_radius_edge_ratio < 1.0)
+        throw InputError(concat("radius-edge ratio bound ", options.max_radius_edge_ratio, " is below 1; TetGen needs >= 1 "
+                                "(2 is a good default)"));
+    for (const auto& [tissue, volume] : options.max_volume_per_tissue_mm3)
+        if (!(volume > 0)) throw InputError(concat("maximum volume for tissue ", tissue, " is ", volume, "; give a positive mm^3"));
+    validate_indices(complex, "surface");
+    surface::require_fit_for_tetrahedralization(complex, "surface");
+
+    detail::TetgenInput input;
+    input.points.reserve(3 * complex.vertices.size());
+    for (const Vec3& v : complex.vertices) input.points.insert(input.points.end(), v.begin(), v.end());
+    input.triangles.reserve(complex.triangles.size());
+    for (const Triangle& tri : complex.triangles)
+        input.triangles.push_back({static_cast<int>(tri[0]), static_cast<int>(tri[1]), static_cast<int>(tri[2])});
+    input.regions = region_seeds(complex, options);
+    input.switches = build_switches(options, !input.regions.empty());
+
+    progress.info("tetra", concat("TetGen -", input.switches, " on ", complex.vertices.size(), " vertices, ",
+                                  complex.triangles.size(), " triangles"));
+    const detail::TetgenOutput out = detail::run_tetgen(input);
+    progress.update("tetra", 0.8);
+    const std::vector<Label> labels = label_tets(complex, out);
+    TetMesh mesh = assemble(complex, out, labels, options.mesh_background_cavities);
+    progress.update("tetra", 1.0);
+
+    if (report != nullptr) {
+        report->input_vertices = complex.vertices.size();
+        report->input_triangles = complex.triangles.size();
+        report->nodes = mesh.vertices.size();
+        report->tets = mesh.tets.size();
+        report->steiner_points = out.points.size() / 3 - complex.vertices.size();
+        report->interface_faces = mesh.faces.size();
+        report->switches = input.switches;
+        report->min_dihedral_deg = 180;
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+            const TetShape shape = tet_shape(mesh, t);
+            report->min_dihedral_deg = std::min(report->min_dihedral_deg, shape.min_dihedral_deg);
+            report->max_radius_edge_ratio = std::max(report->max_radius_edge_ratio, shape.radius_edge_ratio);
+            const auto tissue_bound = options.max_volume_per_tissue_mm3.find(mesh.tet_labels[t]);
+            const double bound = tissue_bound != options.max_volume_per_tissue_mm3.end() ? tissue_bound->second : options.max_volume_mm3;
+            if (bound > 0 && signed_volume(mesh, t) > bound * (1 + 1e-9)) ++report->tets_over_volume_bound;
+        }
+        report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    return mesh;
+}
+
+} // namespace tissuemesh::volume

@@ -1,0 +1,56 @@
+// Constrained Delaunay tetrahedralization of an interface complex (TetGen), keeping every interface.
+#pragma once
+
+#include <cstddef>
+#include <map>
+
+#include "core/interface_complex.h"
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+
+namespace tissuemesh::volume {
+
+/// Options for tetrahedralize(). Lengths in mm, volumes in mm^3, angles in degrees.
+/// With preserve_interfaces, TetGen (1.5) refuses every new point that would encroach an interface
+/// triangle, so the size and quality bounds are met only where the interface triangles are no larger than
+/// the tets asked for: remesh the surface to the target size first. The report says how far they were met.
+struct TetrahedralizeOptions {
+    bool preserve_interfaces = true;        ///< no Steiner point on any interface (TetGen -Y): interface
+                                            ///< triangles become tet faces unchanged
+    bool improve_quality = true;            ///< refine for the two bounds below (TetGen -q)
+    double max_radius_edge_ratio = 2.0;     ///< circumradius / shortest edge bound (>= 1.0 for TetGen)
+    double min_dihedral_deg = 5.0;          ///< smallest dihedral angle bound
+    double max_volume_mm3 = 0;              ///< bound on every tet's volume (0: none)
+    std::map<Label, double> max_volume_per_tissue_mm3;  ///< per-tissue bounds (override the global one)
+    int optimisation_level = 2;             ///< mesh optimisation passes, 0..10 (TetGen -O)
+    bool mesh_background_cavities = true;   ///< keep tets of the background tissue enclosed by other tissues
+                                            ///< (they carry the background label); false drops them
+};
+
+/// What tetrahedralize() did.
+struct TetrahedralizeReport {
+    std::size_t input_vertices = 0;
+    std::size_t input_triangles = 0;
+    std::size_t nodes = 0;
+    std::size_t tets = 0;
+    std::size_t steiner_points = 0;         ///< nodes added by TetGen (inside tissues with -Y)
+    std::size_t interface_faces = 0;        ///< output faces that lie on interfaces or the outer boundary
+    double min_dihedral_deg = 0;            ///< smallest dihedral angle of the result
+    double max_radius_edge_ratio = 0;       ///< largest circumradius / shortest edge of the result
+    std::size_t tets_over_volume_bound = 0; ///< tets larger than their (global or tissue) volume bound
+    std::string switches;                   ///< the TetGen command line used
+    double seconds = 0;
+};
+
+/// Builds a conforming tetrahedral mesh whose tets never cross an interface of `complex`. Each tet's
+/// tissue comes from the complex itself: a tet on an interface face takes the tissue on its side of that
+/// face (faces know their two tissues and their orientation), and labels spread across the other faces.
+/// Tets outside the outermost surfaces (the background around the object) are not meshed.
+/// @pre  `complex` is fit for tetrahedralization (surface::check_complex(complex).ok())
+/// @post every tet positively oriented; faces/face_sides hold the interface and boundary faces
+/// @throws InputError when the complex is not fit (names the first defect, tissues and place)
+/// @throws AlgorithmError when TetGen fails (its diagnosis, the place in mm when known, and a hint)
+TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOptions& options = {},
+                       const Progress& progress = {}, TetrahedralizeReport* report = nullptr);
+
+} // namespace tissuemesh::volume
