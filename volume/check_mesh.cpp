@@ -28,6 +28,19 @@ void note(MeshCheckReport& report, std::string text)
     if (report.problems.size() < max_problems) report.problems.push_back(std::move(text));
 }
 
+/// Whether the vertices of tets a and b opposite their shared face lie on different sides of it.
+bool on_opposite_sides(const TetMesh& mesh, const detail::FaceKey& key, std::size_t a, std::size_t b)
+{
+    const Vec3& p = mesh.vertices[key.v[0]];
+    const Vec3 normal = cross(mesh.vertices[key.v[1]] - p, mesh.vertices[key.v[2]] - p);
+    auto side = [&](std::size_t t) {
+        for (const std::uint32_t v : mesh.tets[t])
+            if (v != key.v[0] && v != key.v[1] && v != key.v[2]) return dot(mesh.vertices[v] - p, normal) > 0;
+        return false;
+    };
+    return side(a) != side(b);
+}
+
 std::size_t find(std::vector<std::size_t>& parent, std::size_t x)
 {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
@@ -139,6 +152,10 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
             note(report, concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", use.count, " tetrahedra"));
         } else if (use.count == 2) {
             const auto t0 = static_cast<std::size_t>(use.tets[0]), t1 = static_cast<std::size_t>(use.tets[1]);
+            if (!on_opposite_sides(mesh, key, t0, t1)) {
+                ++report.nonconforming_faces;
+                note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ", where(mesh.vertices[key.v[0]])));
+            }
             if (mesh.tet_labels[t0] == mesh.tet_labels[t1]) parent[find(parent, t0)] = find(parent, t1);
             else if (!marked.count(key)) {
                 ++report.unmarked_interfaces;
