@@ -1,16 +1,18 @@
 #include "io/read_label_image.h"
 
 #include <fstream>
-#include <limits>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/detail/inrimage.h"
 #include "io/detail/itk_image_io.h"
 #include "io/detail/nifti_header.h"
+#include "io/detail/raw_json_image.h"
 #include "io/detail/text_header.h"
+#include "io/detail/tissue_names.h"
 
 namespace tissuemesh::io {
 namespace fs = std::filesystem;
@@ -24,39 +26,7 @@ std::string extension_list()
     return list;
 }
 
-Label parse_label_key(const std::string& name, const std::string& key)
-{
-    std::size_t used = 0;
-    long value = -1;
-    try {
-        value = std::stol(key, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != key.size() || key.empty() || value < 0 || value > std::numeric_limits<Label>::max())
-        throw InputError(concat(name, ": tissue-name key '", key, "' is not a label number in 0..65535; "
-                                "write the names as {\"1\": \"scalp\", ...}"));
-    return static_cast<Label>(value);
-}
-
 } // namespace
-
-TissueNames parse_tissue_names(const std::string& name, const nlohmann::json& table);
-
-TissueNames parse_tissue_names(const std::string& name, const nlohmann::json& table)
-{
-    if (!table.is_object())
-        throw InputError(concat(name, ": tissue names must be a JSON object such as {\"1\": \"scalp\"}; "
-                                "found ", table.type_name()));
-    TissueNames names;
-    for (const auto& [key, value] : table.items()) {
-        if (!value.is_string())
-            throw InputError(concat(name, ": the name of label ", key, " is not a string; write it as \"",
-                                    key, "\": \"scalp\""));
-        names[parse_label_key(name, key)] = value.get<std::string>();
-    }
-    return names;
-}
 
 TissueNames read_tissue_names(const fs::path& path)
 {
@@ -66,8 +36,8 @@ TissueNames read_tissue_names(const fs::path& path)
     const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
     if (document.is_discarded())
         throw IoError(concat(name, ": not valid JSON; check the syntax (quotes, commas, braces)"));
-    if (document.is_object() && document.contains("labels")) return parse_tissue_names(name, document["labels"]);
-    return parse_tissue_names(name, document);
+    if (document.is_object() && document.contains("labels")) return detail::parse_tissue_names(name, document["labels"]);
+    return detail::parse_tissue_names(name, document);
 }
 
 std::vector<std::string> label_image_extensions()
@@ -87,6 +57,10 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||
                extension == ".mhd") {
         image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path));
+    } else if (extension == ".inr" || extension == ".inr.gz") {
+        image = detail::read_inrimage(path);
+    } else if (extension == ".json") {
+        image = detail::read_raw_json_image(path);
     } else {
         throw IoError(concat(name, ": unknown image format '", extension, "'; use one of ", extension_list()));
     }

@@ -1,5 +1,6 @@
 #include "io/detail/voxel_decode.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -165,6 +166,44 @@ std::uint64_t uncompressed_size(const fs::path& path)
     }
     gzclose(file);
     return total;
+}
+
+std::vector<unsigned char> read_payload(const fs::path& path, std::uint64_t offset, std::uint64_t bytes)
+{
+    // gzread also reads uncompressed files (transparently), so one path serves .inr and .inr.gz.
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (file == nullptr) throw IoError(concat(path.string(), ": cannot be opened; check the permissions"));
+    std::vector<unsigned char> data(static_cast<std::size_t>(bytes));
+    bool ok = gzseek(file, static_cast<z_off_t>(offset), SEEK_SET) == static_cast<z_off_t>(offset);
+    std::size_t done = 0;
+    while (ok && done < data.size()) {
+        const std::size_t chunk = std::min<std::size_t>(data.size() - done, 1 << 30);
+        const int got = gzread(file, data.data() + done, static_cast<unsigned>(chunk));
+        ok = got > 0;
+        if (ok) done += static_cast<std::size_t>(got);
+    }
+    gzclose(file);
+    if (!ok)
+        throw IoError(concat(path.string(), ": truncated or corrupt voxel data (read ", done, " of ", bytes,
+                             " bytes); copy or export the file again"));
+    return data;
+}
+
+std::size_t label_width(const LabelImage& image)
+{
+    const auto& labels = image.labels();
+    return labels.empty() || *std::max_element(labels.begin(), labels.end()) <= 255 ? 1 : 2;
+}
+
+std::string encode_labels(const LabelImage& image, std::size_t width)
+{
+    std::string data(image.voxel_count() * width, '\0');
+    for (std::size_t n = 0; n < image.voxel_count(); ++n) {
+        const Label label = image.labels()[n];
+        data[width * n] = static_cast<char>(label & 0xff);
+        if (width == 2) data[2 * n + 1] = static_cast<char>(label >> 8);
+    }
+    return data;
 }
 
 std::vector<Label> decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type,

@@ -36,6 +36,12 @@ void require_payload(const std::string& file, std::uint64_t needed_bytes, std::u
 /// @throws IoError when the file cannot be read or its gzip stream is corrupt
 std::uint64_t uncompressed_size(const std::filesystem::path& path);
 
+/// Reads `bytes` bytes starting at byte `offset` of the (gzip-decompressed) content of `path`.
+/// Call require_payload() first: this allocates `bytes` at once.
+/// @throws IoError when the file ends early or cannot be read
+std::vector<unsigned char> read_payload(const std::filesystem::path& path, std::uint64_t offset,
+                                        std::uint64_t bytes);
+
 /// True when the file starts with the gzip magic bytes.
 bool is_gzip_file(const std::filesystem::path& path);
 
@@ -44,5 +50,11 @@ bool is_gzip_file(const std::filesystem::path& path);
 ///         a value is not an integer (NaN, fractional), negative, or above 65535.
 std::vector<Label> decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type,
                                  bool big_endian, const Dims& dims);
+
+/// Bytes per voxel a writer uses for `image`: 1 when every label fits uint8, else 2.
+std::size_t label_width(const LabelImage& image);
+
+/// The labels as little-endian unsigned integers of `width` bytes (1 or 2), x fastest.
+std::string encode_labels(const LabelImage& image, std::size_t width);
 
 } // namespace tissuemesh::io::detail

@@ -1,5 +1,6 @@
 #include "io/detail/vtp_format.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

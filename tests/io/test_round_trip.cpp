@@ -75,7 +75,9 @@ TEST_P(RoundTrip, KeepsLabelsAbove255AsUint16)
 INSTANTIATE_TEST_SUITE_P(Formats, RoundTrip,
                          ::testing::Values(FormatCase{".nii.gz", true, false}, FormatCase{".nii", true, false},
                                            FormatCase{".nrrd", true, false}, FormatCase{".seg.nrrd", true, true},
-                                           FormatCase{".mha", true, false}),
+                                           FormatCase{".nhdr", true, false}, FormatCase{".mha", true, false},
+                                           FormatCase{".mhd", true, false}, FormatCase{".inr", false, false},
+                                           FormatCase{".inr.gz", false, false}, FormatCase{".json", true, true}),
                          [](const auto& test_info) {
                              std::string name = test_info.param.extension.substr(1);
                              for (char& c : name)

@@ -1,0 +1,82 @@
+#include "io/detail/stl_format.h"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <map>
+
+#include "core/error.h"
+
+namespace tissuemesh::io::detail {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "STL code assumes a little-endian host");
+
+template <typename T>
+void append(std::string& out, T value)
+{
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    out.append(bytes, sizeof(T));
+}
+
+template <typename T>
+T read_at(const std::string& bytes, std::size_t at)
+{
+    T value;
+    std::memcpy(&value, bytes.data() + at, sizeof(T));
+    return value;
+}
+
+constexpr std::size_t header_size = 84;  // 80-byte header + uint32 triangle count
+constexpr std::size_t record_size = 50;  // normal, 3 corners (12 float32) + uint16 attribute
+
+} // namespace
+
+std::string format_stl(const InterfaceComplex& complex)
+{
+    std::string out(80, ' ');
+    out.replace(0, 31, "tissuemesh binary STL surface  ");
+    append(out, static_cast<std::uint32_t>(complex.triangles.size()));
+    out.reserve(header_size + record_size * complex.triangles.size());
+    for (const Triangle& t : complex.triangles) {
+        const Vec3 &a = complex.vertices[t[0]], &b = complex.vertices[t[1]], &c = complex.vertices[t[2]];
+        Vec3 n = cross(b - a, c - a);
+        const double length = norm(n);
+        if (length > 0) n = (1.0 / length) * n;
+        for (const Vec3& v : {n, a, b, c})
+            for (const double x : v) append(out, static_cast<float>(x));
+        append(out, std::uint16_t{0});
+    }
+    return out;
+}
+
+InterfaceComplex parse_stl(const std::string& bytes, const std::string& what)
+{
+    if (bytes.size() < header_size)
+        throw IoError(concat(what, ": ", bytes.size(), " bytes is too short for a binary STL file; it is truncated"));
+    const std::size_t count = read_at<std::uint32_t>(bytes, 80);
+    if (bytes.size() != header_size + record_size * count) {
+        const bool ascii = bytes.compare(0, 5, "solid") == 0;
+        throw IoError(concat(what, ": ", ascii ? "looks like ascii STL; only binary STL is read, convert it"
+                                               : "size does not match its triangle count; the file is truncated",
+                             " (", count, " triangles announced, ", bytes.size(), " bytes)"));
+    }
+    InterfaceComplex complex;
+    std::map<std::array<float, 3>, std::uint32_t> index_of;
+    for (std::size_t t = 0; t < count; ++t) {
+        Triangle triangle{};
+        for (std::size_t c = 0; c < 3; ++c) {
+            const std::size_t at = header_size + record_size * t + 12 * (c + 1);
+            const std::array<float, 3> p{read_at<float>(bytes, at), read_at<float>(bytes, at + 4),
+                                         read_at<float>(bytes, at + 8)};
+            const auto [it, fresh] = index_of.try_emplace(p, static_cast<std::uint32_t>(complex.vertices.size()));
+            if (fresh) complex.vertices.push_back({p[0], p[1], p[2]});
+            triangle[c] = it->second;
+        }
+        complex.add_triangle(triangle, {1, 0});
+    }
+    return complex;
+}
+
+} // namespace tissuemesh::io::detail
