@@ -36,10 +36,13 @@ public:
                          percent >= 100 ? "\n" : "");
             return;
         }
-        int& last = last_decile_[std::string(stage)];
+        // In logs, a line per tenth, and only for stages that run long enough for progress to matter.
+        const auto now = std::chrono::steady_clock::now();
+        auto [entry, inserted] = stages_.try_emplace(std::string(stage), StageState{now, -1});
+        if (entry->second.last_decile < 0 && now - entry->second.start < std::chrono::seconds(2)) return;
         const int decile = percent / 10;
-        if (decile > last || (last == 0 && decile == 0 && percent == 0)) {
-            last = decile;
+        if (decile > entry->second.last_decile) {
+            entry->second.last_decile = decile;
             std::fprintf(stderr, "[%.*s] %d%%\n", static_cast<int>(stage.size()), stage.data(), decile * 10);
         }
     }
@@ -57,7 +60,11 @@ private:
     int verbosity_;
     bool terminal_;
     std::mutex mutex_;
-    std::map<std::string, int> last_decile_;
+    struct StageState {
+        std::chrono::steady_clock::time_point start;
+        int last_decile;
+    };
+    std::map<std::string, StageState> stages_;
 };
 
 void write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
@@ -129,13 +136,14 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
     } catch (const std::exception& e) {
         code = 1, message = concat("internal error: ", e.what(), "; please report it with the input");
     }
+    if (code == 0) code = context.exit_code;
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (code != 0) std::fprintf(stderr, "%s: error: %s\n", spec.name.c_str(), one_line(message).c_str());
+    if (!message.empty()) std::fprintf(stderr, "%s: error: %s\n", spec.name.c_str(), one_line(message).c_str());
 
     if (!json_path.empty()) {
         nlohmann::json summary = {{"tool", spec.name}, {"version", TM_VERSION}, {"status", code == 0 ? "ok" : "failed"},
                                   {"exit_code", code}, {"seconds", seconds}};
-        if (code != 0) summary["error"] = message;
+        if (!message.empty()) summary["error"] = message;
         summary.update(context.summary);
         write_summary(json_path, summary, spec.name);
     }

@@ -20,6 +20,8 @@ struct ToolContext {
     nlohmann::json summary = nlohmann::json::object();
     int verbosity = 1;  ///< 0 with -q, 1 by default, 2 with -v
     std::string tool;
+    /// A checker that ran to the end but found the input unfit sets 1 here (errors still throw).
+    int exit_code = 0;
 
     /// Prints "[tool] text" on stderr unless quiet.
     void log(std::string_view text) const;
