@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <new>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "core/atomic_file.h"
@@ -66,6 +67,14 @@ private:
     };
     std::map<std::string, StageState> stages_;
 };
+
+/// Peak resident memory of this process so far, in MiB.
+double peak_memory_mb()
+{
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
 
 void write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
 {
@@ -142,7 +151,7 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
 
     if (!json_path.empty()) {
         nlohmann::json summary = {{"tool", spec.name}, {"version", TM_VERSION}, {"status", code == 0 ? "ok" : "failed"},
-                                  {"exit_code", code}, {"seconds", seconds}};
+                                  {"exit_code", code}, {"seconds", seconds}, {"peak_memory_mb", peak_memory_mb()}};
         if (!message.empty()) summary["error"] = message;
         summary.update(context.summary);
         write_summary(json_path, summary, spec.name);
