@@ -1,0 +1,66 @@
+#include "io/surface_io.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/detail/off_format.h"
+#include "io/detail/ply_format.h"
+#include "io/detail/stl_format.h"
+#include "io/detail/vtp_format.h"
+
+namespace tissuemesh::io {
+namespace {
+
+const char* const known_extensions = ".ply, .vtp, .off, .stl";
+
+std::string extension_of(const std::filesystem::path& path)
+{
+    const std::string extension = full_extension(path);
+    if (extension != ".ply" && extension != ".vtp" && extension != ".off" && extension != ".stl")
+        throw IoError(concat(path.string(), ": unknown surface extension '", extension, "'; use one of ",
+                             known_extensions));
+    return extension;
+}
+
+} // namespace
+
+void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path)
+{
+    const std::string extension = extension_of(path);
+    validate_indices(complex, path.string());
+    std::string bytes;
+    if (extension == ".ply") bytes = detail::format_ply(complex);
+    if (extension == ".vtp") bytes = detail::format_vtp(complex);
+    if (extension == ".off") bytes = detail::format_off(complex);
+    if (extension == ".stl") bytes = detail::format_stl(complex);
+    write_atomically(path, [&](const std::filesystem::path& temporary) {
+        std::ofstream out(temporary, std::ios::binary);
+        if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        out.close();
+        if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
+    });
+}
+
+InterfaceComplex read_surface(const std::filesystem::path& path)
+{
+    const std::string extension = extension_of(path);
+    require_readable_file(path);
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    if (!in.good() && !in.eof()) throw IoError(concat(path.string(), ": read failed; check the file"));
+    const std::string bytes = content.str();
+    const std::string what = path.string();
+    InterfaceComplex complex;
+    if (extension == ".ply") complex = detail::parse_ply(bytes, what);
+    if (extension == ".vtp") complex = detail::parse_vtp(bytes, what);
+    if (extension == ".off") complex = detail::parse_off(bytes, what);
+    if (extension == ".stl") complex = detail::parse_stl(bytes, what);
+    validate_indices(complex, what);
+    return complex;
+}
+
+} // namespace tissuemesh::io

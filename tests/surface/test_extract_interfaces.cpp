@@ -1,0 +1,184 @@
+#include <cmath>
+#include <functional>
+#include <gtest/gtest.h>
+#include <random>
+
+#include "core/error.h"
+#include "surface/extract_interfaces.h"
+#include "tests/surface/complex_checks.h"
+
+namespace tissuemesh {
+namespace {
+
+using surface::extract_interfaces;
+using testing::invariant_failures;
+using testing::tissue_facts;
+using testing::voxel_components;
+
+/// An image on the unit grid whose label at voxel (i, j, k) is `label_of(i, j, k)`.
+LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)>& label_of)
+{
+    LabelImage image(dims, {1, 1, 1});
+    for (std::size_t k = 0; k < dims[2]; ++k)
+        for (std::size_t j = 0; j < dims[1]; ++j)
+            for (std::size_t i = 0; i < dims[0]; ++i)
+                image.at(i, j, k) = label_of(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k));
+    return image;
+}
+
+LabelImage ball(int n, double radius, Label inside)
+{
+    const double c = (n - 1) / 2.0;
+    return make_image({static_cast<std::size_t>(n), static_cast<std::size_t>(n), static_cast<std::size_t>(n)},
+                      [&](int i, int j, int k) {
+                          const double r2 = (i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c);
+                          return r2 <= radius * radius ? inside : Label{0};
+                      });
+}
+
+void expect_invariants(const LabelImage& image, bool exact_intersections = true)
+{
+    const InterfaceComplex complex = extract_interfaces(image);
+    EXPECT_EQ(invariant_failures(image, complex, 0, exact_intersections), "");
+}
+
+TEST(ExtractInterfaces, SingleVoxelIsAClosedOctahedron)
+{
+    const LabelImage image = make_image({1, 1, 1}, [](int, int, int) { return Label{5}; });
+    const InterfaceComplex complex = extract_interfaces(image);
+    expect_invariants(image);
+    const testing::TissueSurfaceFacts facts = tissue_facts(complex, 5);
+    EXPECT_EQ(facts.components, 1u);
+    // Midpoints of the 14 Freudenthal edges around the voxel; the region is the convex hull of those
+    // midpoints, which is not a cube: its volume is a fixed fraction of the voxel, measured here.
+    EXPECT_GT(facts.volume_mm3, 0.0);
+    EXPECT_LT(facts.volume_mm3, 1.0);
+    for (const LabelPair& side : complex.sides) EXPECT_EQ(side.from, 5) << "background is always `to`";
+}
+
+TEST(ExtractInterfaces, BallIsClosedAndDoesNotIntersect)
+{
+    expect_invariants(ball(9, 3.6, 1));
+}
+
+TEST(ExtractInterfaces, TwoTouchingBoxes)
+{
+    const LabelImage image = make_image({6, 4, 4}, [](int i, int, int) { return Label(i < 3 ? 1 : 2); });
+    const InterfaceComplex complex = extract_interfaces(image);
+    EXPECT_EQ(invariant_failures(image, complex, 0, true), "");
+    // Away from the junction with the background (which lies in the padding cubes, y or z outside
+    // [0, 3]), the 1|2 interface is the plane i = 2.5 between the boxes; from = 2 (larger label), to = 1.
+    double planar_area = 0;
+    for (std::size_t t = 0; t < complex.triangle_count(); ++t) {
+        if (complex.sides[t].to != 1 || complex.sides[t].from != 2) continue;
+        bool interior = true;
+        for (const std::uint32_t v : complex.triangles[t])
+            for (const int axis : {1, 2})
+                interior = interior && complex.vertices[v][axis] >= 0 && complex.vertices[v][axis] <= 3;
+        if (!interior) continue;
+        const Triangle& tri = complex.triangles[t];
+        for (const std::uint32_t v : tri) EXPECT_DOUBLE_EQ(complex.vertices[v][0], 2.5);
+        const Vec3 normal = cross(complex.vertices[tri[1]] - complex.vertices[tri[0]],
+                                  complex.vertices[tri[2]] - complex.vertices[tri[0]]);
+        EXPECT_LT(normal[0], 0) << "normal points from 2 (larger i) into 1";
+        planar_area += 0.5 * norm(normal);
+    }
+    // The plane part covers the 3 x 3 mm square between the voxel centres 0..3 exactly.
+    EXPECT_NEAR(planar_area, 9.0, 1e-12);
+}
+
+TEST(ExtractInterfaces, DiagonalNeighboursFollowTheFreudenthalRule)
+{
+    // (0,0,0) and (1,1,1): neighbours along the decomposition's main diagonal -> one component.
+    const LabelImage along = make_image({2, 2, 2}, [](int i, int j, int k) { return Label(i == j && j == k); });
+    EXPECT_EQ(voxel_components(along, 1, 0, false), 1u);
+    EXPECT_EQ(tissue_facts(extract_interfaces(along), 1).components, 1u);
+    expect_invariants(along);
+    // (1,0,0) and (0,1,1): the other diagonal is not a Freudenthal edge -> two separate surfaces.
+    const LabelImage across = make_image({2, 2, 2}, [](int i, int j, int k) {
+        return Label((i == 1 && j == 0 && k == 0) || (i == 0 && j == 1 && k == 1));
+    });
+    EXPECT_EQ(voxel_components(across, 1, 0, false), 2u);
+    EXPECT_EQ(tissue_facts(extract_interfaces(across), 1).components, 2u);
+    expect_invariants(across);
+    // Face diagonals: (0,0) and (1,1) in a slice are connected, (1,0) and (0,1) are not.
+    const LabelImage face = make_image({2, 2, 1}, [](int i, int j, int) { return Label(i == j ? 1 : 2); });
+    EXPECT_EQ(tissue_facts(extract_interfaces(face), 1).components, 1u);
+    EXPECT_EQ(tissue_facts(extract_interfaces(face), 2).components, 2u);
+    expect_invariants(face);
+}
+
+TEST(ExtractInterfaces, OneVoxelShellHasInnerAndOuterSurface)
+{
+    const LabelImage image = make_image({7, 7, 7}, [](int i, int j, int k) {
+        const int d = std::max({std::abs(i - 3), std::abs(j - 3), std::abs(k - 3)});
+        return Label(d == 2 ? 1 : (d < 2 ? 2 : 0));
+    });
+    expect_invariants(image);
+    EXPECT_EQ(tissue_facts(extract_interfaces(image), 1).components, 2u) << "outer and inner side of the shell";
+    // The same shell with nothing inside: the cavity is background, a second background component.
+    const LabelImage hollow = make_image({7, 7, 7}, [](int i, int j, int k) {
+        return Label(std::max({std::abs(i - 3), std::abs(j - 3), std::abs(k - 3)}) == 2 ? 1 : 0);
+    });
+    expect_invariants(hollow);
+    EXPECT_EQ(tissue_facts(extract_interfaces(hollow), 0).components, 2u);
+}
+
+TEST(ExtractInterfaces, ThreeTissuesMeetAlongALineAndEightAtAPoint)
+{
+    const LabelImage line = make_image({4, 4, 3}, [](int i, int j, int) {
+        return Label(i < 2 ? 1 : (j < 2 ? 2 : 3));
+    });
+    expect_invariants(line);
+    const LabelImage point = make_image({4, 4, 4}, [](int i, int j, int k) {
+        return Label(1 + (i >= 2) + 2 * (j >= 2) + 4 * (k >= 2));
+    });
+    expect_invariants(point);
+}
+
+TEST(ExtractInterfaces, RandomTwoByTwoByTwoConfigurationsWithThreeOrMoreLabels)
+{
+    // Fixed seed: 1000 random 2x2x2 label cubes over labels 0..4 with at least 3 distinct labels
+    // (padding adds the background around them, so all cube configurations of the padded grid occur).
+    std::mt19937 random(20261122);
+    std::uniform_int_distribution<int> pick(0, 4);
+    int tested = 0;
+    while (tested < 1000) {
+        const LabelImage image = make_image({2, 2, 2}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        if (count_labels(image).size() < 3) continue;
+        ++tested;
+        const InterfaceComplex complex = extract_interfaces(image);
+        const std::string failures = invariant_failures(image, complex, 0, true);
+        ASSERT_EQ(failures, "") << "configuration " << tested;
+    }
+}
+
+TEST(ExtractInterfaces, RandomLabelFieldsKeepEveryInvariant)
+{
+    std::mt19937 random(7);
+    std::uniform_int_distribution<int> pick(0, 3);
+    for (int trial = 0; trial < 60; ++trial) {
+        const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        ASSERT_EQ(invariant_failures(image, extract_interfaces(image), 0, true), "") << "trial " << trial;
+    }
+}
+
+TEST(ExtractInterfaces, HonoursSpacingOriginAndMirroredDirection)
+{
+    // A mirrored, permuted direction (determinant -1) and anisotropic spacing: the world volume of the
+    // ball's surface must still be positive (outward normals) and close to its voxel volume.
+    const LabelImage unit = ball(11, 4.2, 3);
+    LabelImage image(unit.dims(), {0.5, 1.0, 2.0}, {-7, 3, 11}, {0, 1, 0, 1, 0, 0, 0, 0, 1});
+    image.labels() = unit.labels();
+    const InterfaceComplex complex = extract_interfaces(image);
+    EXPECT_EQ(invariant_failures(image, complex, 0, false), "");
+    const InterfaceComplex plain = extract_interfaces(unit);
+    EXPECT_NEAR(tissue_facts(complex, 3).volume_mm3, tissue_facts(plain, 3).volume_mm3 * image.voxel_volume_mm3(),
+                1e-9 * tissue_facts(plain, 3).volume_mm3) << "world volume = index volume * voxel volume";
+    const Vec3 first = complex.vertices.front();
+    const Vec3 index = image.world_to_index(first);
+    for (const double c : index) EXPECT_NEAR(c * 12, std::round(c * 12), 1e-9) << "dual points on the 1/12 lattice";
+}
+
+} // namespace
+} // namespace tissuemesh
