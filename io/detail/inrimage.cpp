@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -63,9 +64,10 @@ double number_field(const std::string& name, const InrHeader& header, const std:
 {
     const auto found = header.fields.find(key);
     if (found == header.fields.end()) return fallback;
-    std::istringstream in(found->second);
-    double value = 0;
-    if (!(in >> value))
+    // strtod, unlike a stream, reads "nan" and "inf": validate_geometry() then names them.
+    char* end = nullptr;
+    const double value = std::strtod(found->second.c_str(), &end);
+    if (end == found->second.c_str())
         throw IoError(concat(name, ": Inrimage header field ", key, "=", found->second,
                              " is not a number; the header is corrupt"));
     return value;

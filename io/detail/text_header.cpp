@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <string>
@@ -112,9 +113,17 @@ std::uint64_t meta_image_bound(const fs::path& path)
         stored = data_file_size(path, data_file);
     }
     const auto compressed = header.fields.find("compresseddata");
-    if (compressed != header.fields.end() && normal_key(compressed->second) == "true")
-        return stored * deflate_ratio;
-    return stored;
+    if (compressed == header.fields.end() || normal_key(compressed->second) != "true") return stored;
+    // MetaIO does not notice a short compressed stream; the header says how long it must be.
+    const auto compressed_size = header.fields.find("compresseddatasize");
+    if (compressed_size != header.fields.end()) {
+        const std::uint64_t expected = std::strtoull(compressed_size->second.c_str(), nullptr, 10);
+        if (expected > stored)
+            throw IoError(concat(path.string(), ": truncated, the header announces ", expected,
+                                 " bytes of compressed voxel data but the file holds ", stored,
+                                 "; the file is incomplete. Copy or export it again"));
+    }
+    return stored * deflate_ratio;
 }
 
 } // namespace
