@@ -62,7 +62,10 @@ void print_report(const std::string& path, const InterfaceComplex& complex, cons
     if (shown.size() < report.error_count() + report.warning_count())
         std::printf("  ... %zu more (--max-report N shows more)\n",
                     report.error_count() + report.warning_count() - shown.size());
-    std::printf("\n%s\n", report.ok() ? "fit for tetrahedralization" : "NOT fit for tetrahedralization");
+    std::printf("\n%s\n", !report.ok()                    ? "NOT fit for tetrahedralization"
+                           : report.intersections_checked ? "fit for tetrahedralization"
+                                                          : "fit for tetrahedralization unless it self-intersects "
+                                                            "(intersections not checked)");
 }
 
 nlohmann::json to_json(const InterfaceComplex& complex, const CheckReport& report, std::size_t max_report)
