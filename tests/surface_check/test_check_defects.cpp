@@ -125,6 +125,20 @@ TEST(CheckComplexDefects, DuplicateVerticesAreErrors)
     EXPECT_FALSE(report.tissues.at(1).closed);  // by index the surface is torn at the copy
 }
 
+TEST(CheckComplexDefects, CopiedVerticesAreNotAlsoReportedAsIntersections)
+{
+    // Two triangles of a unit square whose shared edge uses copies of its end points: the copies are
+    // the defect; geometrically the triangles meet properly along that edge.
+    InterfaceComplex complex;
+    complex.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    complex.add_triangle({0, 1, 2}, {1, 0});
+    complex.add_triangle({3, 5, 4}, {1, 0});
+    const CheckReport report = check_complex(complex);
+    EXPECT_EQ(report.count(DefectKind::duplicate_vertex), 2u);
+    EXPECT_EQ(report.count(DefectKind::patch_intersection) + report.count(DefectKind::self_intersection), 0u);
+    EXPECT_EQ(report.count(DefectKind::duplicate_triangle), 0u);
+}
+
 TEST(CheckComplexDefects, TissueTouchingItselfAlongAnEdgeIsNonManifold)
 {
     // Two skull voxels meeting only along the vertical edge x = y = 1 (a checkerboard).
