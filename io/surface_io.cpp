@@ -31,13 +31,13 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
     const std::string extension = extension_of(path);
     validate_indices(complex, path.string());
     std::string bytes;
-    if (extension == ".ply") bytes = detail::format_ply(complex);
     if (extension == ".vtp") bytes = detail::format_vtp(complex);
     if (extension == ".off") bytes = detail::format_off(complex);
     if (extension == ".stl") bytes = detail::format_stl(complex);
     write_atomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
+        if (extension == ".ply") detail::write_ply(complex, out);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));

@@ -22,7 +22,7 @@ struct InterfaceSummary {
 };
 
 /// Counts triangles per tissue and junction edges (an edge whose incident triangles name 3 or more
-/// distinct tissues). Linear in the size of the complex (one hash of all edges).
+/// distinct tissues). Near-linear: edge uses bucketed by lower vertex, 8 bytes per triangle corner.
 InterfaceSummary summarize_interfaces(const InterfaceComplex& complex);
 
 } // namespace tissuemesh::surface

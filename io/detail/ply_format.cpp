@@ -259,7 +259,7 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
 
 } // namespace
 
-std::string format_ply(const InterfaceComplex& complex)
+void write_ply(const InterfaceComplex& complex, std::ostream& out)
 {
     std::ostringstream header;
     header << "ply\nformat binary_little_endian 1.0\ncomment tissuemesh interface complex\n"
@@ -269,17 +269,26 @@ std::string format_ply(const InterfaceComplex& complex)
            << "property double z\nelement face " << complex.triangles.size()
            << "\nproperty list uchar uint vertex_indices\nproperty ushort label_a\nproperty ushort label_b\n"
            << "end_header\n";
-    std::string out = header.str();
-    out.reserve(out.size() + complex.vertices.size() * 24 + complex.triangles.size() * 17);
-    for (const Vec3& v : complex.vertices)
-        for (const double c : v) append(out, c);
-    for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
-        append(out, std::uint8_t{3});
-        for (const std::uint32_t v : complex.triangles[t]) append(out, v);
-        append(out, complex.sides[t].from);
-        append(out, complex.sides[t].to);
+    std::string buffer = header.str();
+    // Streamed in chunks of about 1 MB: a head complex is ~200 MB and need not be held twice.
+    constexpr std::size_t chunk = std::size_t{1} << 20;
+    const auto flush_if_full = [&](bool force) {
+        if (buffer.size() < chunk && !force) return;
+        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+        buffer.clear();
+    };
+    for (const Vec3& v : complex.vertices) {
+        for (const double c : v) append(buffer, c);
+        flush_if_full(false);
     }
-    return out;
+    for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
+        append(buffer, std::uint8_t{3});
+        for (const std::uint32_t v : complex.triangles[t]) append(buffer, v);
+        append(buffer, complex.sides[t].from);
+        append(buffer, complex.sides[t].to);
+        flush_if_full(false);
+    }
+    flush_if_full(true);
 }
 
 InterfaceComplex parse_ply(const std::string& bytes, const std::string& what)

@@ -1,16 +1,17 @@
 // PLY for interface complexes: binary little-endian on write; ascii and binary (either endianness) on read.
 #pragma once
 
+#include <ostream>
 #include <string>
 
 #include "core/interface_complex.h"
 
 namespace tissuemesh::io::detail {
 
-/// The whole PLY file for `complex`: vertex x, y, z (float64), face vertex_indices (uchar count, uint32
+/// Writes the whole PLY file for `complex` to `out`: vertex x, y, z (float64), face vertex_indices (uchar count, uint32
 /// indices), label_a and label_b (ushort: the triangle's `from` and `to`), tissue names as
 /// `comment tissue <label> <name>` and the background as `comment background <label>`.
-std::string format_ply(const InterfaceComplex& complex);
+void write_ply(const InterfaceComplex& complex, std::ostream& out);
 
 /// Parses PLY `bytes`; `what` names the file in messages. Faces must be triangles; without label_a and
 /// label_b every triangle gets {1, 0}. Other elements and properties are skipped.
