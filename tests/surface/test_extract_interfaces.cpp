@@ -182,3 +182,47 @@ TEST(ExtractInterfaces, HonoursSpacingOriginAndMirroredDirection)
 
 } // namespace
 } // namespace tissuemesh
+
+namespace tissuemesh {
+namespace {
+
+LabelImage three_blocks()
+{
+    LabelImage image({6, 2, 2}, {1, 1, 1});
+    for (std::size_t k = 0; k < 2; ++k)
+        for (std::size_t j = 0; j < 2; ++j)
+            for (std::size_t i = 0; i < 6; ++i) image.at(i, j, k) = static_cast<Label>(1 + i / 2);
+    return image;
+}
+
+TEST(ExtractInterfaces, TissueSelectionMergesOthersIntoBackground)
+{
+    const InterfaceComplex complex = surface::extract_interfaces(three_blocks(), {.tissues = {1, 3}});
+    for (const LabelPair& side : complex.sides) {
+        EXPECT_NE(side.from, 2);
+        EXPECT_EQ(side.to, 0) << "1 and 3 are apart once 2 is background";
+    }
+    // Background 2: the blocks 1 and 3 touch only label 2, which is now `to`.
+    const InterfaceComplex inside = surface::extract_interfaces(three_blocks(), {.tissues = {1, 3}, .background = 2});
+    for (const LabelPair& side : inside.sides) EXPECT_EQ(side.to, 2);
+}
+
+TEST(ExtractInterfaces, RejectsBadOptionsWithOneLineMessages)
+{
+    const auto expect_input_error = [](const LabelImage& image, const surface::ExtractOptions& options,
+                                       const std::string& hint) {
+        try {
+            surface::extract_interfaces(image, options);
+            ADD_FAILURE() << "accepted: " << hint;
+        } catch (const InputError& error) {
+            EXPECT_NE(std::string(error.what()).find(hint), std::string::npos) << error.what();
+        }
+    };
+    expect_input_error(three_blocks(), {.tissues = {9}}, "tissue 9 does not occur");
+    expect_input_error(three_blocks(), {.tissues = {1, 2}, .background = 2}, "also the background");
+    expect_input_error(LabelImage({3, 3, 3}, {1, 1, 1}), {}, "only background");
+    expect_input_error(LabelImage(), {}, "no voxels");
+}
+
+} // namespace
+} // namespace tissuemesh
