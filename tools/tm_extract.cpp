@@ -3,6 +3,8 @@
 #include <cctype>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <string>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -48,6 +50,17 @@ nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const fs::
         written.push_back(path.string());
     }
     return written;
+}
+
+/// Peak resident memory so far (MiB, Linux VmHWM; 0 when unknown): measured right after extraction,
+/// before writing and counting add their own buffers.
+double peak_memory_mib()
+{
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+    return 0;
 }
 
 nlohmann::json tissue_summary(const LabelImage& image, const InterfaceComplex& complex)
@@ -106,6 +119,7 @@ int main(int argc, char** argv)
             start = std::chrono::steady_clock::now();
             const InterfaceComplex complex = surface::extract_interfaces(image, options, ctx.progress);
             const double extract_seconds = seconds_since(start);
+            const double extract_peak_mib = peak_memory_mib();
             ctx.log(concat(image.voxel_count(), " voxels -> ", complex.triangle_count(), " triangles, ",
                            complex.vertex_count(), " vertices (", format_mm(extract_seconds, 2), " s)"));
             start = std::chrono::steady_clock::now();
@@ -118,6 +132,6 @@ int main(int argc, char** argv)
                            {"background", options.background},      {"tissues", tissue_summary(image, complex)},
                            {"per_tissue", per_tissue},
                            {"seconds_read", read_seconds},          {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start)}};
+                           {"seconds_write", seconds_since(start)}, {"peak_memory_after_extract_mb", extract_peak_mib}};
         });
 }
