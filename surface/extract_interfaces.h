@@ -40,7 +40,8 @@ struct ExtractOptions {
 ///    Freudenthal neighbours: the 6 face neighbours, (+-1,+-1,0)-type neighbours along the increasing
 ///    face diagonals only ((1,1,0), (1,0,1), (0,1,1) and their negatives), and (1,1,1), (-1,-1,-1).
 ///    The same rule holds for the complement, so each connected component of a tissue has its own
-///    surface, and components never touch each other;
+///    surface, and components never touch each other: a tissue's surface has c(tissue) + c(rest) - 1
+///    edge-connected pieces, c counting 14-connected components in the padded image (a shell: 1 + 2 - 1);
 ///  - sides: `from` is the tissue with the larger label and `to` the smaller one, except that the
 ///    background is always `to` (normals of a tissue against background point outward);
 ///  - vertices are in world mm (image.index_to_world); with a direction matrix of negative determinant

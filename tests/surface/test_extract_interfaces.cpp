@@ -4,6 +4,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "surface/check_complex.h"
 #include "surface/extract_interfaces.h"
 #include "tests/surface/complex_checks.h"
 
@@ -36,10 +37,13 @@ LabelImage ball(int n, double radius, Label inside)
                       });
 }
 
+/// The tests' own invariant checks, and the project's checker (CGAL exact predicates) as a second opinion.
 void expect_invariants(const LabelImage& image, bool exact_intersections = true)
 {
     const InterfaceComplex complex = extract_interfaces(image);
     EXPECT_EQ(invariant_failures(image, complex, 0, exact_intersections), "");
+    const surface::CheckReport report = surface::check_complex(complex);
+    EXPECT_TRUE(report.ok()) << (report.first_error() ? report.first_error()->description : "");
 }
 
 TEST(ExtractInterfaces, SingleVoxelIsAClosedOctahedron)
@@ -150,6 +154,7 @@ TEST(ExtractInterfaces, RandomTwoByTwoByTwoConfigurationsWithThreeOrMoreLabels)
         const InterfaceComplex complex = extract_interfaces(image);
         const std::string failures = invariant_failures(image, complex, 0, true);
         ASSERT_EQ(failures, "") << "configuration " << tested;
+        ASSERT_TRUE(surface::check_complex(complex).ok()) << "configuration " << tested;
     }
 }
 
@@ -159,7 +164,11 @@ TEST(ExtractInterfaces, RandomLabelFieldsKeepEveryInvariant)
     std::uniform_int_distribution<int> pick(0, 3);
     for (int trial = 0; trial < 60; ++trial) {
         const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
-        ASSERT_EQ(invariant_failures(image, extract_interfaces(image), 0, true), "") << "trial " << trial;
+        const InterfaceComplex complex = extract_interfaces(image);
+        ASSERT_EQ(invariant_failures(image, complex, 0, true), "") << "trial " << trial;
+        const surface::CheckReport report = surface::check_complex(complex);
+        ASSERT_TRUE(report.ok()) << "trial " << trial << ": "
+                                 << (report.first_error() ? report.first_error()->description : "");
     }
 }
 
@@ -193,6 +202,25 @@ LabelImage three_blocks()
         for (std::size_t j = 0; j < 2; ++j)
             for (std::size_t i = 0; i < 6; ++i) image.at(i, j, k) = static_cast<Label>(1 + i / 2);
     return image;
+}
+
+TEST(ComplexChecks, DetectBrokenComplexes)
+{
+    // The tests' checks must be able to fail: break a good complex in three ways.
+    const LabelImage image = make_image({2, 2, 2}, [](int i, int j, int k) { return Label(1 + (i + j + k) % 3); });
+    const InterfaceComplex good = surface::extract_interfaces(image);
+    ASSERT_EQ(invariant_failures(image, good, 0, true), "");
+    InterfaceComplex flipped = good;
+    std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+    EXPECT_GT(testing::tissue_facts(flipped, good.sides[0].from).bad_edges, 0u);
+    InterfaceComplex doubled = good;
+    doubled.add_triangle(good.triangles[5], good.sides[5]);
+    EXPECT_EQ(testing::duplicate_triangles(doubled), 1u);
+    // Push one vertex far along the x axis: its triangles now cut through others.
+    InterfaceComplex moved = good;
+    const std::uint32_t v = moved.triangles[0][0];
+    moved.vertices[v][0] += moved.vertices[v][0] > 0.5 ? -1.5 : 1.5;
+    EXPECT_GT(testing::intersecting_pairs(moved), 0u);
 }
 
 TEST(ExtractInterfaces, TissueSelectionMergesOthersIntoBackground)
