@@ -146,7 +146,7 @@ std::uint64_t check_nifti_header(const fs::path& path)
     const std::uint64_t size = uncompressed_size(path);
     const auto data_start = static_cast<std::uint64_t>(f.vox_offset);
     require_payload(name, needed, size > data_start ? size - data_start : 0);
-    return needed;
+    return needed / static_cast<std::uint64_t>(f.bitpix / 8) * 8;
 }
 
 } // namespace tissuemesh::io::detail

@@ -44,6 +44,8 @@ struct NiftiSpec {
     std::int16_t datatype = 2;            ///< 2 uint8, 4 int16, 16 float32, 512 uint16, 128 RGB
     std::int16_t bitpix = 8;
     std::int16_t vectors = 1;             ///< dim[5]: values per voxel (rank becomes 5 when > 1)
+    float scale_slope = 1;                ///< scl_slope: value = slope * stored + intercept
+    float scale_intercept = 0;            ///< scl_inter
     char magic[4] = {'n', '+', '1', '\0'};
 };
 
@@ -63,7 +65,8 @@ inline void write_nifti(const std::filesystem::path& path, const NiftiSpec& spec
     put<float>(bytes, 76, 1.0f);  // pixdim[0]: qfac
     for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis]);
     put<float>(bytes, 108, 352.0f);   // vox_offset
-    put<float>(bytes, 112, 1.0f);     // scl_slope
+    put<float>(bytes, 112, spec.scale_slope);
+    put<float>(bytes, 116, spec.scale_intercept);
     put<std::int16_t>(bytes, 252, 1); // qform_code: scanner
     put<float>(bytes, 256, 0.0f);     // quatern_b, c, d = 0: identity rotation
     std::memcpy(bytes.data() + 344, spec.magic, 4);

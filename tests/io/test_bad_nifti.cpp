@@ -45,6 +45,20 @@ TEST(BadInput, ValidHandMadeNiftiReads)
     EXPECT_FLOAT_EQ(static_cast<float>(image.spacing_mm()[2]), 2.5f);
 }
 
+TEST(BadInput, NiftiScalingIsAppliedBeforeTheLabelChecks)
+{
+    // scl_slope/scl_inter turn stored values into the image's values: labels are 2 * stored + 1.
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.scale_slope = 2;
+    spec.scale_intercept = 1;
+    testing::write_nifti(dir / "scaled.nii", spec, eight_voxels());
+    EXPECT_EQ(io::read_label_image(dir / "scaled.nii").at(1, 1, 1), 15);
+    spec.scale_slope = 0.5f;
+    testing::write_nifti(dir / "halved.nii", spec, eight_voxels());
+    expect_error<InputError>([&] { io::read_label_image(dir / "halved.nii"); }, {"halved.nii: voxel (1, 0, 0) holds 1.5"});
+}
+
 TEST(BadInput, TruncatedNifti)
 {
     testing::TempDir dir;
