@@ -32,7 +32,7 @@ void scan_voxels(const LabelImage& image, std::vector<LabelSummary>& summaries, 
     const Dims& d = image.dims();
     const auto& labels = image.labels();
     const std::size_t stride[3] = {1, d[0], d[0] * d[1]};
-    ProgressTicker ticker(progress, "info", d[2]);
+    ProgressTicker ticker(progress, "labels", d[2]);
     std::pair<Label, Label> last_contact{0, 0};
     for (std::size_t k = 0; k < d[2]; ++k, ticker.step()) {
         for (std::size_t j = 0; j < d[1]; ++j) {
@@ -62,6 +62,21 @@ void scan_voxels(const LabelImage& image, std::vector<LabelSummary>& summaries, 
             }
         }
     }
+}
+
+/// World axis-aligned box of the voxel cells between two index corners (inclusive).
+std::array<Vec3, 2> cell_bounds_mm(const LabelImage& image, const std::array<std::size_t, 3>& lo,
+                                   const std::array<std::size_t, 3>& hi)
+{
+    std::array<Vec3, 2> box{Vec3{INFINITY, INFINITY, INFINITY}, Vec3{-INFINITY, -INFINITY, -INFINITY}};
+    for (int corner = 0; corner < 8; ++corner) {
+        Vec3 index;
+        for (int a = 0; a < 3; ++a)
+            index[a] = (corner >> a & 1) ? static_cast<double>(hi[a]) + 0.5 : static_cast<double>(lo[a]) - 0.5;
+        const Vec3 p = image.index_to_world(index);
+        for (int a = 0; a < 3; ++a) box[0][a] = std::min(box[0][a], p[a]), box[1][a] = std::max(box[1][a], p[a]);
+    }
+    return box;
 }
 
 void add_warnings(LabelSummary& s, const LabelStatisticsOptions& options)
@@ -111,7 +126,7 @@ LabelStatistics analyze_labels(const LabelImage& image, const LabelStatisticsOpt
         stats.labels[static_cast<std::size_t>(slot[b])].touches.push_back(a);
     }
 
-    progress.info("info", "connected components (6- and 26-neighbours)");
+    progress.info("labels", "connected components (6- and 26-neighbours)");
     const Components faces = find_components(image, Connectivity::faces6);
     for (std::size_t c = 0; c < faces.count(); ++c) {
         LabelSummary& s = stats.labels[static_cast<std::size_t>(slot[faces.label[c]])];
@@ -124,21 +139,7 @@ LabelStatistics analyze_labels(const LabelImage& image, const LabelStatisticsOpt
     for (LabelSummary& s : stats.labels) {
         std::sort(s.touches.begin(), s.touches.end());
         s.volume_mm3 = static_cast<double>(s.voxels) * image.voxel_volume_mm3();
-        // The world box of the voxel cells between the two index corners.
-        Vec3 lo{}, hi{};
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = static_cast<double>(s.index_min[a]) - 0.5;
-            hi[a] = static_cast<double>(s.index_max[a]) + 0.5;
-        }
-        s.bounds_mm = {Vec3{INFINITY, INFINITY, INFINITY}, Vec3{-INFINITY, -INFINITY, -INFINITY}};
-        for (int corner = 0; corner < 8; ++corner) {
-            const Vec3 p = image.index_to_world({corner & 1 ? hi[0] : lo[0], corner & 2 ? hi[1] : lo[1],
-                                                 corner & 4 ? hi[2] : lo[2]});
-            for (int a = 0; a < 3; ++a) {
-                s.bounds_mm[0][a] = std::min(s.bounds_mm[0][a], p[a]);
-                s.bounds_mm[1][a] = std::max(s.bounds_mm[1][a], p[a]);
-            }
-        }
+        s.bounds_mm = cell_bounds_mm(image, s.index_min, s.index_max);
         add_warnings(s, options);
     }
     return stats;

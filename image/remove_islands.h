@@ -14,10 +14,12 @@ struct RemoveIslandsOptions {
     Label background = 0;                               ///< never removed (its small pieces are holes: fill_holes())
 };
 
-/// Gives every tissue component under options.min_voxels voxels the label it shares most faces with
-/// (ties: the smaller label). All islands are decided on the input image, so the result does not depend
-/// on scan order.
-/// @post no non-background component under min_voxels remains that had a neighbour
+/// Gives every tissue component under options.min_voxels voxels the label it shares most faces with,
+/// preferring pieces that stay (ties: the smaller label). All islands of a round are decided on the
+/// image as it was, so the result does not depend on scan order; rounds repeat (at most 8) while
+/// islands merged with each other are still too small.
+/// @post no non-background component under min_voxels remains, unless it fills the image or 8 rounds
+///       were not enough
 PrepReport remove_islands(LabelImage& image, const RemoveIslandsOptions& options = {});
 
 } // namespace tissuemesh::image

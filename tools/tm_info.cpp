@@ -44,6 +44,10 @@ void print_report(const std::string& path, const image::LabelStatistics& stats)
                     s.name.c_str(), s.voxels, s.volume_mm3, box.c_str(), s.components6, s.components26,
                     join(s.touches).c_str(), s.border_voxels > 0 ? "yes" : "no");
     }
+    std::printf("\n%5s  %-16s %s\n", "label", "name", "bounding box (mm, world axes)");
+    for (const auto& s : stats.labels)
+        std::printf("%5u  %-16s %s .. %s\n", static_cast<unsigned>(s.label), s.name.c_str(),
+                    vec(s.bounds_mm[0]).c_str(), vec(s.bounds_mm[1]).c_str());
     std::size_t warnings = 0;
     for (const auto& s : stats.labels) warnings += s.warnings.size();
     if (warnings > 0) std::printf("\nwarnings:\n");

@@ -1,5 +1,6 @@
 #include "image/detail/reassign.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace tissuemesh::image::detail {
@@ -18,7 +19,8 @@ std::vector<std::uint32_t> slots(const Components& components, const std::vector
 } // namespace
 
 std::vector<std::map<Label, std::size_t>> surrounding_labels(const LabelImage& image, const Components& components,
-                                                             const std::vector<std::uint32_t>& selected)
+                                                             const std::vector<std::uint32_t>& selected,
+                                                             bool skip_selected)
 {
     std::vector<std::map<Label, std::size_t>> histograms(selected.size());
     const std::vector<std::uint32_t> slot = slots(components, selected);
@@ -31,11 +33,14 @@ std::vector<std::map<Label, std::size_t>> surrounding_labels(const LabelImage& i
                 const std::uint32_t c = components.component[v];
                 if (slot[c] == not_selected) continue;
                 const std::size_t index[3] = {i, j, k};
+                const auto count = [&](std::size_t w) {
+                    const std::uint32_t other = components.component[w];
+                    if (other != c && !(skip_selected && slot[other] != not_selected))
+                        ++histograms[slot[c]][image.labels()[w]];
+                };
                 for (int a = 0; a < 3; ++a) {
-                    if (index[a] > 0 && components.component[v - stride[a]] != c)
-                        ++histograms[slot[c]][image.labels()[v - stride[a]]];
-                    if (index[a] + 1 < d[a] && components.component[v + stride[a]] != c)
-                        ++histograms[slot[c]][image.labels()[v + stride[a]]];
+                    if (index[a] > 0) count(v - stride[a]);
+                    if (index[a] + 1 < d[a]) count(v + stride[a]);
                 }
             }
     return histograms;
@@ -68,10 +73,13 @@ std::size_t assign_components(LabelImage& image, const Components& components,
 std::size_t absorb_components(LabelImage& image, const Components& components,
                               const std::vector<std::uint32_t>& selected)
 {
-    const auto histograms = surrounding_labels(image, components, selected);
+    const auto staying = surrounding_labels(image, components, selected, true);
+    std::vector<std::map<Label, std::size_t>> all;
+    if (std::any_of(staying.begin(), staying.end(), [](const auto& h) { return h.empty(); }))
+        all = surrounding_labels(image, components, selected, false);
     std::vector<Label> targets(selected.size());
     for (std::size_t n = 0; n < selected.size(); ++n)
-        targets[n] = most_common(histograms[n], components.label[selected[n]]);
+        targets[n] = most_common(staying[n].empty() && !all.empty() ? all[n] : staying[n], components.label[selected[n]]);
     return assign_components(image, components, selected, targets);
 }
 

@@ -148,6 +148,24 @@ TEST(RemoveIslands, GivesSmallPiecesToTheirSurroundings)
     EXPECT_FALSE(count_labels(image).contains(2));
 }
 
+TEST(RemoveIslands, IslandsSurroundedByIslandsGoToWhatStays)
+{
+    // A voxel of 3 wrapped by six single voxels of 2 (not face-connected to each other), in background.
+    // The 2s join the background around them; the 3, touching only islands, first takes their label
+    // and, now a lone island of 2, joins the background in the next round.
+    LabelImage image({7, 7, 7}, {1, 1, 1});
+    image.at(3, 3, 3) = 3;
+    for (int a = 0; a < 3; ++a)
+        for (const int step : {-1, 1}) {
+            std::array<std::size_t, 3> index{3, 3, 3};
+            index[a] = static_cast<std::size_t>(3 + step);
+            image.at(index[0], index[1], index[2]) = 2;
+        }
+    const PrepReport report = remove_islands(image, {.min_voxels = 5});
+    EXPECT_EQ(count_labels(image), (std::map<Label, std::size_t>{{0, 343}}));
+    EXPECT_EQ(report.changed_voxels, 7u);
+}
+
 TEST(FillHoles, FillsEnclosedBackgroundOnly)
 {
     LabelImage image({9, 9, 9}, {1, 1, 1});

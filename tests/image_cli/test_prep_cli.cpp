@@ -1,0 +1,117 @@
+// tm-prep run as a user runs it: good runs change what they say, bad options leave nothing behind.
+#include <algorithm>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/read_label_image.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+using testing::run_cli;
+using testing::TempDir;
+
+/// A junction phantom (labels 0..3) at 2 mm in `dir`.
+std::string make_input(const TempDir& dir)
+{
+    const std::string path = (dir / "in.nii.gz").string();
+    EXPECT_EQ(run_cli("tm-phantom", {"junction", "--voxel-mm", "2", "-o", path, "-q"}).exit_code, 0);
+    return path;
+}
+
+std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST(PrepCli, RelabelsCropsAndReportsEachStep)
+{
+    TempDir dir;
+    const std::string input = make_input(dir);
+    const auto result = run_cli("tm-prep", {"-i", input, "-o", (dir / "out.nii.gz").string(), "--crop-pad", "1",
+                                            "--relabel", "3:2", "--json", (dir / "prep.json").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.err.find("[relabel] 3 -> 2"), std::string::npos) << result.err;
+    const LabelImage in = io::read_label_image(input);
+    const LabelImage out = io::read_label_image(dir / "out.nii.gz");
+    const auto before = count_labels(in), after = count_labels(out);
+    EXPECT_FALSE(after.contains(3));
+    EXPECT_EQ(after.at(2), before.at(2) + before.at(3));
+    EXPECT_EQ(after.at(1), before.at(1));
+    // Cropped to the shell's box plus one voxel: the shell (radius 40 mm) spans 40 voxels of 2 mm.
+    EXPECT_EQ(out.dims()[0], 40u + 2u);
+    std::ifstream json(dir / "prep.json");
+    const auto summary = nlohmann::json::parse(json);
+    ASSERT_EQ(summary.at("steps").size(), 2u);
+    EXPECT_EQ(summary.at("steps").at(0).at("step"), "relabel");  // the fixed order, not the flags' order
+    EXPECT_EQ(summary.at("steps").at(1).at("step"), "crop-pad");
+    EXPECT_EQ(summary.at("steps").at(0).at("changed_voxels").get<std::size_t>(), before.at(3));
+}
+
+TEST(PrepCli, UnknownLabelInRelabelExitsTwoAndWritesNothing)
+{
+    TempDir dir;
+    const std::string input = make_input(dir);
+    const auto before = dir.files();
+    const auto result = run_cli("tm-prep", {"-i", input, "-o", (dir / "out.nii.gz").string(), "--relabel", "9:1"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err, "tm-prep: error: relabel 9:1: label 9 is not in the image (it has 0,1,2,3); check the "
+                          "map against tm-info\n");
+    EXPECT_EQ(dir.files(), before);
+}
+
+TEST(PrepCli, BadSpacingAndSyntaxExitTwoWithOneLine)
+{
+    TempDir dir;
+    const std::string input = make_input(dir);
+    const auto before = dir.files();
+    const std::string out = (dir / "out.nii.gz").string();
+    const auto zero = run_cli("tm-prep", {"-i", input, "-o", out, "--spacing-mm", "0"});
+    EXPECT_EQ(zero.exit_code, 2);
+    EXPECT_NE(zero.err.find("spacing 0 mm along axis 0: it must be a positive number"), std::string::npos) << zero.err;
+    EXPECT_EQ(lines(zero.err), 1u) << zero.err;
+    const auto syntax = run_cli("tm-prep", {"-i", input, "-o", out, "--relabel", "5-4"});
+    EXPECT_EQ(syntax.exit_code, 2);
+    EXPECT_NE(syntax.err.find("--relabel: '5-4' is not FROM:TO"), std::string::npos) << syntax.err;
+    const auto range = run_cli("tm-prep", {"-i", input, "-o", out, "--keep-largest", "1,70000"});
+    EXPECT_EQ(range.exit_code, 2);
+    EXPECT_NE(range.err.find("label 70000 is outside 0..65535"), std::string::npos) << range.err;
+    EXPECT_EQ(dir.files(), before);
+}
+
+TEST(PrepCli, UnwritableOutputExitsTwoAndLeavesNothing)
+{
+    TempDir dir;
+    const std::string input = make_input(dir);
+    const auto before = dir.files();
+    const auto result = run_cli("tm-prep", {"-i", input, "-o", (dir / "missing" / "out.nii.gz").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_EQ(result.err.rfind("tm-prep: error: ", 0), 0u) << result.err;
+    EXPECT_EQ(lines(result.err), 1u) << result.err;
+    EXPECT_EQ(dir.files(), before);
+    EXPECT_FALSE(std::filesystem::exists(dir / "missing"));
+    const auto phantom = run_cli("tm-phantom", {"thin", "-o", (dir / "missing" / "t.nii.gz").string()});
+    EXPECT_EQ(phantom.exit_code, 2);
+    EXPECT_EQ(dir.files(), before);
+}
+
+TEST(PrepCli, CleansTheHeadSoNoTissueTouchesTheBorder)
+{
+    TempDir dir;
+    const std::string out = (dir / "head.nii.gz").string();
+    const auto prep = run_cli("tm-prep", {"-i", testing::data_path("samples/usc19-5_head.nii.gz").string(), "-o", out,
+                                          "--remove-islands", "20", "--crop-pad", "2", "-q"});
+    ASSERT_EQ(prep.exit_code, 0) << prep.err;
+    const auto info = run_cli("tm-info", {"-i", out, "--island-voxels", "20", "--json", (dir / "info.json").string()});
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    std::ifstream json(dir / "info.json");
+    const auto summary = nlohmann::json::parse(json);
+    ASSERT_EQ(summary.at("labels").size(), 7u);
+    for (const auto& label : summary.at("labels")) {
+        if (label.at("label") == 0) continue;
+        EXPECT_EQ(label.at("border_voxels"), 0) << label.at("label");
+        EXPECT_EQ(label.at("islands"), 0) << label.at("label");
+    }
+}
+
+} // namespace
+} // namespace tissuemesh
