@@ -53,7 +53,7 @@ PrepReport resample_labels(LabelImage& image, const ResampleOptions& options, co
                            Label background)
 {
     PrepReport report = begin_report("resample", image);
-    const Dims& old_dims = image.dims();
+    const Dims old_dims = image.dims();  // a copy: the image is replaced below
     Dims dims{};
     Vec3 ratio{}, first_centre{};
     double count = 1;

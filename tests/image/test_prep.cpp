@@ -93,8 +93,10 @@ TEST(Resample, DownsamplesByMajorityOfTheOverlap)
     fill_box(image, {0, 0, 0}, {1, 1, 1}, 1);  // fills new voxel (0,0,0) entirely
     fill_box(image, {2, 2, 2}, {3, 3, 2}, 2);  // half of new voxel (1,1,1): a tie with background
     image.at(3, 0, 0) = 3;                      // 1/8 of new voxel (1,0,0): loses to background
-    resample_labels(image, {.spacing_mm = {2, 2, 2}});
+    const PrepReport report = resample_labels(image, {.spacing_mm = {2, 2, 2}});
     EXPECT_EQ(image.dims(), (Dims{2, 2, 2}));
+    EXPECT_EQ(report.dims_before, (Dims{4, 4, 4}));
+    EXPECT_NE(report.detail.find("4x4x4 -> 2x2x2 voxels"), std::string::npos) << report.detail;
     EXPECT_EQ(image.at(0, 0, 0), 1);
     EXPECT_EQ(image.at(1, 1, 1), 2);  // ties go to the tissue
     EXPECT_EQ(image.at(1, 0, 0), 0);
