@@ -15,20 +15,35 @@ struct ReadImageOptions {
 };
 
 /// Reads a label image; the format is chosen by the file name's extension:
-/// `.nii`, `.nii.gz`, `.nrrd`, `.nhdr`, `.seg.nrrd`, `.mha`, `.mhd`, `.inr`, `.inr.gz`, `.json` (raw + JSON
-/// sidecar). World coordinates are RAS millimetres for every format, as the NIfTI affine (sform/qform)
-/// defines them: ITK's LPS geometry with x and y negated. Inrimage has no orientation: identity, origin
-/// from its header (0 when absent). Integer voxel types of any width are accepted when every value fits uint16; float
-/// images only when every value is an integer. Tissue names come from the file when it has them
-/// (Slicer segments) and from `options.names_json`.
+///   `.nii`, `.nii.gz`         NIfTI-1 or -2 (single file), either byte order; scl_slope/scl_inter applied
+///   `.nrrd`, `.nhdr`          NRRD, attached or detached data, raw/gzip/ascii encodings
+///   `.seg.nrrd`               3D Slicer segmentation: single-layer label maps only; Segment{N}_Name and
+///                             Segment{N}_LabelValue become tissue names
+///   `.mha`, `.mhd`            MetaImage
+///   `.inr`, `.inr.gz`         Inrimage (see io/detail/inrimage.h for the keys read)
+///   `.json`                   raw voxels + JSON sidecar (schema in io/detail/raw_json_image.h); its
+///                             "labels" become tissue names
+/// World coordinates are RAS millimetres for every format, as the NIfTI affine (sform/qform) defines
+/// them: ITK's LPS geometry with x and y negated. Inrimage has no orientation: identity direction,
+/// origin from its TX/TY/TZ keys (0 when absent). Integer voxel types of any width are accepted when
+/// every value fits uint16; float images only when every value is a whole number. Names from
+/// `options.names_json` replace the file's names label by label.
+/// Before allocating, the reader checks the header against the file: it never allocates more than
+/// the (decompressed) file can hold. The library never prints: ITK's own messages are suppressed
+/// (std::cerr is redirected during ITK calls, so do not read images from several threads at once).
 /// @post the result passes validate_geometry()
-/// @throws IoError  when the file is missing, unreadable, truncated or not of the format its name says
-/// @throws InputError when the content is invalid (bad spacing, fractional or too large labels, ...)
+/// @throws IoError  when the file is missing, empty, unreadable, truncated, not of the format its name
+///         says (wrong magic), or has an unknown extension
+/// @throws InputError when the content is invalid: zero/negative/NaN/infinite spacing, dimensions that
+///         are 0 or overflow, several values per voxel (vector, RGB, 4D, multi-layer segmentations),
+///         fractional, negative or too large labels (the message names the first such voxel and value)
+/// Every message is one line: "<file>: <problem>; <fix>".
 LabelImage read_label_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
 
 /// Reads a tissue-name table: a JSON object mapping label numbers to names ({"1": "scalp"}), or the
 /// object under its "labels" key (the sidecars in data/samples have that shape).
-/// @throws IoError / InputError on unreadable files or malformed content
+/// @throws IoError on missing files or invalid JSON; InputError when a key is not a label in 0..65535
+///         or a name is not a string
 TissueNames read_tissue_names(const std::filesystem::path& path);
 
 /// The extensions read_label_image() understands, for messages and --help.

@@ -20,9 +20,10 @@ struct LpsGeometry {
 LpsGeometry to_lps(const LabelImage& image)
 {
     LpsGeometry lps;
-    lps.origin = {-image.origin_mm()[0], -image.origin_mm()[1], image.origin_mm()[2]};
+    // 0 - x rather than -x: no "-0" in the headers.
+    lps.origin = {0 - image.origin_mm()[0], 0 - image.origin_mm()[1], image.origin_mm()[2]};
     const Mat3& d = image.direction();
-    for (int axis = 0; axis < 3; ++axis) lps.axes[axis] = {-d[axis], -d[3 + axis], d[6 + axis]};
+    for (int axis = 0; axis < 3; ++axis) lps.axes[axis] = {0 - d[axis], 0 - d[3 + axis], d[6 + axis]};
     return lps;
 }
 
