@@ -3,6 +3,7 @@
 #include "surface/detail/cgal_intersections.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
@@ -47,6 +48,64 @@ int shared_first(Triangle& t, const Triangle& other)
     return count;
 }
 
+using Corners = std::array<Point, 3>;
+
+CGAL::Orientation side(const Corners& t, const Point& p) { return CGAL::orientation(t[0], t[1], t[2], p); }
+
+/// The axis to drop so that the projection of t's plane onto the other two axes is one-to-one (the
+/// normal's largest component, confirmed exactly), or -1.
+int projection_axis(const Corners& t)
+{
+    const Kernel::Vector_3 n = CGAL::cross_product(t[1] - t[0], t[2] - t[0]);
+    const std::array<double, 3> size{std::abs(n.x()), std::abs(n.y()), std::abs(n.z())};
+    const int axis = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+    const auto flat = [axis](const Point& p) { return Kernel::Point_2(p[(axis + 1) % 3], p[(axis + 2) % 3]); };
+    return CGAL::collinear(flat(t[0]), flat(t[1]), flat(t[2])) ? -1 : axis;
+}
+
+using Point2 = Kernel::Point_2;
+using Corners2 = std::array<Point2, 3>;
+
+Point2 project(const Point& p, int axis) { return {p[(axis + 1) % 3], p[(axis + 2) % 3]}; }
+Corners2 project(const Corners& t, int axis) { return {project(t[0], axis), project(t[1], axis), project(t[2], axis)}; }
+
+// 2D tests on closed sets from orientation predicates only: CGAL's 2D do_intersect for triangles
+// computes intersection points and, filtered, falls back to rational arithmetic (100x slower here).
+
+/// Whether the closed segments pq and rs meet.
+bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Point2& s)
+{
+    const int o1 = CGAL::orientation(p, q, r), o2 = CGAL::orientation(p, q, s);
+    const int o3 = CGAL::orientation(r, s, p), o4 = CGAL::orientation(r, s, q);
+    if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+    // Otherwise they meet only if an end point lies on the other segment.
+    return (o1 == 0 && CGAL::collinear_are_ordered_along_line(p, r, q)) ||
+           (o2 == 0 && CGAL::collinear_are_ordered_along_line(p, s, q)) ||
+           (o3 == 0 && CGAL::collinear_are_ordered_along_line(r, p, s)) ||
+           (o4 == 0 && CGAL::collinear_are_ordered_along_line(r, q, s));
+}
+
+/// Whether p lies in the closed, non-degenerate triangle t.
+bool in_triangle(const Corners2& t, const Point2& p)
+{
+    const int o0 = CGAL::orientation(t[0], t[1], p), o1 = CGAL::orientation(t[1], t[2], p),
+              o2 = CGAL::orientation(t[2], t[0], p);
+    return !((o0 < 0 || o1 < 0 || o2 < 0) && (o0 > 0 || o1 > 0 || o2 > 0));
+}
+
+bool segment_meets_triangle(const Point2& p, const Point2& q, const Corners2& t)
+{
+    return in_triangle(t, p) || in_triangle(t, q) || segments_meet(p, q, t[0], t[1]) ||
+           segments_meet(p, q, t[1], t[2]) || segments_meet(p, q, t[2], t[0]);
+}
+
+/// Closed triangles meet when an edge of one meets the other (which covers containment).
+bool triangles_meet(const Corners2& a, const Corners2& b)
+{
+    return segment_meets_triangle(a[0], a[1], b) || segment_meets_triangle(a[1], a[2], b) ||
+           segment_meets_triangle(a[2], a[0], b) || in_triangle(a, b[0]);
+}
+
 /// Whether two non-degenerate triangles meet anywhere besides the vertices and edge they share by index.
 /// - no shared vertex: any contact is improper;
 /// - one shared vertex v: if the triangles meet at a point p != v, they meet along the segment vp
@@ -54,6 +113,8 @@ int shared_first(Triangle& t, const Triangle& other)
 ///   edge opposite v; so the contact is improper exactly when an opposite edge meets the other triangle;
 /// - a shared edge uw: triangles in different planes meet exactly in uw; coplanar ones overlap when
 ///   their third vertices lie on the same side of uw.
+/// Coplanar pairs (common in voxel-derived surfaces) are decided in 2D after an exact one-to-one
+/// projection: the 3D predicates would fall back to exact arithmetic on every zero orientation.
 class PairTest {
 public:
     PairTest(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles)
@@ -67,24 +128,47 @@ public:
         Triangle b = triangles_[second];
         const int shared = shared_first(a, b);
         shared_first(b, a);
+        const Corners pa = corners(a), pb = corners(b);
         switch (shared) {
-        case 0: return CGAL::do_intersect(triangle(a), triangle(b));
-        case 1:
-            return CGAL::do_intersect(Segment(point(a[1]), point(a[2])), triangle(b)) ||
-                   CGAL::do_intersect(Segment(point(b[1]), point(b[2])), triangle(a));
-        case 2: {
-            const Point& u = point(a[0]);
-            const Point& w = point(a[1]);
-            return CGAL::coplanar(u, w, point(a[2]), point(b[2])) &&
-                   CGAL::coplanar_orientation(u, w, point(a[2]), point(b[2])) == CGAL::POSITIVE;
-        }
+        case 0: return disjoint_meet(pa, pb);
+        case 1: return vertex_sharing_meet(pa, pb);
+        case 2:
+            return CGAL::coplanar(pa[0], pa[1], pa[2], pb[2]) &&
+                   CGAL::coplanar_orientation(pa[0], pa[1], pa[2], pb[2]) == CGAL::POSITIVE;
         default: return false;  // same vertex set: a duplicate, reported by the caller
         }
     }
 
 private:
-    Point point(std::uint32_t v) const { return to_point(vertices_[v]); }
-    CgalTriangle triangle(const Triangle& t) const { return CgalTriangle(point(t[0]), point(t[1]), point(t[2])); }
+    static bool disjoint_meet(const Corners& pa, const Corners& pb)
+    {
+        const CGAL::Orientation s0 = side(pa, pb[0]), s1 = side(pa, pb[1]), s2 = side(pa, pb[2]);
+        if (s0 == s1 && s1 == s2) {
+            if (s0 != CGAL::COPLANAR) return false;  // b strictly on one side of a's plane
+            if (const int axis = projection_axis(pa); axis >= 0)
+                return triangles_meet(project(pa, axis), project(pb, axis));
+        }
+        return CGAL::do_intersect(CgalTriangle(pa[0], pa[1], pa[2]), CgalTriangle(pb[0], pb[1], pb[2]));
+    }
+
+    /// pa[0] and pb[0] are the shared vertex.
+    static bool vertex_sharing_meet(const Corners& pa, const Corners& pb)
+    {
+        const CGAL::Orientation s1 = side(pa, pb[1]), s2 = side(pa, pb[2]);
+        // b meets a's plane only at the shared vertex: nothing else can be common.
+        if (s1 == s2 && s1 != CGAL::COPLANAR) return false;
+        if (s1 == CGAL::COPLANAR && s2 == CGAL::COPLANAR)
+            if (const int axis = projection_axis(pa); axis >= 0)
+                return segment_meets_triangle(project(pa[1], axis), project(pa[2], axis), project(pb, axis)) ||
+                       segment_meets_triangle(project(pb[1], axis), project(pb[2], axis), project(pa, axis));
+        return CGAL::do_intersect(Segment(pa[1], pa[2]), CgalTriangle(pb[0], pb[1], pb[2])) ||
+               CGAL::do_intersect(Segment(pb[1], pb[2]), CgalTriangle(pa[0], pa[1], pa[2]));
+    }
+
+    Corners corners(const Triangle& t) const
+    {
+        return {to_point(vertices_[t[0]]), to_point(vertices_[t[1]]), to_point(vertices_[t[2]])};
+    }
 
     const std::vector<Vec3>& vertices_;
     const std::vector<Triangle>& triangles_;

@@ -140,6 +140,22 @@ TEST(CheckComplexIntersections, CoplanarOverlapWithoutSharedVerticesIsAnIntersec
     EXPECT_NEAR(defect.location_mm[2], 0.0, 1e-12);
 }
 
+TEST(CheckComplexIntersections, CoplanarContactsAreDecidedExactly)
+{
+    // All in the plane x + y + z = 3 (not axis-aligned, so the 2D test runs on a projection).
+    const auto plane = [](double u, double v) { return Vec3{u, v, 3 - u - v}; };
+    const auto meets = [&](std::vector<Vec3> points) {
+        return intersections(check_complex(two_triangles(std::move(points), {0, 1, 2}, {3, 4, 5})));
+    };
+    // Contained: the small triangle inside the big one.
+    EXPECT_EQ(meets({plane(0, 0), plane(4, 0), plane(0, 4), plane(1, 1), plane(2, 1), plane(1, 2)}), 1u);
+    // A corner of the second exactly on the first one's long edge u + v = 4 (a T-junction).
+    EXPECT_EQ(meets({plane(0, 0), plane(4, 0), plane(0, 4), plane(2, 2), plane(4, 2), plane(2, 4)}), 1u);
+    // The same, moved off that edge by one binary step of 1/1024 mm: apart.
+    const double gap = 1.0 / 1024;
+    EXPECT_EQ(meets({plane(0, 0), plane(4, 0), plane(0, 4), plane(2 + gap, 2), plane(4, 2), plane(2 + gap, 4)}), 0u);
+}
+
 TEST(CheckComplexIntersections, TouchingWithoutSharingTheVertexIsAnIntersection)
 {
     // The second triangle's corner lies on the first one's interior, but is a different vertex.
