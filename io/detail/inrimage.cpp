@@ -136,7 +136,7 @@ LabelImage read_inrimage(const fs::path& path)
     require_payload(name, needed, size > header.bytes ? size - header.bytes : 0);
     const std::vector<unsigned char> bytes = read_payload(path, header.bytes, needed);
     LabelImage image(dims, spacing, origin);
-    image.labels() = decode_labels(name, bytes.data(), type, big_endian, dims);
+    decode_labels(name, bytes.data(), type, big_endian, image);
     return image;
 }
 

@@ -191,7 +191,7 @@ LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_
 
     LabelImage image(dims, spacing, origin, direction);
     const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
-    image.labels() = decode_labels(name, bytes.data(), type, big_endian, dims);
+    decode_labels(name, bytes.data(), type, big_endian, image);
     image.names() = read_segment_names(name, io.GetMetaDataDictionary());
     return image;
 }

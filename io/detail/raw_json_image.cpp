@@ -95,7 +95,7 @@ LabelImage read_raw_json_image(const fs::path& path)
     require_payload(raw.string(), needed, uncompressed_size(raw));
     const std::vector<unsigned char> bytes = read_payload(raw, 0, needed);
     LabelImage image(dims, spacing, origin, direction);
-    image.labels() = decode_labels(raw.string(), bytes.data(), *type, byte_order == "big", dims);
+    decode_labels(raw.string(), bytes.data(), *type, byte_order == "big", image);
     if (document.contains("labels")) image.names() = parse_tissue_names(name, document["labels"]);
     return image;
 }

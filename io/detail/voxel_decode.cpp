@@ -206,10 +206,11 @@ std::string encode_labels(const LabelImage& image, std::size_t width)
     return data;
 }
 
-std::vector<Label> decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type,
-                                 bool big_endian, const Dims& dims)
+void decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
+                   LabelImage& image)
 {
-    std::vector<Label> labels(dims[0] * dims[1] * dims[2]);
+    std::vector<Label>& labels = image.labels();
+    const Dims& dims = image.dims();
     const bool swap = big_endian != host_is_big_endian();
     switch (type) {
     case VoxelType::u8: decode<std::uint8_t>(file, bytes, swap, dims, labels); break;
@@ -223,7 +224,6 @@ std::vector<Label> decode_labels(const std::string& file, const unsigned char* b
     case VoxelType::f32: decode<float>(file, bytes, swap, dims, labels); break;
     case VoxelType::f64: decode<double>(file, bytes, swap, dims, labels); break;
     }
-    return labels;
 }
 
 } // namespace tissuemesh::io::detail

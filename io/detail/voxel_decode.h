@@ -45,11 +45,12 @@ std::vector<unsigned char> read_payload(const std::filesystem::path& path, std::
 /// True when the file starts with the gzip magic bytes.
 bool is_gzip_file(const std::filesystem::path& path);
 
-/// Converts `count` voxels stored as `type` (byte order `big_endian`) to labels.
-/// @throws InputError naming `file`, the first offending voxel (i, j, k) of `dims` and its value when
-///         a value is not an integer (NaN, fractional), negative, or above 65535.
-std::vector<Label> decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type,
-                                 bool big_endian, const Dims& dims);
+/// Converts the image's voxels, stored as `type` (byte order `big_endian`) in `bytes`, to labels in
+/// `image` (decoded in place: no second label buffer).
+/// @throws InputError naming `file`, the first offending voxel (i, j, k) and its value when a value is
+///         not an integer (NaN, fractional), negative, or above 65535
+void decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
+                   LabelImage& image);
 
 /// Bytes per voxel a writer uses for `image`: 1 when every label fits uint8, else 2.
 std::size_t label_width(const LabelImage& image);
