@@ -20,8 +20,7 @@ namespace {
 
 void require_interface(const detail::PhantomModel& model, LabelPair pair)
 {
-    const auto pairs = model.interfaces();
-    if (std::find(pairs.begin(), pairs.end(), pair) == pairs.end())
+    if (std::find(model.known_pairs.begin(), model.known_pairs.end(), pair) == model.known_pairs.end())
         throw InputError(concat("phantom ", model.name, ": tissues ", pair.from, " and ", pair.to,
                                 " share no interface; use one of the pairs its interfaces() lists"));
 }
@@ -45,7 +44,7 @@ std::vector<Vec3> PhantomGeometry::sample_interface(LabelPair pair, double spaci
     return model_->sample_interface(pair, spacing_mm);
 }
 
-std::vector<LabelPair> PhantomGeometry::interfaces() const { return model_->interfaces(); }
+std::vector<LabelPair> PhantomGeometry::interfaces() const { return model_->known_pairs; }
 
 double PhantomGeometry::volume_mm3(Label label) const
 {
@@ -155,6 +154,7 @@ Phantom make_phantom(const std::string& name, const PhantomOptions& options)
                                 " mm makes the image too large (over 2^31 voxels); use 0.2 mm or more"));
     detail::PhantomSetup setup = entry->make(h);
     setup.model->name = name;
+    setup.model->known_pairs = setup.model->interfaces();
     setup.model->domain_volume_mm3 = static_cast<double>(setup.grid.voxel_count()) * setup.grid.voxel_volume_mm3();
     const detail::PhantomModel& model = *setup.model;
     LabelImage& image = setup.grid;

@@ -30,6 +30,7 @@ public:
     std::string name;
     TissueNames names;              ///< the background included
     double domain_volume_mm3 = 0;   ///< volume of the image's voxel cells, for the background's volume
+    std::vector<LabelPair> known_pairs;  ///< interfaces(), computed once: distance queries check against it
 };
 
 /// A model and the (all-background) grid that samples it.
