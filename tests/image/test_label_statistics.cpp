@@ -90,6 +90,22 @@ TEST(LabelStatistics, CountsOneVoxelThinPlaces)
     EXPECT_EQ(summary_of(stats, 3).thin_voxels, 0u);
 }
 
+TEST(LabelStatistics, FlagsTheOneVoxelShellOfTheThinPhantom)
+{
+    // A one-voxel shell sampled on a grid is one piece through corners (26) but breaks through faces (6)
+    // where it crosses voxel rows diagonally; most of its voxels have other tissues on both sides. The
+    // thick ball and the background have no thin voxels.
+    const Phantom phantom = make_phantom("thin", {.voxel_mm = 1.0});
+    const LabelStatistics stats = analyze_labels(phantom.image);
+    const LabelSummary& shell = summary_of(stats, 1);
+    EXPECT_EQ(shell.components26, 1u);
+    EXPECT_GT(shell.components6, 1u);
+    EXPECT_GT(shell.thin_voxels, shell.voxels / 2);
+    EXPECT_EQ(summary_of(stats, 2).thin_voxels, 0u);
+    EXPECT_EQ(summary_of(stats, 0).thin_voxels, 0u);
+    EXPECT_EQ(summary_of(stats, 2).touches, (std::vector<Label>{1}));  // the shell is closed through faces
+}
+
 TEST(LabelStatistics, FindsTinyIslands)
 {
     // Label 1: one 8-voxel block plus two single voxels; with a threshold of 5 voxels the two singles
