@@ -47,6 +47,25 @@ Label heaviest(const std::vector<std::pair<Label, double>>& weights, Label backg
     return best;
 }
 
+using Overlaps = std::vector<std::pair<std::size_t, double>>;
+
+/// The label covering most of the new cell whose overlaps along each axis are given; `weights` is scratch.
+Label majority(const LabelImage& image, const Overlaps& x, const Overlaps& y, const Overlaps& z,
+               std::vector<std::pair<Label, double>>& weights, Label background)
+{
+    weights.clear();
+    for (const auto& [c, wz] : z)
+        for (const auto& [b, wy] : y)
+            for (const auto& [a, wx] : x) {
+                const Label label = image.at(a, b, c);
+                auto found = std::find_if(weights.begin(), weights.end(),
+                                          [&](const auto& entry) { return entry.first == label; });
+                if (found == weights.end()) weights.emplace_back(label, wx * wy * wz);
+                else found->second += wx * wy * wz;
+            }
+    return heaviest(weights, background);
+}
+
 } // namespace
 
 PrepReport resample_labels(LabelImage& image, const ResampleOptions& options, const Progress& progress,
@@ -84,17 +103,7 @@ PrepReport resample_labels(LabelImage& image, const ResampleOptions& options, co
                     result.at(i, j, k) = image.at(x.nearest[i], y.nearest[j], z.nearest[k]);
                     continue;
                 }
-                weights.clear();
-                for (const auto& [c, wz] : z.cells[k])
-                    for (const auto& [b, wy] : y.cells[j])
-                        for (const auto& [a, wx] : x.cells[i]) {
-                            const Label label = image.at(a, b, c);
-                            auto found = std::find_if(weights.begin(), weights.end(),
-                                                      [&](const auto& entry) { return entry.first == label; });
-                            if (found == weights.end()) weights.emplace_back(label, wx * wy * wz);
-                            else found->second += wx * wy * wz;
-                        }
-                result.at(i, j, k) = heaviest(weights, background);
+                result.at(i, j, k) = majority(image, x.cells[i], y.cells[j], z.cells[k], weights, background);
             }
     result.names() = image.names();
     image = std::move(result);
