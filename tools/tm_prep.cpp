@@ -2,6 +2,7 @@
 // remove islands, fill holes, crop and pad, in that fixed order; each step logs what it changed.
 #include <charconv>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "image/prepare_image.h"
 #include "io/read_label_image.h"
@@ -71,6 +72,13 @@ image::PrepOptions parse_options(const std::string& relabel, const std::vector<s
     return options;
 }
 
+/// OUT.labels.json for OUT.nii.gz: the tissue names after relabelling, readable by --labels.
+std::filesystem::path names_path(const std::filesystem::path& out)
+{
+    const std::string name = out.filename().string();
+    return out.parent_path() / (name.substr(0, name.size() - full_extension(out).size()) + ".labels.json");
+}
+
 nlohmann::json to_json(const image::PrepReport& report)
 {
     const auto counts = [](const std::map<Label, std::size_t>& voxels) {
@@ -99,7 +107,8 @@ int main(int argc, char** argv)
         {"tm-prep",
          "Cleans a label image before meshing. Operations run in this fixed order, whatever the order of the "
          "flags: 1 --relabel, 2 --merge, 3 --spacing-mm (resample), 4 --keep-largest, 5 --remove-islands, "
-         "6 --fill-holes, 7 --crop-pad. Each logs what it changed; --json has the counts per label.",
+         "6 --fill-holes, 7 --crop-pad. Each logs what it changed; --json has the counts per label. Tissue "
+         "names (from --labels), renamed by --relabel and --merge, go to OUT.labels.json.",
          "Examples:\n  tm-prep -i head.nii.gz -o clean.nii.gz --relabel 6:0 --remove-islands 20 --crop-pad 2\n"
          "  tm-prep -i liver.inr.gz -o liver.nii.gz --merge 127,85 --spacing-mm 1 --fill-holes\n"},
         [&](CLI::App& app) {
@@ -129,6 +138,11 @@ int main(int argc, char** argv)
             LabelImage image = io::read_label_image(input, {.names_json = names});
             const auto reports = image::prepare_image(image, options, ctx.progress);
             io::write_label_image(image, output);
+            if (!image.names().empty()) {
+                nlohmann::json table = nlohmann::json::object();
+                for (const auto& [label, tissue] : image.names()) table[std::to_string(label)] = tissue;
+                write_text_atomically(names_path(output), table.dump(2) + "\n");
+            }
             nlohmann::json steps = nlohmann::json::array();
             for (const auto& report : reports) steps.push_back(to_json(report));
             ctx.summary = {{"input", input}, {"output", output}, {"dims", image.dims()}, {"steps", steps}};

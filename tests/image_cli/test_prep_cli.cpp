@@ -47,6 +47,17 @@ TEST(PrepCli, RelabelsCropsAndReportsEachStep)
     EXPECT_EQ(summary.at("steps").at(0).at("changed_voxels").get<std::size_t>(), before.at(3));
 }
 
+TEST(PrepCli, CarriesTissueNamesThroughRelabel)
+{
+    TempDir dir;
+    const std::string input = make_input(dir);
+    const auto result = run_cli("tm-prep", {"-i", input, "--labels", (dir / "in.labels.json").string(), "-o",
+                                            (dir / "out.nii.gz").string(), "--merge", "2,3", "-q"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const TissueNames names = io::read_tissue_names(dir / "out.labels.json");
+    EXPECT_EQ(names, (TissueNames{{0, "background"}, {1, "shell"}, {2, "lower_half"}}));
+}
+
 TEST(PrepCli, UnknownLabelInRelabelExitsTwoAndWritesNothing)
 {
     TempDir dir;
