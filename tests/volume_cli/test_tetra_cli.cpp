@@ -1,0 +1,119 @@
+// The surface-to-mesh steps as a user runs them: tm-phantom -> tm-extract -> tm-tetra -> tm-check-mesh.
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/surface_io.h"
+#include "io/tet_mesh_io.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+using testing::run_cli;
+using testing::TempDir;
+
+nlohmann::json read_json(const std::filesystem::path& path)
+{
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+/// Writes the named phantom at the given voxel size and its interface complex into `dir`.
+void make_surface(const TempDir& dir, const std::string& phantom, const std::string& voxel_mm)
+{
+    const auto image = (dir / (phantom + ".nii.gz")).string();
+    ASSERT_EQ(run_cli("tm-phantom", {phantom, "--voxel-mm", voxel_mm, "-o", image, "-q"}).exit_code, 0);
+    const auto names = (dir / (phantom + ".labels.json")).string();
+    const auto extracted = run_cli("tm-extract", {"-i", image, "--labels", names, "-o", (dir / "surface.ply").string(), "-q"});
+    ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
+}
+
+TEST(TetraCli, JunctionPhantomBecomesAConformingMeshMatchingTheVoxels)
+{
+    TempDir dir;
+    make_surface(dir, "junction", "2");
+    const auto tetra = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "mesh.msh").string(),
+                                            "--json", (dir / "tetra.json").string(), "-q"});
+    ASSERT_EQ(tetra.exit_code, 0) << tetra.err;
+    const auto check = run_cli("tm-check-mesh", {(dir / "mesh.msh").string(), "--image", (dir / "junction.nii.gz").string(),
+                                                 "--json", (dir / "check.json").string(), "-q"});
+    EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+    const nlohmann::json summary = read_json(dir / "check.json");
+    EXPECT_TRUE(summary["ok"].get<bool>());
+    // All three tissues survive, each one piece, and each matches its voxels: the tets' tissue comes from
+    // interfaces built from those voxels, so only centres within half a voxel of an interface can differ.
+    for (const char* label : {"1", "2", "3"}) {
+        ASSERT_TRUE(summary["tissues"].contains(label)) << "tissue " << label << " lost";
+        EXPECT_EQ(summary["tissues"][label]["components"].get<int>(), 1) << label;
+        EXPECT_GE(summary["tissues"][label]["dice"].get<double>(), 0.97) << label;
+    }
+    // With -Y every interface triangle is a tet face: the mesh has exactly as many marked faces.
+    const InterfaceComplex surface = io::read_surface(dir / "surface.ply");
+    EXPECT_EQ(read_json(dir / "tetra.json")["interface_faces"].get<std::size_t>(), surface.triangles.size());
+}
+
+TEST(TetraCli, EveryOutputFormatReadsBackWithItsTissues)
+{
+    TempDir dir;
+    make_surface(dir, "thin", "4");
+    for (const char* name : {"mesh.msh", "mesh.mesh", "mesh.vtu"})
+        ASSERT_EQ(run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / name).string(), "-q"}).exit_code, 0) << name;
+    const TetMesh msh = io::read_tet_mesh(dir / "mesh.msh");
+    const TetMesh medit = io::read_tet_mesh(dir / "mesh.mesh");
+    EXPECT_EQ(msh.tets.size(), medit.tets.size());
+    EXPECT_EQ(msh.tet_labels, medit.tet_labels);
+    EXPECT_EQ(msh.faces.size(), medit.faces.size());
+    EXPECT_EQ(msh.names.at(1), "shell");
+    std::ifstream vtu(dir / "mesh.vtu");
+    const std::string text((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("NumberOfCells=\"" + std::to_string(msh.tets.size()) + "\""), std::string::npos);
+}
+
+TEST(TetraCli, IntersectingSurfaceFailsWithTissuesAndPlaceAndLeavesNoMesh)
+{
+    // Two closed boxes of different tissues that pass through each other.
+    InterfaceComplex complex;
+    auto add_box = [&](const Vec3& lo, double size, Label tissue) {
+        const auto first = static_cast<std::uint32_t>(complex.vertices.size());
+        for (int c = 0; c < 8; ++c)
+            complex.vertices.push_back({lo[0] + size * (c & 1), lo[1] + size * (c >> 1 & 1), lo[2] + size * (c >> 2 & 1)});
+        const std::uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+        for (const auto& q : quads) {
+            complex.add_triangle({first + q[0], first + q[1], first + q[2]}, {tissue, 0});
+            complex.add_triangle({first + q[0], first + q[2], first + q[3]}, {tissue, 0});
+        }
+    };
+    add_box({0, 0, 0}, 10, 1);
+    add_box({5, 5, 5}, 10, 2);
+    complex.names = {{0, "background"}, {1, "scalp"}, {2, "skull"}};
+    TempDir dir;
+    io::write_surface(complex, dir / "bad.ply");
+    const auto result = run_cli("tm-tetra", {"-i", (dir / "bad.ply").string(), "-o", (dir / "mesh.msh").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("tm-tetra: error: "), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("scalp"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("skull"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(" mm"), std::string::npos) << result.err;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"bad.ply"}) << "no mesh may be left behind";
+}
+
+TEST(TetraCli, BadOptionsAndFilesExitTwoWithOneLine)
+{
+    TempDir dir;
+    make_surface(dir, "thin", "4");
+    const auto surface = (dir / "surface.ply").string();
+    const auto unknown = run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.msh").string(), "--max-volume", "liver=3"});
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("unknown tissue \"liver\""), std::string::npos) << unknown.err;
+    const auto format = run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.xyz").string()});
+    EXPECT_EQ(format.exit_code, 2);
+    EXPECT_NE(format.err.find("unknown mesh format"), std::string::npos) << format.err;
+    std::ofstream(dir / "broken.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n";
+    const auto truncated = run_cli("tm-check-mesh", {(dir / "broken.msh").string()});
+    EXPECT_EQ(truncated.exit_code, 2);
+    EXPECT_NE(truncated.err.find("broken.msh: expected"), std::string::npos) << truncated.err;
+}
+
+} // namespace
+} // namespace tissuemesh
