@@ -131,10 +131,15 @@ LabelStatistics analyze_labels(const LabelImage& image, const LabelStatisticsOpt
     for (std::size_t c = 0; c < faces.count(); ++c) {
         LabelSummary& s = stats.labels[static_cast<std::size_t>(slot[faces.label[c]])];
         ++s.components6;
-        if (faces.size[c] < options.island_voxels) ++s.islands, s.island_voxels += faces.size[c];
     }
+    // Islands are pieces isolated even through edges and corners: a thin layer whose voxels touch only
+    // diagonally (the CSF of a 2 mm sphere head) is one piece, and removing its 6-connected bits would cut it.
     const Components full = find_components(image, Connectivity::full26);
-    for (std::size_t c = 0; c < full.count(); ++c) ++stats.labels[static_cast<std::size_t>(slot[full.label[c]])].components26;
+    for (std::size_t c = 0; c < full.count(); ++c) {
+        LabelSummary& s = stats.labels[static_cast<std::size_t>(slot[full.label[c]])];
+        ++s.components26;
+        if (full.size[c] < options.island_voxels) ++s.islands, s.island_voxels += full.size[c];
+    }
 
     for (LabelSummary& s : stats.labels) {
         std::sort(s.touches.begin(), s.touches.end());

@@ -13,7 +13,7 @@ namespace tissuemesh::image {
 
 /// Options of analyze_labels().
 struct LabelStatisticsOptions {
-    std::size_t island_voxels = 10;  ///< 6-connected components under this many voxels are "tiny islands"
+    std::size_t island_voxels = 10;  ///< 26-connected components under this many voxels are "tiny islands"
     Label background = 0;            ///< the surrounding label: no border, thin or island warnings for it
 };
 
@@ -31,7 +31,7 @@ struct LabelSummary {
     std::vector<Label> touches;           ///< labels sharing a voxel face with it, ascending
     std::size_t border_voxels = 0;        ///< its voxels on the image border
     std::size_t thin_voxels = 0;          ///< voxels whose two opposite face neighbours along some axis are both other labels
-    std::size_t islands = 0;              ///< 6-connected components under options.island_voxels
+    std::size_t islands = 0;              ///< 26-connected components under options.island_voxels
     std::size_t island_voxels = 0;        ///< voxels in those islands
     std::vector<std::string> warnings;    ///< one line each, with the fix
 };

@@ -163,7 +163,7 @@ TEST(RemoveIslands, IslandsSurroundedByIslandsGoToWhatStays)
             index[a] = static_cast<std::size_t>(3 + step);
             image.at(index[0], index[1], index[2]) = 2;
         }
-    const PrepReport report = remove_islands(image, {.min_voxels = 5});
+    const PrepReport report = remove_islands(image, {.min_voxels = 5, .connectivity = Connectivity::faces6});
     EXPECT_EQ(count_labels(image), (std::map<Label, std::size_t>{{0, 343}}));
     EXPECT_EQ(report.changed_voxels, 7u);
 }
