@@ -53,7 +53,9 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     const std::string extension = full_extension(path);
     LabelImage image;
     if (extension == ".nii" || extension == ".nii.gz") {
-        image = detail::read_itk_label_image(path, detail::check_nifti_header(path));
+        const detail::NiftiHeader header = detail::check_nifti_header(path);
+        image = header.version == 2 ? detail::read_nifti2(path, header)
+                                    : detail::read_itk_label_image(path, header.max_buffer_bytes);
     } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||
                extension == ".mhd") {
         image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path));

@@ -18,16 +18,6 @@ namespace {
 constexpr std::size_t nifti1_size = 348;
 constexpr std::size_t nifti2_size = 540;
 
-/// The fields of either header version that the check needs, in host byte order.
-struct NiftiFields {
-    std::array<std::int64_t, 8> dim{};
-    std::array<double, 8> pixdim{};
-    std::int64_t vox_offset = 0;
-    int datatype = 0;
-    int bitpix = 0;
-    std::int64_t header_size = 348;
-};
-
 template <typename T>
 T field(const unsigned char* header, std::size_t offset, bool swap)
 {
@@ -51,7 +41,7 @@ std::size_t read_header_bytes(const fs::path& path, std::array<unsigned char, ni
     return static_cast<std::size_t>(got);
 }
 
-NiftiFields parse_fields(const std::string& name, const unsigned char* header, std::size_t got)
+NiftiHeader parse_fields(const std::string& name, const unsigned char* header, std::size_t got)
 {
     const std::string not_nifti = ": not a NIfTI file (";
     const std::string fix = "); check that the file is a .nii image and not renamed or damaged";
@@ -63,8 +53,8 @@ NiftiFields parse_fields(const std::string& name, const unsigned char* header, s
     if (header_size != 348 && header_size != 540)
         throw IoError(concat(name, not_nifti, "wrong magic: header size field is ", size,
                              ", expected 348 or 540", fix));
-    NiftiFields f;
-    f.header_size = header_size;
+    NiftiHeader f;
+    f.swapped = swap;
     if (header_size == 348) {
         if (got < nifti1_size) throw IoError(concat(name, ": truncated NIfTI header (", got,
                                                     " of 348 bytes); the file is incomplete, copy it again"));
@@ -80,7 +70,10 @@ NiftiFields parse_fields(const std::string& name, const unsigned char* header, s
         const float offset = field<float>(header, 108, swap);
         // NaN or absurd offsets become -1 so that the vox_offset check below rejects them.
         f.vox_offset = std::isfinite(offset) && offset >= 0 && offset < 1e15f ? static_cast<std::int64_t>(offset) : -1;
+        f.scl_slope = field<float>(header, 112, swap);
+        f.scl_inter = field<float>(header, 116, swap);
     } else {
+        f.version = 2;
         if (got < nifti2_size) throw IoError(concat(name, ": truncated NIfTI-2 header (", got,
                                                     " of 540 bytes); the file is incomplete, copy it again"));
         if (std::memcmp(header + 4, "n+2", 4) != 0)
@@ -92,6 +85,12 @@ NiftiFields parse_fields(const std::string& name, const unsigned char* header, s
         f.datatype = field<std::int16_t>(header, 12, swap);
         f.bitpix = field<std::int16_t>(header, 14, swap);
         f.vox_offset = field<std::int64_t>(header, 168, swap);
+        f.scl_slope = field<double>(header, 176, swap);
+        f.scl_inter = field<double>(header, 184, swap);
+        f.qform_code = field<std::int32_t>(header, 344, swap);
+        f.sform_code = field<std::int32_t>(header, 348, swap);
+        for (std::size_t n = 0; n < 6; ++n) f.quatern[n] = field<double>(header, 352 + 8 * n, swap);
+        for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<double>(header, 400 + 8 * n, swap);
     }
     return f;
 }
@@ -104,19 +103,19 @@ bool is_multi_valued(int datatype)
 
 } // namespace
 
-std::uint64_t check_nifti_header(const fs::path& path)
+NiftiHeader check_nifti_header(const fs::path& path)
 {
     const std::string name = path.string();
     std::array<unsigned char, nifti2_size> header{};
     const std::size_t got = read_header_bytes(path, header);
     if (got == 0) throw IoError(concat(name, ": the file is empty; write or copy it again"));
-    const NiftiFields f = parse_fields(name, header.data(), got);
+    NiftiHeader f = parse_fields(name, header.data(), got);
 
     const std::int64_t rank = f.dim[0];
     if (rank < 1 || rank > 7)
         throw IoError(concat(name, ": corrupt NIfTI header, dim[0] (the number of axes) is ", rank,
                              ", expected 1..7; the file is damaged"));
-    Dims dims{1, 1, 1};
+    Dims& dims = f.dims;
     for (std::int64_t axis = 1; axis <= rank; ++axis) {
         if (f.dim[axis] <= 0)
             throw InputError(concat(name, ": dimension ", axis - 1, " is ", f.dim[axis],
@@ -139,14 +138,15 @@ std::uint64_t check_nifti_header(const fs::path& path)
     if (f.bitpix <= 0 || f.bitpix % 8 != 0)
         throw IoError(concat(name, ": corrupt NIfTI header, bitpix is ", f.bitpix,
                              "; expected a multiple of 8"));
-    if (f.vox_offset < f.header_size)
+    if (f.vox_offset < (f.version == 1 ? 348 : 540))
         throw IoError(concat(name, ": corrupt NIfTI header, vox_offset is ", f.vox_offset,
                              ", inside the header; the file is damaged"));
     const std::uint64_t needed = checked_voxel_bytes(name, dims, static_cast<std::size_t>(f.bitpix / 8));
     const std::uint64_t size = uncompressed_size(path);
     const auto data_start = static_cast<std::uint64_t>(f.vox_offset);
     require_payload(name, needed, size > data_start ? size - data_start : 0);
-    return needed / static_cast<std::uint64_t>(f.bitpix / 8) * 8;
+    f.max_buffer_bytes = needed / static_cast<std::uint64_t>(f.bitpix / 8) * 8;
+    return f;
 }
 
 } // namespace tissuemesh::io::detail

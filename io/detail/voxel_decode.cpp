@@ -96,7 +96,37 @@ bool host_is_big_endian()
     return first == 0;
 }
 
+template <typename T>
+void rescale(const unsigned char* bytes, bool swap, std::size_t count, double slope, double intercept,
+             std::vector<unsigned char>& out)
+{
+    for (std::size_t n = 0; n < count; ++n) {
+        const double value = slope * static_cast<double>(load<T>(bytes, n, swap)) + intercept;
+        std::memcpy(out.data() + 8 * n, &value, 8);
+    }
+}
+
 } // namespace
+
+std::vector<unsigned char> rescale_to_float64(const unsigned char* bytes, VoxelType type, bool big_endian,
+                                              std::size_t count, double slope, double intercept)
+{
+    std::vector<unsigned char> out(count * 8);
+    const bool swap = big_endian != host_is_big_endian();
+    switch (type) {
+    case VoxelType::u8: rescale<std::uint8_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::i8: rescale<std::int8_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::u16: rescale<std::uint16_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::i16: rescale<std::int16_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::u32: rescale<std::uint32_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::i32: rescale<std::int32_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::u64: rescale<std::uint64_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::i64: rescale<std::int64_t>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::f32: rescale<float>(bytes, swap, count, slope, intercept, out); break;
+    case VoxelType::f64: rescale<double>(bytes, swap, count, slope, intercept, out); break;
+    }
+    return out;
+}
 
 std::size_t voxel_type_size(VoxelType type) { return info(type).size; }
 

@@ -52,6 +52,11 @@ bool is_gzip_file(const std::filesystem::path& path);
 void decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
                    LabelImage& image);
 
+/// The `count` values stored as `type` in `bytes`, times `slope` plus `intercept`, as float64 in host
+/// byte order (NIfTI's scl_slope/scl_inter), ready for decode_labels(..., VoxelType::f64, host order).
+std::vector<unsigned char> rescale_to_float64(const unsigned char* bytes, VoxelType type, bool big_endian,
+                                              std::size_t count, double slope, double intercept);
+
 /// Bytes per voxel a writer uses for `image`: 1 when every label fits uint8, else 2.
 std::size_t label_width(const LabelImage& image);
 

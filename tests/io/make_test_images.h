@@ -46,6 +46,8 @@ struct NiftiSpec {
     std::int16_t vectors = 1;             ///< dim[5]: values per voxel (rank becomes 5 when > 1)
     float scale_slope = 1;                ///< scl_slope: value = slope * stored + intercept
     float scale_intercept = 0;            ///< scl_inter
+    float quatern[6] = {0, 0, 0, 0, 0, 0};  ///< qform: quatern_b, c, d, qoffset_x, y, z
+    float qfac = 1;                       ///< pixdim[0]: -1 flips the third axis
     char magic[4] = {'n', '+', '1', '\0'};
 };
 
@@ -62,14 +64,42 @@ inline void write_nifti(const std::filesystem::path& path, const NiftiSpec& spec
         put<std::int16_t>(bytes, 40 + 2 * axis, axis <= 3 ? spec.dims[axis] : axis == 5 ? spec.vectors : 1);
     put<std::int16_t>(bytes, 70, spec.datatype);
     put<std::int16_t>(bytes, 72, spec.bitpix);
-    put<float>(bytes, 76, 1.0f);  // pixdim[0]: qfac
+    put<float>(bytes, 76, spec.qfac);
     for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis]);
     put<float>(bytes, 108, 352.0f);   // vox_offset
     put<float>(bytes, 112, spec.scale_slope);
     put<float>(bytes, 116, spec.scale_intercept);
     put<std::int16_t>(bytes, 252, 1); // qform_code: scanner
-    put<float>(bytes, 256, 0.0f);     // quatern_b, c, d = 0: identity rotation
+    for (int n = 0; n < 6; ++n) put<float>(bytes, 256 + 4 * n, spec.quatern[n]);
     std::memcpy(bytes.data() + 344, spec.magic, 4);
+    bytes.insert(bytes.end(), data.begin(), data.end());
+    write_bytes(path, bytes);
+}
+
+/// A NIfTI-2 file (540-byte header, data from byte 544), uint8, identity qform, spacing 1 x 2 x 3.
+/// With `srow` (12 values), the sform (code 2) is set as well; `quatern` and `qfac` as in NiftiSpec.
+inline void write_nifti2(const std::filesystem::path& path, const std::int64_t (&dims)[3],
+                         const std::vector<unsigned char>& data, const std::vector<double>& srow = {},
+                         const std::vector<double>& quatern = {0, 0, 0, 0, 0, 0}, double qfac = 1)
+{
+    std::vector<unsigned char> bytes(544, 0);
+    put<std::int32_t>(bytes, 0, 540);
+    std::memcpy(bytes.data() + 4, "n+2\0\r\n\032\n", 8);
+    put<std::int16_t>(bytes, 12, 2);  // datatype uint8
+    put<std::int16_t>(bytes, 14, 8);  // bitpix
+    put<std::int64_t>(bytes, 16, 3);
+    for (int axis = 0; axis < 3; ++axis) put<std::int64_t>(bytes, 24 + 8 * axis, dims[axis]);
+    for (int axis = 3; axis < 7; ++axis) put<std::int64_t>(bytes, 24 + 8 * axis, 1);
+    put<double>(bytes, 104, qfac);  // pixdim[0]
+    for (std::size_t n = 0; n < 6; ++n) put<double>(bytes, 352 + 8 * n, quatern[n]);
+    for (int axis = 0; axis < 3; ++axis) put<double>(bytes, 112 + 8 * axis, axis + 1.0);
+    put<std::int64_t>(bytes, 168, 544);  // vox_offset
+    put<double>(bytes, 176, 1.0);        // scl_slope
+    put<std::int32_t>(bytes, 344, 1);    // qform_code
+    if (srow.size() == 12) {
+        put<std::int32_t>(bytes, 348, 2);  // sform_code
+        for (std::size_t n = 0; n < 12; ++n) put<double>(bytes, 400 + 8 * n, srow[n]);
+    }
     bytes.insert(bytes.end(), data.begin(), data.end());
     write_bytes(path, bytes);
 }

@@ -45,6 +45,50 @@ TEST(BadInput, ValidHandMadeNiftiReads)
     EXPECT_FLOAT_EQ(static_cast<float>(image.spacing_mm()[2]), 2.5f);
 }
 
+TEST(BadInput, Nifti2ReadsAndIsChecked)
+{
+    testing::TempDir dir;
+    testing::write_nifti2(dir / "two.nii", {2, 2, 2}, eight_voxels());
+    const LabelImage image = io::read_label_image(dir / "two.nii");
+    EXPECT_EQ(image.at(1, 1, 1), 7);
+    EXPECT_EQ(image.spacing_mm(), (Vec3{1, 2, 3}));
+    // The sform wins over the (identity) qform: axes permuted, i -> -y (2 mm), j -> +x (3 mm), k -> z (4 mm).
+    testing::write_nifti2(dir / "rot.nii", {2, 2, 2}, eight_voxels(), {0, 3, 0, 10, -2, 0, 0, 20, 0, 0, 4, 30});
+    const LabelImage rotated = io::read_label_image(dir / "rot.nii");
+    EXPECT_EQ(rotated.spacing_mm(), (Vec3{2, 3, 4}));
+    const Vec3 world = rotated.index_to_world({1, 1, 1});
+    EXPECT_EQ(world, (Vec3{13, 18, 34}));
+    testing::write_nifti2(dir / "short2.nii", {2, 2, 3}, eight_voxels());
+    expect_error<IoError>([&] { io::read_label_image(dir / "short2.nii"); },
+                          {"short2.nii: truncated", "need 12 bytes", "holds 8"});
+}
+
+TEST(BadInput, Nifti2QformMatchesItksNifti1Qform)
+{
+    // The same qform (a rotation by 2 * acos(a) about (1, 2, 3), third axis flipped, offset) read
+    // by ITK from NIfTI-1 and by our own code from NIfTI-2 places every voxel at the same point.
+    testing::TempDir dir;
+    const double b = 0.1, c = 0.2, d = 0.3;
+    testing::NiftiSpec spec;
+    spec.spacing[0] = 1;
+    spec.spacing[1] = 2;
+    spec.spacing[2] = 3;
+    const float quatern[6] = {0.1f, 0.2f, 0.3f, -5.5f, 7.25f, 12.0f};
+    std::copy(quatern, quatern + 6, spec.quatern);
+    spec.qfac = -1;
+    testing::write_nifti(dir / "one.nii", spec, eight_voxels());
+    testing::write_nifti2(dir / "two.nii", {2, 2, 2}, eight_voxels(), {},
+                          {static_cast<float>(b), static_cast<float>(c), static_cast<float>(d), -5.5, 7.25, 12.0}, -1);
+    const LabelImage one = io::read_label_image(dir / "one.nii");
+    const LabelImage two = io::read_label_image(dir / "two.nii");
+    for (const Vec3& index : {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 1}, Vec3{1, 1, 1}}) {
+        const Vec3 p = one.index_to_world(index), q = two.index_to_world(index);
+        // float32 quaternion in both files; ITK renormalizes the rotation: 1e-4 mm.
+        for (int a = 0; a < 3; ++a) EXPECT_NEAR(p[a], q[a], 1e-4) << index[0] << index[1] << index[2];
+    }
+    EXPECT_LT(determinant(two.direction()), 0);  // qfac = -1: a left-handed grid
+}
+
 TEST(BadInput, NiftiScalingIsAppliedBeforeTheLabelChecks)
 {
     // scl_slope/scl_inter turn stored values into the image's values: labels are 2 * stored + 1.
