@@ -10,14 +10,9 @@
 namespace tissuemesh {
 namespace {
 
+using testing::read_json;
 using testing::run_cli;
 using testing::TempDir;
-
-nlohmann::json read_json(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
 
 TEST(PhantomCli, WritesImageGeometryAndTissueNames)
 {

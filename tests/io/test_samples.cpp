@@ -11,11 +11,7 @@
 namespace tissuemesh {
 namespace {
 
-nlohmann::json read_json(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
-}
+using testing::read_json;
 
 TEST(Samples, TorsoWorldCoordinatesMatchTheNiftiAffine)
 {

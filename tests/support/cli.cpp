@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -77,6 +78,13 @@ CliResult run_cli(const std::string& tool, const std::vector<std::string>& args)
     result.out = slurp(out_path);
     result.err = slurp(err_path);
     return result;
+}
+
+nlohmann::json read_json(const fs::path& path)
+{
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot open " + path.string());
+    return nlohmann::json::parse(in);
 }
 
 fs::path data_path(const std::string& relative) { return fs::path(TM_DATA_DIR) / relative; }

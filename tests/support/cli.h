@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct CliResult {
 /// Runs the program `tool` (e.g. "tm-info") from the build's bin folder with `args` (no shell
 /// interpretation) and returns its exit code and output.
 CliResult run_cli(const std::string& tool, const std::vector<std::string>& args);
+
+/// Parses a JSON file (a --json summary); throws when it is missing or malformed.
+nlohmann::json read_json(const std::filesystem::path& path);
 
 /// Path of a file under the repository's data/ folder.
 std::filesystem::path data_path(const std::string& relative);

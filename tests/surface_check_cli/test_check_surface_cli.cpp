@@ -9,6 +9,7 @@
 namespace tissuemesh {
 namespace {
 
+using testing::read_json;
 using testing::run_cli;
 using testing::TempDir;
 
@@ -27,12 +28,6 @@ void add_box(InterfaceComplex& complex, const Vec3& low, const Vec3& high, Label
         complex.add_triangle({base + q[0], base + q[1], base + q[2]}, {inside, outside});
         complex.add_triangle({base + q[0], base + q[2], base + q[3]}, {inside, outside});
     }
-}
-
-nlohmann::json read_json(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return nlohmann::json::parse(in);
 }
 
 TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
