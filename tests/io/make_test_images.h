@@ -31,10 +31,13 @@ inline void write_bytes(const std::filesystem::path& path, const std::vector<uns
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
+/// Stores `value` at `offset` in the host's byte order, or reversed when `swap`.
 template <typename T>
-void put(std::vector<unsigned char>& bytes, std::size_t offset, T value)
+void put(std::vector<unsigned char>& bytes, std::size_t offset, T value, bool swap = false)
 {
     std::memcpy(bytes.data() + offset, &value, sizeof(T));
+    if (swap)
+        for (std::size_t b = 0; b < sizeof(T) / 2; ++b) std::swap(bytes[offset + b], bytes[offset + sizeof(T) - 1 - b]);
 }
 
 /// Fields of a hand-made single-file NIfTI-1 image (little-endian, as on the test machines).
@@ -48,6 +51,7 @@ struct NiftiSpec {
     float scale_intercept = 0;            ///< scl_inter
     float quatern[6] = {0, 0, 0, 0, 0, 0};  ///< qform: quatern_b, c, d, qoffset_x, y, z
     float qfac = 1;                       ///< pixdim[0]: -1 flips the third axis
+    bool swapped = false;                 ///< write the header in the other byte order
     char magic[4] = {'n', '+', '1', '\0'};
 };
 
@@ -57,20 +61,20 @@ inline void write_nifti(const std::filesystem::path& path, const NiftiSpec& spec
                         const std::vector<unsigned char>& data)
 {
     std::vector<unsigned char> bytes(352, 0);
-    put<std::int32_t>(bytes, 0, 348);
+    put<std::int32_t>(bytes, 0, 348, spec.swapped);
     const std::int16_t rank = spec.vectors > 1 ? 5 : spec.dims[0];
-    put<std::int16_t>(bytes, 40, rank);
+    put<std::int16_t>(bytes, 40, rank, spec.swapped);
     for (int axis = 1; axis <= 7; ++axis)
-        put<std::int16_t>(bytes, 40 + 2 * axis, axis <= 3 ? spec.dims[axis] : axis == 5 ? spec.vectors : 1);
-    put<std::int16_t>(bytes, 70, spec.datatype);
-    put<std::int16_t>(bytes, 72, spec.bitpix);
-    put<float>(bytes, 76, spec.qfac);
-    for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis]);
-    put<float>(bytes, 108, 352.0f);   // vox_offset
-    put<float>(bytes, 112, spec.scale_slope);
-    put<float>(bytes, 116, spec.scale_intercept);
-    put<std::int16_t>(bytes, 252, 1); // qform_code: scanner
-    for (int n = 0; n < 6; ++n) put<float>(bytes, 256 + 4 * n, spec.quatern[n]);
+        put<std::int16_t>(bytes, 40 + 2 * axis, axis <= 3 ? spec.dims[axis] : axis == 5 ? spec.vectors : 1, spec.swapped);
+    put<std::int16_t>(bytes, 70, spec.datatype, spec.swapped);
+    put<std::int16_t>(bytes, 72, spec.bitpix, spec.swapped);
+    put<float>(bytes, 76, spec.qfac, spec.swapped);
+    for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis], spec.swapped);
+    put<float>(bytes, 108, 352.0f, spec.swapped);   // vox_offset
+    put<float>(bytes, 112, spec.scale_slope, spec.swapped);
+    put<float>(bytes, 116, spec.scale_intercept, spec.swapped);
+    put<std::int16_t>(bytes, 252, 1, spec.swapped); // qform_code: scanner
+    for (int n = 0; n < 6; ++n) put<float>(bytes, 256 + 4 * n, spec.quatern[n], spec.swapped);
     std::memcpy(bytes.data() + 344, spec.magic, 4);
     bytes.insert(bytes.end(), data.begin(), data.end());
     write_bytes(path, bytes);
