@@ -70,7 +70,8 @@ Point2 project(const Point& p, int axis) { return {p[(axis + 1) % 3], p[(axis + 
 Corners2 project(const Corners& t, int axis) { return {project(t[0], axis), project(t[1], axis), project(t[2], axis)}; }
 
 // 2D tests on closed sets from orientation predicates only: CGAL's 2D do_intersect for triangles
-// computes intersection points and, filtered, falls back to rational arithmetic (100x slower here).
+// computes intersection points and, on degenerate input, falls back to rational arithmetic (the whole
+// check of a 663 000-triangle voxel surface took 45 s with it, 3 s without).
 
 /// Whether the closed segments pq and rs meet.
 bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Point2& s)
