@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "io/write_label_image.h"
+#include "tests/io/expect_error.h"
 #include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 
@@ -96,6 +97,16 @@ TEST(WriteLabelImage, RejectsUnknownExtensionAndLeavesNothing)
     } catch (const IoError& e) {
         EXPECT_NE(std::string(e.what()).find("head.xyz: unknown image format '.xyz'"), std::string::npos) << e.what();
     }
+    EXPECT_TRUE(dir.files().empty());
+}
+
+TEST(WriteLabelImage, RejectsMissingFoldersForEveryFormat)
+{
+    testing::TempDir dir;
+    for (const std::string extension : {".nii.gz", ".nhdr", ".mhd", ".inr", ".json"})
+        testing::expect_error<IoError>(
+            [&] { io::write_label_image(LabelImage({2, 2, 2}, {1, 1, 1}), dir / "missing" / ("a" + extension)); },
+            {"does not exist; create it first"});
     EXPECT_TRUE(dir.files().empty());
 }
 

@@ -113,5 +113,17 @@ TEST(InfoBadInput, ExitsTwoWithOneLineNamingFileAndProblem)
     for (const BadFile& file : cases) expect_rejected(dir, file);
 }
 
+TEST(InfoBadInput, BadTissueNameTable)
+{
+    testing::TempDir dir;
+    testing::write_nifti(dir / "ok.nii", {}, {0, 1, 2, 3, 4, 5, 6, 7});
+    write_text(dir / "names.json", R"({"scalp": "1"})");
+    const testing::CliResult result =
+        testing::run_cli("tm-info", {"-i", (dir / "ok.nii").string(), "--labels", (dir / "names.json").string()});
+    EXPECT_EQ(result.exit_code, 2) << result.err;
+    EXPECT_NE(result.err.find("names.json: tissue-name key 'scalp' is not a label number"), std::string::npos)
+        << result.err;
+}
+
 } // namespace
 } // namespace tissuemesh
