@@ -10,6 +10,7 @@ namespace tissuemesh {
 namespace {
 
 using testing::read_json;
+using testing::read_json;
 using testing::run_cli;
 using testing::TempDir;
 
