@@ -1,0 +1,123 @@
+// Assessment of a tm-tetra mesh of the junction phantom: agreement with check_mesh(), exact voxel
+// bookkeeping, and relabelling of a scrambled mesh back to the voxel majority.
+#include <algorithm>
+#include <gtest/gtest.h>
+#include <set>
+#include <tuple>
+
+#include "image/phantom.h"
+#include "surface/extract_interfaces.h"
+#include "volume/assess.h"
+#include "volume/check_mesh.h"
+#include "volume/mark_interfaces.h"
+#include "volume/rasterize.h"
+#include "volume/tetrahedralize.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+struct Meshed {
+    LabelImage image;
+    TetMesh mesh;
+};
+
+/// The junction phantom (2 mm voxels) through extract_interfaces and tetrahedralize, made once.
+const Meshed& junction()
+{
+    static const Meshed meshed = [] {
+        Meshed m;
+        m.image = image::make_phantom("junction", {.voxel_mm = 2}).image;
+        m.mesh = tetrahedralize(surface::extract_interfaces(m.image));
+        return m;
+    }();
+    return meshed;
+}
+
+/// Marked faces as a set of (rotation with the smallest vertex first: keeps the orientation, from, to).
+std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, Label, Label>> oriented_faces(const TetMesh& mesh)
+{
+    std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, Label, Label>> faces;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        Triangle t = mesh.faces[f];
+        std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+        faces.insert({t[0], t[1], t[2], mesh.face_sides[f].from, mesh.face_sides[f].to});
+    }
+    return faces;
+}
+
+TEST(AssessPhantom, DiceEqualsCheckMeshAndVoxelCountsAddUp)
+{
+    const Meshed& m = junction();
+    const Assessment a = assess_elements(m.mesh, m.image);
+    const MeshCheckReport check = check_mesh(m.mesh, &m.image);
+    ASSERT_TRUE(check.ok());
+    for (const auto& [label, stats] : check.tissues) {
+        // Same counts, same formula: equal to the last bit.
+        EXPECT_EQ(a.tissues.at(label).dice, stats.dice) << "tissue " << label;
+        EXPECT_NEAR(a.tissues.at(label).mesh_volume_mm3, stats.volume_mm3, 1e-9 * stats.volume_mm3) << "tissue " << label;
+    }
+    const std::vector<std::int32_t> owner = rasterize_tets(m.mesh, m.image);
+    const auto inside = static_cast<std::size_t>(std::count_if(owner.begin(), owner.end(), [](std::int32_t t) { return t >= 0; }));
+    std::size_t sum = 0, wrong = 0, binned = 0;
+    for (std::size_t t = 0; t < m.mesh.tets.size(); ++t) {
+        sum += a.voxel_count[t];
+        for (std::size_t b = a.histogram_offsets[t]; b < a.histogram_offsets[t + 1]; ++b) {
+            if (!a.sampled[t]) binned += a.histogram[b].count;
+            if (!a.sampled[t] && a.histogram[b].label != m.mesh.tet_labels[t]) wrong += a.histogram[b].count;
+        }
+    }
+    EXPECT_EQ(sum, inside);
+    EXPECT_EQ(a.voxels_inside, inside);
+    EXPECT_EQ(binned, inside);
+    // Exact: a whole number of voxels of 8 mm^3 each (sums of multiples of 8 are exact in double).
+    EXPECT_EQ(a.total_error_volume_mm3, static_cast<double>(wrong) * 8.0);
+    std::size_t agreeing = 0, meshed = 0;
+    for (const auto& [label, tissue] : a.tissues) agreeing += tissue.agreeing_voxels, meshed += tissue.mesh_voxels;
+    EXPECT_EQ(meshed, inside);
+    EXPECT_EQ(inside - agreeing, wrong);
+    EXPECT_TRUE(std::is_sorted(a.worst_first.begin(), a.worst_first.end(),
+                               [&](std::uint32_t x, std::uint32_t y) { return a.quality_key[x] > a.quality_key[y]; }));
+    EXPECT_EQ(a.sampled_tets, static_cast<std::size_t>(std::count(a.voxel_count.begin(), a.voxel_count.end(), 0u)));
+}
+
+TEST(AssessPhantom, MarkInterfacesRebuildsTetgensFaces)
+{
+    // tetrahedralize() copies the interface complex (tm-extract's sides convention) into the mesh; rebuilding the
+    // faces from the tet labels alone must give the same oriented faces with the same sides.
+    TetMesh rebuilt = junction().mesh;
+    mark_interfaces(rebuilt);
+    EXPECT_EQ(rebuilt.faces.size(), junction().mesh.faces.size());
+    EXPECT_EQ(oriented_faces(rebuilt), oriented_faces(junction().mesh));
+}
+
+TEST(AssessPhantom, RelabelRestoresTheMajorityOfAScrambledMesh)
+{
+    const Meshed& m = junction();
+    const Assessment original = assess_elements(m.mesh, m.image);
+    TetMesh scrambled = m.mesh;
+    for (std::size_t t = 0; t < scrambled.tets.size(); t += 3) scrambled.tet_labels[t] = static_cast<Label>(1 + (t / 3) % 3);
+    mark_interfaces(scrambled);
+    const Assessment before = assess_elements(scrambled, m.image);
+    EXPECT_GT(before.total_error_volume_mm3, original.total_error_volume_mm3);
+    relabel_by_majority(scrambled, before);
+    mark_interfaces(scrambled);
+    const MeshCheckReport check = check_mesh(scrambled, &m.image);
+    EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
+    // Where the (unit-weight) majority is unique it is the original mesh's majority; ties may go either way.
+    std::size_t ties = 0;
+    for (std::size_t t = 0; t < scrambled.tets.size(); ++t) {
+        std::uint32_t best = 0, holders = 0;
+        for (std::size_t b = before.histogram_offsets[t]; b < before.histogram_offsets[t + 1]; ++b)
+            best = std::max(best, before.histogram[b].count);
+        for (std::size_t b = before.histogram_offsets[t]; b < before.histogram_offsets[t + 1]; ++b)
+            holders += before.histogram[b].count == best;
+        if (holders > 1) ++ties;
+        else EXPECT_EQ(scrambled.tet_labels[t], original.majority[t]) << "tet " << t;
+    }
+    EXPECT_LT(ties, scrambled.tets.size() / 100) << "ties are rare";
+    const Assessment after = assess_elements(scrambled, m.image);
+    EXPECT_LE(after.total_error_volume_mm3, original.total_error_volume_mm3) << "the majority is the least error per tet";
+}
+
+} // namespace
+} // namespace tissuemesh::volume
