@@ -1,0 +1,96 @@
+#include "fem/conductivities.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <set>
+
+#include "core/error.h"
+
+namespace tissuemesh::fem {
+namespace {
+
+std::string lower(std::string text)
+{
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text;
+}
+
+std::optional<Label> parse_label(const std::string& key)
+{
+    unsigned value = 0;
+    const auto [end, error] = std::from_chars(key.data(), key.data() + key.size(), value);
+    if (error != std::errc() || end != key.data() + key.size() || value > 65535) return std::nullopt;
+    return static_cast<Label>(value);
+}
+
+std::string name_of(const TetMesh& mesh, Label label)
+{
+    const auto found = mesh.names.find(label);
+    return found == mesh.names.end() ? std::to_string(label) : found->second;
+}
+
+std::string known_tissues(const TetMesh& mesh, const std::set<Label>& present)
+{
+    std::string list;
+    for (Label label : present) list += (list.empty() ? "" : ", ") + concat(label, " (", name_of(mesh, label), ")");
+    return list;
+}
+
+// Symmetric positive definite: symmetric to round-off and positive leading principal minors.
+void check_tensor(const Mat3& m, const std::string& key)
+{
+    for (double value : m)
+        if (!std::isfinite(value)) throw InputError(concat("conductivity of '", key, "' is not finite; give S/m values"));
+    const double scale = std::max({std::abs(m[0]), std::abs(m[4]), std::abs(m[8]), 1e-300});
+    const bool symmetric = std::abs(m[1] - m[3]) <= 1e-12 * scale && std::abs(m[2] - m[6]) <= 1e-12 * scale &&
+                           std::abs(m[5] - m[7]) <= 1e-12 * scale;
+    const double minor2 = m[0] * m[4] - m[1] * m[3];
+    if (!symmetric || m[0] <= 0 || minor2 <= 0 || determinant(m) <= 0)
+        throw InputError(concat("conductivity of '", key, "' is not a symmetric positive definite tensor (S/m); ",
+                                "give a positive scalar or an SPD 3x3 tensor"));
+}
+
+} // namespace
+
+Mat3 isotropic(double sigma) { return {sigma, 0, 0, 0, sigma, 0, 0, 0, sigma}; }
+
+const std::map<std::string, double>& default_head_conductivities()
+{
+    static const std::map<std::string, double> table = {
+        {"scalp", 0.43}, {"skin", 0.43},  {"skull", 0.01}, {"bone", 0.01}, {"csf", 1.79},  {"grey", 0.33},
+        {"gray", 0.33},  {"gm", 0.33},    {"white", 0.14}, {"wm", 0.14},   {"brain", 0.33}};
+    return table;
+}
+
+Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTable& table, bool use_defaults)
+{
+    const std::set<Label> present(mesh.tet_labels.begin(), mesh.tet_labels.end());
+    Conductivities result;
+    for (const auto& [key, tensor] : table) {
+        check_tensor(tensor, key);
+        std::optional<Label> label = parse_label(key);
+        if (!label)
+            for (const auto& [candidate, name] : mesh.names)
+                if (lower(name) == lower(key) && present.count(candidate)) label = candidate;
+        if (!label || !present.count(*label))
+            throw InputError(concat("conductivity table: '", key, "' is no tissue of the mesh (tissues: ",
+                                    known_tissues(mesh, present), "); use a label number or one of these names"));
+        result.by_label[*label] = tensor;
+    }
+    for (Label label : present) {
+        if (result.by_label.count(label)) continue;
+        const auto& defaults = default_head_conductivities();
+        const auto found = defaults.find(lower(name_of(mesh, label)));
+        if (!use_defaults || found == defaults.end())
+            throw InputError(concat("tissue ", label, " (", name_of(mesh, label), ") has no conductivity; add \"",
+                                    name_of(mesh, label), "\": S/m to the conductivity table"));
+        result.by_label[label] = isotropic(found->second);
+    }
+    return result;
+}
+
+} // namespace tissuemesh::fem

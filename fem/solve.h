@@ -1,0 +1,41 @@
+// Conjugate gradients for the symmetric positive definite systems of the FEM.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "core/progress.h"
+#include "fem/assemble.h"
+
+namespace tissuemesh::fem {
+
+enum class Preconditioner {
+    jacobi,  ///< diagonal scaling (Eigen's CG): no dependency, fine for small meshes
+    amg,     ///< hypre BoomerAMG as preconditioner of hypre's PCG: iterations nearly independent of size
+};
+
+/// Options for solve_spd().
+struct SolverOptions {
+    Preconditioner preconditioner = Preconditioner::amg;  ///< see Preconditioner
+    double relative_tolerance = 1e-10;  ///< stop when ||b - A x||_2 / ||b||_2 falls below this (unitless)
+    int max_iterations = 5000;          ///< iteration cap; reaching it without convergence throws
+};
+
+/// What solve_spd() did.
+struct SolverReport {
+    std::string preconditioner;      ///< "jacobi" or "amg"
+    int iterations = 0;              ///< CG iterations
+    double relative_residual = 0;    ///< ||b - A x||_2 / ||b||_2 recomputed from the returned x
+    double seconds = 0;              ///< setup and solve
+};
+
+/// Solves A x = b by preconditioned conjugate gradients from x = 0.
+/// @pre  A is symmetric positive definite (apply a reference or Dirichlet condition to a stiffness matrix)
+/// @throws InputError when sizes disagree or b is not finite
+/// @throws AlgorithmError when the relative residual is above the tolerance after max_iterations (names
+///         the iteration count, the residual reached and the fix)
+Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, const SolverOptions& options = {},
+                          const Progress& progress = {}, SolverReport* report = nullptr);
+
+} // namespace tissuemesh::fem

@@ -1,0 +1,77 @@
+// Stationary current / electrostatics: div(sigma grad phi) = div(j_primary) on a labelled tet mesh with
+// an insulated outer boundary, electrodes, current dipoles and fixed potentials.
+//
+// Units: positions mm, conductivities S/m, currents A, dipole moments A*m, potentials V (the mesh's mm
+// are converted to m in assembly, see fem/assemble.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+#include "fem/conductivities.h"
+#include "fem/solve.h"
+
+namespace tissuemesh::fem {
+
+/// A scalp electrode: the outer-boundary nodes within `radius_mm` (straight-line distance) of `centre_mm`.
+struct Electrode {
+    enum class Mode { current, potential };
+    Vec3 centre_mm{};             ///< patch centre, world mm (need not lie on the surface)
+    double radius_mm = 5;         ///< patch radius, mm
+    Mode mode = Mode::current;    ///< inject a total current, or hold the patch at a potential
+    double current_a = 0;         ///< total current into the body, A (Mode::current), spread over the patch
+                                  ///< area: uniform normal current density
+    double potential_v = 0;       ///< patch potential, V (Mode::potential)
+};
+
+/// A current dipole (primary current p * delta(x - position)), treated by partial integration: the
+/// right-hand side is b_i = p . grad(phi_i)(position) in the tet that contains the position. Chosen
+/// because it needs no homogeneous region around the source (subtraction does), has no free parameter
+/// (St. Venant's monopole spread does), keeps sum(b) = 0 exactly (compatible with the insulated
+/// boundary) and costs one point location. Its weakness, shared by all direct methods, is accuracy when
+/// the dipole sits within about one element of a conductivity jump.
+struct Dipole {
+    Vec3 position_mm{};  ///< world mm, inside the mesh
+    Vec3 moment_am{};    ///< A*m
+};
+
+/// Dirichlet nodes: node indices with their potentials (V).
+struct FixedPotentials {
+    std::vector<std::uint32_t> nodes;
+    std::vector<double> values_v;
+};
+
+/// How the potential is made unique when no node has a fixed potential (pure Neumann problem).
+enum class Reference {
+    zero_mean,  ///< the nodal potentials average to zero
+    node,       ///< the potential at `reference_node` is zero
+};
+
+struct PotentialProblem {
+    std::vector<Electrode> electrodes;
+    std::vector<Dipole> dipoles;
+    FixedPotentials fixed;                 ///< inner Dirichlet conditions (electrodes add theirs)
+    Reference reference = Reference::zero_mean;  ///< used only when nothing is fixed
+    std::uint32_t reference_node = 0;      ///< node index for Reference::node
+};
+
+struct PotentialReport {
+    SolverReport solver;
+    std::size_t unknowns = 0;              ///< free nodes solved for
+    std::size_t fixed_nodes = 0;           ///< nodes with a Dirichlet value (electrodes included)
+    std::vector<std::size_t> electrode_nodes;  ///< boundary nodes per electrode
+    std::vector<double> electrode_area_mm2;    ///< patch area per electrode (faces with 3 nodes inside)
+};
+
+/// Nodal potentials (V, #V) of the problem.
+/// @throws InputError when a dipole lies outside the mesh, an electrode covers no boundary face, node
+///         indices are out of range, a node gets two different fixed potentials, or the injected currents
+///         do not sum to zero while nothing is fixed (the insulated body would have no solution)
+/// @throws AlgorithmError when CG does not converge (see solve_spd)
+std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& conductivities,
+                                    const PotentialProblem& problem, const SolverOptions& options = {},
+                                    const Progress& progress = {}, PotentialReport* report = nullptr);
+
+} // namespace tissuemesh::fem

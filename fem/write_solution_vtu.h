@@ -1,0 +1,19 @@
+// A solved potential as a VTK XML unstructured grid (.vtu, ASCII), for ParaView.
+// Lives in fem/ for now: io/ writes meshes only and does not know about FEM fields.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "core/tet_mesh.h"
+#include "fem/compute_fields.h"
+
+namespace tissuemesh::fem {
+
+/// Writes `mesh` (points in mm) with point data "potential_V" and cell data "tissue", "E_V_per_m",
+/// "J_A_per_m2" and "E_magnitude_V_per_m", atomically.
+/// @throws InputError when the array sizes do not match the mesh; IoError when the file cannot be written
+void write_solution_vtu(const std::filesystem::path& path, const TetMesh& mesh, const std::vector<double>& potential_v,
+                        const TetFields& fields);
+
+} // namespace tissuemesh::fem
