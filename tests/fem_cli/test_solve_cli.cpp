@@ -1,0 +1,104 @@
+// tm-solve as a user runs it: a box of "brain" with two face electrodes, whose exact potential is linear.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "io/tet_mesh_io.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh::testing {
+namespace {
+
+// [0, 20]^3 mm, 4^3 cubes of 6 tets (Kuhn subdivision), tissue 1 "brain".
+TetMesh brain_box()
+{
+    TetMesh mesh;
+    const int n = 4;
+    const double h = 5.0;
+    const auto index = [](int i, int j, int k) { return static_cast<std::uint32_t>((k * (n + 1) + j) * (n + 1) + i); };
+    for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) mesh.vertices.push_back({i * h, j * h, k * h});
+    const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                for (const auto& order : orders) {
+                    int c[3] = {i, j, k};
+                    Tet tet{index(i, j, k), 0, 0, 0};
+                    for (int s = 0; s < 3; ++s) {
+                        ++c[order[s]];
+                        tet[s + 1] = index(c[0], c[1], c[2]);
+                    }
+                    mesh.tets.push_back(tet);
+                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+                    mesh.tet_labels.push_back(1);
+                }
+    mesh.names = {{0, "background"}, {1, "brain"}};
+    return mesh;
+}
+
+void write(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    write(dir / "cond.json", "{\"brain\": 0.5}");
+    write(dir / "sensors.csv", "x,y,z\n0,10,10\n20,10,10\n");
+    // Centres 200 mm behind the faces x = 0 and x = 20; the radius reaches the whole face and nothing else.
+    const std::string radius = std::to_string(std::sqrt(200.0 * 200.0 + 200.0) + 1e-6);
+    const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                                  "--conductivity", (dir / "cond.json").string(),
+                                                  "--electrode", "-200,10,10," + radius + ",0.002",
+                                                  "--electrode", "220,10,10," + radius + ",-0.002",
+                                                  "--sensors", (dir / "sensors.csv").string(),
+                                                  "--sensor-potentials", (dir / "eeg.csv").string(),
+                                                  "--json", (dir / "summary.json").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const nlohmann::json summary = read_json(dir / "summary.json");
+    EXPECT_EQ(summary["nodes"], 125);
+    EXPECT_GT(summary["iterations"].get<int>(), 0);
+    EXPECT_LE(summary["relative_residual"].get<double>(), 1e-9);
+    // J = 2e-3 A / 4e-4 m^2 = 5 A/m^2 everywhere, E = 10 V/m (1e-9: round-off).
+    EXPECT_NEAR(summary["tissues"]["1"]["mean_J_A_per_m2"].get<double>(), 5.0, 1e-9);
+    EXPECT_NEAR(summary["tissues"]["1"]["max_E_V_per_m"].get<double>(), 10.0, 1e-9);
+    std::ifstream eeg(dir / "eeg.csv");
+    std::stringstream text;
+    text << eeg.rdbuf();
+    // Drop I L / (sigma A) = 0.2 V, centred on zero (zero mean, symmetric grid): +0.1 V and -0.1 V.
+    double x = 0, y = 0, z = 0, first = 0, second = 0;
+    char comma = 0;
+    std::string header;
+    std::getline(text, header);
+    EXPECT_EQ(header, "x,y,z,potential");
+    text >> x >> comma >> y >> comma >> z >> comma >> first >> x >> comma >> y >> comma >> z >> comma >> second;
+    EXPECT_NEAR(first, 0.1, 1e-9);
+    EXPECT_NEAR(second, -0.1, 1e-9);
+    EXPECT_TRUE(std::filesystem::exists(dir / "out.vtu"));
+}
+
+TEST(SolveCli, BadInputExitsTwoWithTheReason)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    write(dir / "cond.json", "{\"skull\": 0.01}");
+    CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                            "--conductivity", (dir / "cond.json").string()});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("'skull' is no tissue of the mesh"), std::string::npos) << result.err;
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                  "--dipole", "10,10,10,0,1e-8"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("has 5 numbers, not 6"), std::string::npos) << result.err;
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                  "--dipole", "10,10,30,0,0,1e-8"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("lies outside the mesh"), std::string::npos) << result.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.vtu"));
+}
+
+} // namespace
+} // namespace tissuemesh::testing

@@ -1,0 +1,184 @@
+// tm-solve: stationary current / electrostatics on a labelled tet mesh (P1 FEM, CG with BoomerAMG).
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "fem/compute_fields.h"
+#include "fem/outer_boundary.h"
+#include "fem/solve_potential.h"
+#include "fem/write_solution_vtu.h"
+#include "io/tet_mesh_io.h"
+#include "tools/run_tool.h"
+
+using namespace tissuemesh;
+
+namespace {
+
+/// "1,2,3" -> {1, 2, 3}; exactly `count` finite numbers or InputError naming the flag.
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& flag, const std::string& form)
+{
+    std::vector<double> values;
+    std::stringstream items(text);
+    for (std::string item; std::getline(items, item, ',');) {
+        char* end = nullptr;
+        const double value = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !std::isfinite(value))
+            throw InputError(concat(flag, " \"", text, "\": \"", item, "\" is not a number; write ", form));
+        values.push_back(value);
+    }
+    if (values.size() != count)
+        throw InputError(concat(flag, " \"", text, "\" has ", values.size(), " numbers, not ", count, "; write ", form));
+    return values;
+}
+
+/// {"skull": 0.01, "3": 1.79, "white": [[...],[...],[...]] or [9 numbers]} in S/m.
+fem::ConductivityTable read_conductivity_table(const std::string& path)
+{
+    require_readable_file(path);
+    std::ifstream in(path);
+    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (json.is_discarded() || !json.is_object())
+        throw IoError(concat(path, ": not a JSON object; write {\"scalp\": 0.43, \"skull\": 0.01, ...} in S/m"));
+    fem::ConductivityTable table;
+    for (const auto& [key, value] : json.items()) {
+        const nlohmann::json flat = value.is_array() ? value.flatten() : value;
+        if (value.is_number()) {
+            table[key] = fem::isotropic(value.get<double>());
+        } else if (value.is_array() && flat.size() == 9) {
+            Mat3 tensor{};
+            std::size_t k = 0;
+            for (const auto& entry : flat.items()) {
+                if (!entry.value().is_number()) break;
+                tensor[k++] = entry.value().get<double>();
+            }
+            if (k != 9) throw IoError(concat(path, ": \"", key, "\" has a non-number in its tensor"));
+            table[key] = tensor;
+        } else {
+            throw IoError(concat(path, ": \"", key, "\" must be a number (S/m) or a 3x3 tensor (9 numbers)"));
+        }
+    }
+    return table;
+}
+
+/// Sensors CSV "x,y,z" (mm) -> positions.
+std::vector<Vec3> read_sensors(const std::string& path)
+{
+    require_readable_file(path);
+    std::ifstream in(path);
+    std::string line;
+    std::getline(in, line);
+    if (line.rfind("x,y,z", 0) != 0) throw IoError(concat(path, ": the first line must be the header x,y,z (mm)"));
+    std::vector<Vec3> sensors;
+    for (std::size_t row = 2; std::getline(in, line); ++row) {
+        if (line.empty() || line == "\r") continue;
+        if (line.back() == '\r') line.pop_back();
+        const std::vector<double> v = parse_numbers(line, 3, concat(path, " line ", row), "x,y,z in mm");
+        sensors.push_back({v[0], v[1], v[2]});
+    }
+    return sensors;
+}
+
+/// Potential at each sensor: the value at the nearest outer-boundary node.
+std::string sensor_csv(const TetMesh& mesh, const std::vector<Vec3>& sensors, const std::vector<double>& phi)
+{
+    const std::vector<std::uint32_t> surface = fem::outer_boundary(mesh).nodes;
+    std::ostringstream out;
+    out.precision(12);
+    out << "x,y,z,potential\n";
+    for (const Vec3& s : sensors) {
+        std::uint32_t best = surface.front();
+        for (std::uint32_t node : surface)
+            if (distance(mesh.vertices[node], s) < distance(mesh.vertices[best], s)) best = node;
+        out << s[0] << ',' << s[1] << ',' << s[2] << ',' << phi[best] << '\n';
+    }
+    return out.str();
+}
+
+/// Per-tissue tets, volume, volume-weighted mean and maximum |E| (V/m) and mean |J| (A/m^2).
+nlohmann::json field_statistics(const TetMesh& mesh, const fem::TetFields& fields)
+{
+    nlohmann::json tissues = nlohmann::json::object();
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+        nlohmann::json& entry = tissues[std::to_string(mesh.tet_labels[t])];
+        if (entry.is_null()) entry = {{"tets", 0}, {"volume_mm3", 0.0}, {"mean_E_V_per_m", 0.0}, {"max_E_V_per_m", 0.0},
+                                      {"mean_J_A_per_m2", 0.0}};
+        const double volume = signed_volume(mesh, t), e = norm(fields.electric_v_per_m[t]);
+        entry["tets"] = entry["tets"].get<std::size_t>() + 1;
+        entry["volume_mm3"] = entry["volume_mm3"].get<double>() + volume;
+        entry["mean_E_V_per_m"] = entry["mean_E_V_per_m"].get<double>() + volume * e;
+        entry["max_E_V_per_m"] = std::max(entry["max_E_V_per_m"].get<double>(), e);
+        entry["mean_J_A_per_m2"] = entry["mean_J_A_per_m2"].get<double>() + volume * norm(fields.current_a_per_m2[t]);
+    }
+    for (auto& [label, entry] : tissues.items()) {
+        const double volume = entry["volume_mm3"].get<double>();
+        entry["mean_E_V_per_m"] = entry["mean_E_V_per_m"].get<double>() / volume;
+        entry["mean_J_A_per_m2"] = entry["mean_J_A_per_m2"].get<double>() / volume;
+        const auto name = mesh.names.find(static_cast<Label>(std::stoul(label)));
+        entry["name"] = name == mesh.names.end() ? label : name->second;
+    }
+    return tissues;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg";
+    std::vector<std::string> dipoles, electrodes;
+    double tolerance = 1e-10;
+    return tools::run_tool(
+        argc, argv,
+        {"tm-solve",
+         "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
+         "dipoles (partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
+         "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
+         "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
+         "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
+         "      --sensors electrodes.csv --sensor-potentials eeg.csv\n"
+         "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3"},
+        [&](CLI::App& app) {
+            app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh), mm")->required()->check(CLI::ExistingFile);
+            app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
+            app.add_option("--conductivity", conductivity, "JSON {tissue name or label: S/m or 3x3 tensor}");
+            app.add_option("--dipole", dipoles, "X,Y,Z,PX,PY,PZ: position mm, moment A*m (repeatable)");
+            app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
+            app.add_option("--sensors", sensors_path, "CSV with header x,y,z (mm)");
+            app.add_option("--sensor-potentials", sensor_output, "CSV out: x,y,z,potential (V) at the nearest surface node");
+            app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
+            app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
+        },
+        [&](tools::ToolContext& context) {
+            if (sensors_path.empty() != sensor_output.empty())
+                throw InputError("--sensors and --sensor-potentials go together; give both or neither");
+            const TetMesh mesh = io::read_tet_mesh(input);
+            const fem::Conductivities sigma = fem::resolve_conductivities(mesh, conductivity.empty() ? fem::ConductivityTable{} : read_conductivity_table(conductivity));
+            fem::PotentialProblem problem;
+            for (const std::string& text : dipoles) {
+                const auto v = parse_numbers(text, 6, "--dipole", "X,Y,Z,PX,PY,PZ (mm, A*m)");
+                problem.dipoles.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+            }
+            for (const std::string& text : electrodes) {
+                const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
+                problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4]});
+            }
+            const std::vector<Vec3> sensors = sensors_path.empty() ? std::vector<Vec3>{} : read_sensors(sensors_path);
+            fem::PotentialReport report;
+            const std::vector<double> phi = fem::solve_potential(
+                mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
+                                       .relative_tolerance = tolerance}, context.progress, &report);
+            const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
+            fem::write_solution_vtu(output, mesh, phi, fields);
+            if (!sensor_output.empty()) write_text_atomically(sensor_output, sensor_csv(mesh, sensors, phi));
+            context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
+                               report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
+            context.summary = {{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
+                               {"preconditioner", report.solver.preconditioner}, {"iterations", report.solver.iterations},
+                               {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
+                               {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
+                               {"sensors", sensors.size()}, {"tissues", field_statistics(mesh, fields)}};
+        });
+}
