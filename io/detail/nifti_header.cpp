@@ -95,6 +95,18 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
     return f;
 }
 
+/// Bits per voxel of NIfTI's one-value datatypes (integers and floats up to 64 bits), 0 for others.
+int scalar_bits(int datatype)
+{
+    switch (datatype) {
+    case 2: case 256: return 8;
+    case 4: case 512: return 16;
+    case 8: case 16: case 768: return 32;
+    case 64: case 1024: case 1280: return 64;
+    default: return 0;
+    }
+}
+
 // NIfTI datatypes holding several values per voxel: complex and RGB(A).
 bool is_multi_valued(int datatype)
 {
@@ -128,6 +140,12 @@ NiftiHeader check_nifti_header(const fs::path& path)
     if (is_multi_valued(f.datatype))
         throw InputError(concat(name, ": NIfTI datatype ", f.datatype, " stores several values per voxel "
                                 "(a vector, RGB or complex image); a label map holds one value per voxel"));
+    // Checked here because the nifti library prints to stderr when it meets an unknown datatype.
+    if (scalar_bits(f.datatype) == 0)
+        throw IoError(concat(name, ": unsupported NIfTI datatype ", f.datatype,
+                             "; save the label map as an integer or float image"));
+    // The datatype decides the voxel size (as in the nifti library); a wrong bitpix is ignored.
+    f.bitpix = scalar_bits(f.datatype);
     for (std::int64_t axis = 1; axis <= std::min<std::int64_t>(rank, 3); ++axis) {
         const double s = f.pixdim[axis];
         if (!std::isfinite(s) || s <= 0)
@@ -135,9 +153,6 @@ NiftiHeader check_nifti_header(const fs::path& path)
                                     " mm (pixdim[", axis, "]); it must be a positive finite number. Fix "
                                     "the header or the writer that produced it"));
     }
-    if (f.bitpix <= 0 || f.bitpix % 8 != 0)
-        throw IoError(concat(name, ": corrupt NIfTI header, bitpix is ", f.bitpix,
-                             "; expected a multiple of 8"));
     if (f.vox_offset < (f.version == 1 ? 348 : 540))
         throw IoError(concat(name, ": corrupt NIfTI header, vox_offset is ", f.vox_offset,
                              ", inside the header; the file is damaged"));

@@ -124,6 +124,19 @@ TEST(BadInput, WrongMagic)
     expect_error<IoError>([&] { io::read_label_image(dir / "text.nii.gz"); }, {"text.nii.gz: not a NIfTI file"});
 }
 
+TEST(BadInput, UnsupportedDatatype)
+{
+    // Datatype 1 (packed bits) is not a voxel type a label map uses; the nifti library would print.
+    testing::TempDir dir;
+    testing::NiftiSpec spec;
+    spec.datatype = 1;
+    spec.bitpix = 1;
+    testing::write_nifti(dir / "bits.nii", spec, eight_voxels());
+    ::testing::internal::CaptureStderr();
+    expect_error<IoError>([&] { io::read_label_image(dir / "bits.nii"); }, {"bits.nii: unsupported NIfTI datatype 1"});
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(BadInput, BadSpacing)
 {
     testing::TempDir dir;
