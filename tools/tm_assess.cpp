@@ -1,4 +1,5 @@
 // tm-assess: every tet measured against the voxels (tissue histogram, majority, error volume, quality key).
+#include <chrono>
 #include <cstdio>
 #include <sstream>
 
@@ -91,7 +92,9 @@ int main(int argc, char** argv)
             TetMesh mesh = io::read_tet_mesh(input);
             const LabelImage image = io::read_label_image(image_path);
             if (!priority.empty()) parse_priority(priority, mesh, image, options);
+            const auto start = std::chrono::steady_clock::now();
             volume::Assessment assessment = volume::assess_elements(mesh, image, options, context.progress);
+            const std::chrono::duration<double> assess_seconds = std::chrono::steady_clock::now() - start;
             std::size_t relabelled = 0;
             if (relabel) {
                 for (std::size_t t = 0; t < mesh.tets.size(); ++t) relabelled += mesh.tet_labels[t] != assessment.majority[t];
@@ -104,12 +107,15 @@ int main(int argc, char** argv)
             if (assessment.voxels_inside == 0)
                 context.progress.warn("assess", "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");
             context.summary = summarize(mesh, assessment, relabelled);
+            context.summary["assess_seconds"] = assess_seconds.count();
+            context.summary["image_voxels"] = image.voxel_count();
             std::printf("%s: %zu tets, %zu voxel centres inside, %zu tets sampled, error volume %.1f mm^3 (majority %.1f)\n",
                         input.c_str(), mesh.tets.size(), assessment.voxels_inside, assessment.sampled_tets,
                         assessment.total_error_volume_mm3, assessment.total_majority_error_volume_mm3);
             std::printf("%-20s %8s %14s %14s %14s\n", "tissue", "Dice", "mesh mm^3", "voxels mm^3", "error mm^3");
             for (const auto& [label, t] : assessment.tissues)
-                std::printf("%-20s %8.4f %14.1f %14.1f %14.1f\n", image.name_of(label).c_str(), t.dice, t.mesh_volume_mm3,
+                std::printf("%-20s %8.4f %14.1f %14.1f %14.1f\n",
+                            (mesh.names.count(label) ? mesh.names.at(label) : image.name_of(label)).c_str(), t.dice, t.mesh_volume_mm3,
                             t.voxel_volume_mm3, t.error_volume_mm3);
         });
 }

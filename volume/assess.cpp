@@ -38,8 +38,55 @@ LabelsByTet sort_by_owner(const std::vector<std::int32_t>& owner, const LabelIma
     return sorted;
 }
 
-/// Labels of the nearest voxels at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1).
-std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const LabelImage& image, std::size_t t)
+/// With 3-4 tissues in a Kuhn tet, tm-extract's surface is a fan of triangles from the tet's centroid over
+/// the curves on its faces, so a point's tissue is that of the point where the ray from the centroid leaves
+/// the tet: the weights become that face point's barycentric weights (the corner with the smallest weight
+/// drops out). With 2 tissues the surface is the plane of summed weight 1/2, left as it is.
+void project_to_face_if_junction(const std::array<Label, 4>& label, std::array<double, 4>& weight)
+{
+    int distinct = 0;
+    for (int c = 0; c < 4; ++c) distinct += std::find(label.begin(), label.begin() + c, label[c]) == label.begin() + c;
+    const auto drop = static_cast<std::size_t>(std::min_element(weight.begin(), weight.end()) - weight.begin());
+    if (distinct < 3 || weight[drop] >= 0.25) return;  // two tissues, or the centroid itself
+    const double scale = 0.25 / (0.25 - weight[drop]);
+    for (double& w : weight) w = 0.25 + scale * (w - 0.25);
+    weight[drop] = 0;
+}
+
+/// The tissue at continuous voxel index `x` as tm-extract's surfaces see it: the voxel cube holding x is
+/// split into 6 Kuhn tets (corner 0 to corner (1,1,1)); in the one holding x, each corner's label gets the
+/// corner's barycentric weight and the largest sum wins (ties: the smaller label): exactly the side of
+/// extract_interfaces()' surfaces (midpoint planes for 2 tissues, centroid fans for 3-4, see above). Corners outside the image
+/// count as `background`, as extract_interfaces() pads the image.
+Label kuhn_label(const LabelImage& image, const Vec3& x, Label background)
+{
+    std::array<std::int64_t, 3> base;
+    Vec3 f;
+    for (int axis = 0; axis < 3; ++axis) base[axis] = static_cast<std::int64_t>(std::floor(x[axis])), f[axis] = x[axis] - std::floor(x[axis]);
+    std::array<int, 3> order{0, 1, 2};  // axes by decreasing fraction: the Kuhn tet f[a] >= f[b] >= f[c]
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return f[a] > f[b] || (f[a] == f[b] && a < b); });
+    std::array<double, 4> weight{1 - f[order[0]], f[order[0]] - f[order[1]], f[order[1]] - f[order[2]], f[order[2]]};
+    std::array<Label, 4> label;
+    Index3 corner{base[0], base[1], base[2]};
+    for (int c = 0; c < 4; ++c) {
+        if (c > 0) ++corner[order[c - 1]];
+        label[c] = image.contains(corner) ? image.at(static_cast<std::size_t>(corner[0]), static_cast<std::size_t>(corner[1]),
+                                                     static_cast<std::size_t>(corner[2]))
+                                          : background;
+    }
+    project_to_face_if_junction(label, weight);
+    Label best = label[0];
+    double best_weight = -1;
+    for (int c = 0; c < 4; ++c) {
+        double sum = 0;
+        for (int d = 0; d < 4; ++d) sum += label[d] == label[c] ? weight[d] : 0.0;
+        if (sum > best_weight || (sum == best_weight && label[c] < best)) best = label[c], best_weight = sum;
+    }
+    return best;
+}
+
+/// Tissues at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1) by kuhn_label().
+std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const LabelImage& image, std::size_t t, Label background)
 {
     std::array<Vec3, 4> p;
     for (int c = 0; c < 4; ++c) p[c] = mesh.vertices[mesh.tets[t][static_cast<std::size_t>(c)]];
@@ -47,13 +94,7 @@ std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const LabelImage
     for (int s = 0; s < sample_count; ++s) {
         Vec3 point{0, 0, 0};
         for (int c = 0; c < 4; ++c) point = point + (s == 0 ? 0.25 : (c == s - 1 ? 0.7 : 0.1)) * p[c];
-        const Vec3 index = image.world_to_index(point);
-        std::array<std::size_t, 3> nearest;
-        for (int axis = 0; axis < 3; ++axis) {
-            const double last = static_cast<double>(image.dims()[axis] - 1);
-            nearest[axis] = static_cast<std::size_t>(std::clamp(std::round(index[axis]), 0.0, last));
-        }
-        samples[static_cast<std::size_t>(s)] = image.at(nearest[0], nearest[1], nearest[2]);
+        samples[static_cast<std::size_t>(s)] = kuhn_label(image, image.world_to_index(point), background);
     }
     return samples;
 }
@@ -134,7 +175,7 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
         const Label* first = sorted.labels.data() + sorted.offsets[t];
         const Label* last = first + held;
         if (held == 0) {
-            samples = sample_tet(mesh, image, t);
+            samples = sample_tet(mesh, image, t, options.background);
             first = samples.data(), last = samples.data() + sample_count;
             out.sampled[t] = 1, ++out.sampled_tets;
         }

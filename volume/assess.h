@@ -17,6 +17,7 @@ struct AssessOptions {
     std::map<Label, double> priority;  ///< weight per tissue for the majority vote (absent: 1; must be > 0)
     double error_weight = 1.0;         ///< quality key weight of the error volume, counted in voxels
     double shape_weight = 0.1;         ///< quality key weight of the shape term (radius-edge ratio, 0 if regular)
+    Label background = 0;              ///< tissue outside the image, for sub-voxel samples near its border
 };
 
 /// One bin of a tet's tissue histogram.
@@ -74,8 +75,13 @@ struct Assessment {
 /// Majority: argmax over tissues of priority(tissue) x count. Ties go to the tet's current tissue when it
 /// is among the tied ones (relabelling never changes a tet without reason), else to the smallest label.
 /// Sub-voxel sampling: a tet holding no centre is sampled at its centroid and at the 4 points with
-/// barycentric weight 0.7 on one vertex and 0.1 on the others; each sample takes the label of the nearest
-/// voxel (index rounded, clamped into the grid). Its error volume is then (samples not of its tissue / 5)
+/// barycentric weight 0.7 on one vertex and 0.1 on the others. A sample's tissue is the one
+/// extract_interfaces() puts there: the voxel cube around the sample is split into its 6 Kuhn tets (corner 0
+/// to (1,1,1), as tm-extract does), the corners of the Kuhn tet holding the sample vote with their
+/// barycentric weights (with 3-4 tissues in it, those of the point where the ray from its centroid leaves
+/// it, as tm-extract fans its surface from the centroid), the largest sum wins (ties: smaller label);
+/// corners outside the image are `background`. (Nearest-voxel lookup disagrees with the surfaces within half a voxel of edges and corners,
+/// and so mislabels the many tiny tets TetGen puts along interfaces.) Its error volume is then (samples not of its tissue / 5)
 /// x its volume: an estimate, reported per tet and in sampled_error_volume_mm3, never in the exact totals.
 /// Quality key (larger = worse):
 ///     key = error_weight x error_volume_mm3 / voxel volume + shape_weight x (radius_edge / (sqrt(6)/4) - 1)
