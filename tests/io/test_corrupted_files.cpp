@@ -1,6 +1,6 @@
 // Valid files with bytes overwritten at deterministic pseudo-random places: the reader either reads
 // an image that passes validate_geometry() or throws one of our errors, never anything else (no
-// crash, no std::bad_alloc from a corrupt size, no ITK exception leaking through).
+// crash, no std::bad_alloc from a corrupt size, no ITK exception leaking through, nothing printed).
 #include <fstream>
 #include <random>
 
@@ -34,6 +34,7 @@ TEST_P(CorruptedFiles, ReadOrThrowOurErrors)
     const std::string bytes = read_bytes(original);
     std::mt19937 random(12345);  // fixed seed: the same corruptions on every run
     int read = 0, rejected = 0;
+    ::testing::internal::CaptureStderr();
     for (int trial = 0; trial < 300; ++trial) {
         std::string corrupt = bytes;
         // Headers sit at the start: corrupt there more often than in the voxel data.
@@ -53,6 +54,8 @@ TEST_P(CorruptedFiles, ReadOrThrowOurErrors)
             ADD_FAILURE() << extension << " trial " << trial << ": " << typeid(e).name() << " " << e.what();
         }
     }
+    // Library code never prints, whatever ITK and the nifti/NRRD/MetaIO libraries think of the bytes.
+    EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
     EXPECT_GT(rejected, 0);  // the corruptions do hit something
     RecordProperty("read", read);
 }
