@@ -13,6 +13,7 @@
 #include "fem/write_solution_vtu.h"
 #include "io/tet_mesh_io.h"
 #include "tools/run_tool.h"
+#include "volume/check_mesh.h"
 
 using namespace tissuemesh;
 
@@ -123,6 +124,14 @@ nlohmann::json field_statistics(const TetMesh& mesh, const fem::TetFields& field
     return tissues;
 }
 
+/// Smallest dihedral angle of the mesh (deg): slivers slow CG down, so it goes next to the iterations.
+double min_dihedral_deg(const TetMesh& mesh)
+{
+    double smallest = 180;
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t) smallest = std::min(smallest, volume::tet_shape(mesh, t).min_dihedral_deg);
+    return smallest;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -177,6 +186,7 @@ int main(int argc, char** argv)
                                report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
             context.summary = {{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
                                {"preconditioner", report.solver.preconditioner}, {"iterations", report.solver.iterations},
+                               {"min_dihedral_deg", min_dihedral_deg(mesh)},
                                {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
                                {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
                                {"sensors", sensors.size()}, {"tissues", field_statistics(mesh, fields)}};
