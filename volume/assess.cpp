@@ -85,16 +85,18 @@ Label kuhn_label(const LabelImage& image, const Vec3& x, Label background)
     return best;
 }
 
-/// Tissues at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1) by kuhn_label().
-std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const LabelImage& image, std::size_t t, Label background)
+/// Tissues at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1) by kuhn_label();
+/// `index_points` are the mesh vertices in continuous voxel index coordinates (the map is affine).
+std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const std::vector<Vec3>& index_points, const LabelImage& image,
+                                           std::size_t t, Label background)
 {
     std::array<Vec3, 4> p;
-    for (int c = 0; c < 4; ++c) p[c] = mesh.vertices[mesh.tets[t][static_cast<std::size_t>(c)]];
+    for (int c = 0; c < 4; ++c) p[c] = index_points[mesh.tets[t][static_cast<std::size_t>(c)]];
     std::array<Label, sample_count> samples{};
     for (int s = 0; s < sample_count; ++s) {
         Vec3 point{0, 0, 0};
         for (int c = 0; c < 4; ++c) point = point + (s == 0 ? 0.25 : (c == s - 1 ? 0.7 : 0.1)) * p[c];
-        samples[static_cast<std::size_t>(s)] = kuhn_label(image, image.world_to_index(point), background);
+        samples[static_cast<std::size_t>(s)] = kuhn_label(image, point, background);
     }
     return samples;
 }
@@ -168,6 +170,8 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
     const double voxel_mm3 = image.voxel_volume_mm3();
     std::vector<std::uint32_t> scratch(std::size_t{1} << 16, 0);
     out.histogram.reserve(tets * 2);
+    std::vector<Vec3> index_points(mesh.vertices.size());
+    for (std::size_t v = 0; v < index_points.size(); ++v) index_points[v] = image.world_to_index(mesh.vertices[v]);
     for (std::size_t t = 0; t < tets; ++t) {
         const std::size_t held = sorted.offsets[t + 1] - sorted.offsets[t];
         out.voxel_count[t] = static_cast<std::uint32_t>(held);
@@ -175,7 +179,7 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
         const Label* first = sorted.labels.data() + sorted.offsets[t];
         const Label* last = first + held;
         if (held == 0) {
-            samples = sample_tet(mesh, image, t, options.background);
+            samples = sample_tet(mesh, index_points, image, t, options.background);
             first = samples.data(), last = samples.data() + sample_count;
             out.sampled[t] = 1, ++out.sampled_tets;
         }
