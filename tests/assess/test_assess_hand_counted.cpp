@@ -157,6 +157,16 @@ TEST(AssessHandCounted, TetSmallerThanAVoxelIsSampled)
     EXPECT_EQ(a.total_error_volume_mm3, 0.0);
     EXPECT_DOUBLE_EQ(a.sampled_error_volume_mm3, a.volume_mm3[0]);
     EXPECT_GT(a.quality_key[0], 0.0);
+
+    // The same through permuted axes and a shifted origin: world = origin + (j, k, i), so voxel (10, 11, 12)
+    // has its centre at world (11.5, 12.5, 10.5) and the tet moved there samples it.
+    LabelImage turned({20, 20, 20}, {1, 1, 1}, {0.5, 0.5, 0.5}, {0, 1, 0, 0, 0, 1, 1, 0, 0}, 1);
+    turned.at(10, 11, 12) = 3;
+    TetMesh moved = mesh;
+    for (Vec3& v : moved.vertices) v = v + Vec3{1.5, 2.5, 0.5};
+    const Assessment b = assess_elements(moved, turned);
+    EXPECT_EQ(b.sampled[0], 1);
+    EXPECT_EQ(b.majority[0], 3);
 }
 
 TEST(AssessHandCounted, RegularTetShapeAndQualityKeyOrder)
