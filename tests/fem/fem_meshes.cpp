@@ -101,6 +101,23 @@ TetMesh shell_mesh(const std::vector<double>& radii_mm, int levels, double max_v
     return volume::tetrahedralize(complex, options);
 }
 
+TetMesh four_shell_head(int levels, double max_volume_mm3)
+{
+    InterfaceComplex complex;
+    const double radii[4] = {78, 80, 86, 92};
+    for (int k = 0; k < 4; ++k) {
+        const InterfaceComplex sphere = icosphere(levels, radii[k]);
+        const auto base = static_cast<std::uint32_t>(complex.vertices.size());
+        complex.vertices.insert(complex.vertices.end(), sphere.vertices.begin(), sphere.vertices.end());
+        const LabelPair pair{static_cast<Label>(4 - k), static_cast<Label>(3 - k)};  // inside -> outside
+        for (const Triangle& t : sphere.triangles) complex.add_triangle({base + t[0], base + t[1], base + t[2]}, pair);
+    }
+    complex.names = {{0, "background"}, {1, "scalp"}, {2, "skull"}, {3, "csf"}, {4, "brain"}};
+    volume::TetrahedralizeOptions options;
+    options.max_volume_mm3 = max_volume_mm3;
+    return volume::tetrahedralize(complex, options);
+}
+
 TetMesh ball_mesh(double radius_mm, int levels, double max_volume_mm3)
 {
     InterfaceComplex complex = icosphere(levels, radius_mm);

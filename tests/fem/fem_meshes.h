@@ -23,6 +23,10 @@ InterfaceComplex icosphere(int levels, double radius_mm);
 /// (their vertices lie on the exact spheres; no Steiner point on them), tets bounded by `max_volume_mm3`.
 TetMesh shell_mesh(const std::vector<double>& radii_mm, int levels, double max_volume_mm3);
 
+/// The 4-shell sphere head of the spheres4 phantom built from icospheres: brain (4) inside 78 mm, csf (3)
+/// to 80 mm, skull (2) to 86 mm, scalp (1) to 92 mm, centred at the origin.
+TetMesh four_shell_head(int levels, double max_volume_mm3);
+
 /// A ball of tissue 1 ("brain") of radius `radius_mm` around the origin, its surface an icosphere.
 TetMesh ball_mesh(double radius_mm, int levels, double max_volume_mm3);
 
