@@ -15,7 +15,8 @@ void write_vectors(std::ostream& out, const char* name, const std::vector<Vec3>&
     out << "</DataArray>\n";
 }
 
-void write_body(std::ostream& out, const TetMesh& mesh, const std::vector<double>& potential_v, const TetFields& fields)
+void write_body(std::ostream& out, const TetMesh& mesh, const std::vector<double>& potential_v, const TetFields& fields,
+                const std::vector<double>& error_indicator)
 {
     out.precision(17);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -39,22 +40,29 @@ void write_body(std::ostream& out, const TetMesh& mesh, const std::vector<double
     write_vectors(out, "J_A_per_m2", fields.current_a_per_m2);
     out << "<DataArray type=\"Float64\" Name=\"E_magnitude_V_per_m\" format=\"ascii\">\n";
     for (const Vec3& e : fields.electric_v_per_m) out << norm(e) << '\n';
-    out << "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    out << "</DataArray>\n";
+    if (!error_indicator.empty()) {
+        out << "<DataArray type=\"Float64\" Name=\"error_indicator\" format=\"ascii\">\n";
+        for (double value : error_indicator) out << value << '\n';
+        out << "</DataArray>\n";
+    }
+    out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 
 } // namespace
 
 void write_solution_vtu(const std::filesystem::path& path, const TetMesh& mesh, const std::vector<double>& potential_v,
-                        const TetFields& fields)
+                        const TetFields& fields, const std::vector<double>& error_indicator)
 {
     if (potential_v.size() != mesh.vertex_count() || fields.electric_v_per_m.size() != mesh.tet_count() ||
-        fields.current_a_per_m2.size() != mesh.tet_count())
+        fields.current_a_per_m2.size() != mesh.tet_count() ||
+        (!error_indicator.empty() && error_indicator.size() != mesh.tet_count()))
         throw InputError(concat(path.string(), ": solution arrays do not match the mesh (", mesh.vertex_count(),
                                 " nodes, ", mesh.tet_count(), " tets); compute them on this mesh"));
     write_atomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the folder's permissions"));
-        write_body(out, mesh, potential_v, fields);
+        write_body(out, mesh, potential_v, fields, error_indicator);
         out.flush();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });

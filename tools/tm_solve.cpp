@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "fem/compute_fields.h"
+#include "fem/estimate_error.h"
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
 #include "fem/write_solution_vtu.h"
@@ -180,7 +181,10 @@ int main(int argc, char** argv)
                 mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
                                        .relative_tolerance = tolerance}, context.progress, &report);
             const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
-            fem::write_solution_vtu(output, mesh, phi, fields);
+            const std::vector<double> indicator = fem::estimate_error(mesh, sigma, phi);
+            fem::write_solution_vtu(output, mesh, phi, fields, indicator);
+            double indicator2 = 0;
+            for (double eta : indicator) indicator2 += eta * eta;
             if (!sensor_output.empty()) write_text_atomically(sensor_output, sensor_csv(mesh, sensors, phi));
             context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
                                report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
@@ -189,6 +193,6 @@ int main(int argc, char** argv)
                                {"min_dihedral_deg", min_dihedral_deg(mesh)},
                                {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
                                {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
-                               {"sensors", sensors.size()}, {"tissues", field_statistics(mesh, fields)}};
+                               {"sensors", sensors.size()}, {"error_indicator_total", std::sqrt(indicator2)}, {"tissues", field_statistics(mesh, fields)}};
         });
 }
