@@ -1,5 +1,6 @@
 #include "io/tet_mesh_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -133,9 +134,19 @@ TetMesh read_msh(const fs::path& path)
             }
         } else if (section == "$Elements") {
             const std::size_t count = checked_count(in, path, "elements");
+            // Node numbers are usually 1..N: a direct table; sparse numbering falls back to a map.
+            const long long max_id = ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end());
+            const bool dense = max_id >= 0 && static_cast<std::size_t>(max_id) <= 4 * ids.size() + 16;
+            constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+            std::vector<std::uint32_t> table(dense ? static_cast<std::size_t>(max_id) + 1 : 0, none);
             std::map<long long, std::uint32_t> index;
-            for (std::size_t v = 0; v < ids.size(); ++v) index[ids[v]] = static_cast<std::uint32_t>(v);
+            for (std::size_t v = 0; v < ids.size(); ++v) {
+                if (dense && ids[v] >= 0) table[static_cast<std::size_t>(ids[v])] = static_cast<std::uint32_t>(v);
+                else index[ids[v]] = static_cast<std::uint32_t>(v);
+            }
             auto node = [&](long long id) {
+                if (dense && id >= 0 && id <= max_id && table[static_cast<std::size_t>(id)] != none)
+                    return table[static_cast<std::size_t>(id)];
                 const auto found = index.find(id);
                 if (found == index.end())
                     throw InputError(concat(path.string(), ": an element refers to node ", id, ", which does not exist"));

@@ -163,7 +163,8 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
                                     where(mesh.vertices[key.v[0]]), " across a face that is not marked as an interface"));
             }
         } else {
-            // An outer-boundary face: orient it outward from its tet and count directed edges.
+            // An outer-boundary face: count its directed edges (all faces are oriented alike, inward), so a
+            // closed boundary matches every edge with its reverse.
             const Tet& tet = mesh.tets[static_cast<std::size_t>(use.tets[0])];
             for (const auto& local : local_faces) {
                 if (face_key(tet[local[0]], tet[local[1]], tet[local[2]]) != key) continue;

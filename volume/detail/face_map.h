@@ -37,7 +37,8 @@ struct FaceUse {
     int count = 0;
 };
 
-/// Local faces of a tet, opposite vertex i, ordered so that the normal points out of a positive tet.
+/// Local faces of a tet, opposite vertex i, ordered so that for a positive tet the face normal (right-hand
+/// rule) points into the tet, towards vertex i.
 inline constexpr int local_faces[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
 
 /// Maps every face of `tets` (any 4-index type) to the tets that use it.
