@@ -1,0 +1,68 @@
+// Every phantom, and the liver sample: the extracted complex is fit for tetrahedralization, no tissue is
+// lost, and each tissue's surface pieces follow its voxel pieces under the 14-neighbourhood rule.
+#include <gtest/gtest.h>
+
+#include "image/phantom.h"
+#include "io/read_label_image.h"
+#include "surface/check_complex.h"
+#include "surface/extract_interfaces.h"
+#include "tests/support/cli.h"
+#include "tests/surface/complex_checks.h"
+
+namespace tissuemesh {
+namespace {
+
+/// Checks the complex of `image` and returns nothing; failures are reported with `what`.
+void expect_fit_and_complete(const LabelImage& image, const std::string& what)
+{
+    const InterfaceComplex complex = surface::extract_interfaces(image);
+    const surface::CheckReport report = surface::check_complex(complex);
+    EXPECT_TRUE(report.ok()) << what << ": " << (report.first_error() ? report.first_error()->description : "");
+    for (const auto& [label, voxels] : count_labels(image)) {
+        ASSERT_TRUE(report.tissues.contains(label)) << what << ": tissue " << label << " lost";
+        if (label == complex.background) continue;
+        // A region with P pieces whose complement has Q pieces is bounded by P + Q - 1 closed surfaces
+        // (each piece of the rest touching the region adds one boundary; the outside is shared).
+        const std::size_t pieces = testing::voxel_components(image, label, complex.background, false);
+        const std::size_t rest = testing::voxel_components(image, label, complex.background, true);
+        EXPECT_EQ(report.tissues.at(label).components, pieces + rest - 1) << what << ": tissue " << label;
+        EXPECT_TRUE(report.tissues.at(label).closed) << what << ": tissue " << label;
+    }
+}
+
+class ExtractPhantom : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ExtractPhantom, FitForTetrahedralizationAt2mm)
+{
+    const image::Phantom phantom = image::make_phantom(GetParam(), {.voxel_mm = 2.0});
+    expect_fit_and_complete(phantom.image, GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPhantoms, ExtractPhantom,
+                         ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
+
+// Known gap (open issue "Tissue interfaces from labels"): under the 14-neighbourhood a one-voxel shell
+// breaks into pieces where it touches itself only diagonally (7 pieces at 1 mm) and the ball inside leaks
+// through those gaps (one surface instead of two at 2 mm). It needs the thin-tissue priority rule (face
+// diagonals and a cube-centre point chosen for the thin tissue). Enable this test with that rule.
+TEST(ExtractPhantomThin, DISABLED_OneVoxelShellStaysOneClosedPiece)
+{
+    // The shell is exactly one voxel thick: it must stay a single piece, bounded by two closed surfaces.
+    for (const double voxel_mm : {1.0, 2.0}) {
+        const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
+        const InterfaceComplex complex = surface::extract_interfaces(phantom.image);
+        const surface::CheckReport report = surface::check_complex(complex);
+        ASSERT_TRUE(report.ok());
+        EXPECT_EQ(testing::voxel_components(phantom.image, 1, 0, false), 1u) << voxel_mm << " mm";
+        EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
+    }
+}
+
+TEST(ExtractSample, LongLiverIsFitForTetrahedralization)
+{
+    const LabelImage image = io::read_label_image(testing::data_path("samples/liver.inr.gz"));
+    expect_fit_and_complete(image, "liver.inr.gz");
+}
+
+} // namespace
+} // namespace tissuemesh
