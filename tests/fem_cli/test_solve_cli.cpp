@@ -87,6 +87,28 @@ TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
     EXPECT_LT(summary["error_indicator_total"].get<double>(), 1e-10);
 }
 
+std::string read_file(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+TEST(SolveCli, SameBytesOnEveryRun)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    for (const char* name : {"a.vtu", "b.vtu"}) {
+        const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / name).string(),
+                                                      "--dipole", "10,10,10,0,0,1e-8", "--dipole", "7,12,9,1e-8,0,0"});
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+    }
+    const std::string first = read_file(dir / "a.vtu");
+    EXPECT_GT(first.size(), 1000u);
+    EXPECT_EQ(first, read_file(dir / "b.vtu"));
+}
+
 TEST(SolveCli, BadInputExitsTwoWithTheReason)
 {
     TempDir dir;
