@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/write_vtu.h"
 
 namespace tissuemesh::io {
 namespace fs = std::filesystem;
@@ -64,24 +65,6 @@ void write_medit(const TetMesh& mesh, std::ostream& out)
         out << mesh.tets[t][0] + 1 << ' ' << mesh.tets[t][1] + 1 << ' ' << mesh.tets[t][2] + 1 << ' '
             << mesh.tets[t][3] + 1 << ' ' << mesh.tet_labels[t] << '\n';
     out << "End\n";
-}
-
-void write_vtu(const TetMesh& mesh, std::ostream& out)
-{
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfCells=\""
-        << mesh.tets.size() << "\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
-        << std::setprecision(17);
-    for (const Vec3& v : mesh.vertices) out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
-    out << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (const Tet& tet : mesh.tets) out << tet[0] << ' ' << tet[1] << ' ' << tet[2] << ' ' << tet[3] << '\n';
-    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) out << 4 * (t + 1) << '\n';
-    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) out << "10\n";
-    out << "</DataArray>\n</Cells>\n<CellData Scalars=\"tissue\">\n<DataArray type=\"UInt16\" Name=\"tissue\" format=\"ascii\">\n";
-    for (const Label label : mesh.tet_labels) out << label << '\n';
-    out << "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 
 /// Token reader with the file name and a clear message on malformed input.
@@ -241,12 +224,12 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path)
     const std::string extension = full_extension(path);
     if (extension != ".msh" && extension != ".mesh" && extension != ".vtu")
         throw IoError(concat(path.string(), ": unknown mesh format \"", extension, "\"; use .msh, .mesh or .vtu"));
+    if (extension == ".vtu") return write_vtu(mesh, path);
     write_atomically(path, [&](const fs::path& temporary) {
         std::ofstream out(temporary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
         if (extension == ".msh") write_msh(mesh, out);
-        else if (extension == ".mesh") write_medit(mesh, out);
-        else write_vtu(mesh, out);
+        else write_medit(mesh, out);
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });

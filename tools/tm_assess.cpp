@@ -10,7 +10,7 @@
 #include "tools/run_tool.h"
 #include "volume/assess.h"
 #include "volume/mark_interfaces.h"
-#include "volume/write_assessment_vtu.h"
+#include "io/write_vtu.h"
 
 using namespace tissuemesh;
 
@@ -58,6 +58,21 @@ nlohmann::json summarize(const TetMesh& mesh, const volume::Assessment& a, std::
             {"tissues", tissues}, {"worst", worst}};
 }
 
+/// The assessment's per-tet fields as .vtu cell arrays (after "tissue").
+std::vector<io::VtuArray> assessment_arrays(const volume::Assessment& a)
+{
+    return {io::make_vtu_array("majority", a.majority, true),
+            io::make_vtu_array("error_volume_mm3", a.error_volume_mm3),
+            io::make_vtu_array("majority_error_volume_mm3", a.majority_error_volume_mm3),
+            io::make_vtu_array("quality_key", a.quality_key),
+            io::make_vtu_array("voxel_count", a.voxel_count, true),
+            io::make_vtu_array("sampled", a.sampled, true),
+            io::make_vtu_array("volume_mm3", a.volume_mm3),
+            io::make_vtu_array("min_dihedral_deg", a.min_dihedral_deg),
+            io::make_vtu_array("radius_edge_ratio", a.radius_edge_ratio),
+            io::make_vtu_array("aspect_ratio", a.aspect_ratio)};
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -102,7 +117,7 @@ int main(int argc, char** argv)
                 volume::mark_interfaces(mesh);
                 assessment = volume::assess_elements(mesh, image, options, context.progress);  // fields of the new labels
             }
-            if (extension == ".vtu") volume::write_assessment_vtu(mesh, assessment, output);
+            if (extension == ".vtu") io::write_vtu(mesh, output, {}, assessment_arrays(assessment));
             else io::write_tet_mesh(mesh, output);
             if (assessment.voxels_inside == 0)
                 context.progress.warn("assess", "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");

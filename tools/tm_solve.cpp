@@ -11,7 +11,7 @@
 #include "fem/estimate_error.h"
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
-#include "fem/write_solution_vtu.h"
+#include "io/write_vtu.h"
 #include "io/tet_mesh_io.h"
 #include "tools/run_tool.h"
 #include "volume/check_mesh.h"
@@ -182,7 +182,12 @@ int main(int argc, char** argv)
                                        .relative_tolerance = tolerance}, context.progress, &report);
             const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
             const std::vector<double> indicator = fem::estimate_error(mesh, sigma, phi);
-            fem::write_solution_vtu(output, mesh, phi, fields, indicator);
+            std::vector<double> magnitude;
+            for (const Vec3& e : fields.electric_v_per_m) magnitude.push_back(norm(e));
+            io::write_vtu(mesh, output, {io::make_vtu_array("potential_V", phi)},
+                          {io::make_vtu_vectors("E_V_per_m", fields.electric_v_per_m),
+                           io::make_vtu_vectors("J_A_per_m2", fields.current_a_per_m2),
+                           io::make_vtu_array("E_magnitude_V_per_m", magnitude), io::make_vtu_array("error_indicator", indicator)});
             double indicator2 = 0;
             for (double eta : indicator) indicator2 += eta * eta;
             if (!sensor_output.empty()) write_text_atomically(sensor_output, sensor_csv(mesh, sensors, phi));
