@@ -34,13 +34,10 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     std::vector<Eigen::Triplet<double, int>> triplets;
     triplets.reserve(16 * mesh.tet_count());
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        const auto found = conductivities.by_label.find(mesh.tet_labels[t]);
-        if (found == conductivities.by_label.end())
-            throw InputError(concat("tissue ", mesh.tet_labels[t], " (tet ", t, ") has no conductivity; add it to ",
-                                    "the conductivity table"));
+        const Mat3& sigma = conductivities.of(mesh.tet_labels[t], t);
         const P1Element element = p1_element(mesh, t);
         for (int i = 0; i < 4; ++i) {
-            const Vec3 flux = multiply(found->second, element.gradients[i]);
+            const Vec3 flux = multiply(sigma, element.gradients[i]);
             for (int j = 0; j < 4; ++j)
                 triplets.emplace_back(static_cast<int>(mesh.tets[t][i]), static_cast<int>(mesh.tets[t][j]),
                                       element.volume_m3 * dot(flux, element.gradients[j]));

@@ -15,15 +15,12 @@ TetFields compute_fields(const TetMesh& mesh, const Conductivities& conductiviti
     fields.electric_v_per_m.reserve(mesh.tet_count());
     fields.current_a_per_m2.reserve(mesh.tet_count());
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        const auto found = conductivities.by_label.find(mesh.tet_labels[t]);
-        if (found == conductivities.by_label.end())
-            throw InputError(concat("tissue ", mesh.tet_labels[t], " (tet ", t, ") has no conductivity; add it to ",
-                                    "the conductivity table"));
+        const Mat3& sigma = conductivities.of(mesh.tet_labels[t], t);
         const P1Element element = p1_element(mesh, t);
         Vec3 field{0, 0, 0};
         for (int k = 0; k < 4; ++k) field = field - potential_v[mesh.tets[t][k]] * element.gradients[k];
         fields.electric_v_per_m.push_back(field);
-        fields.current_a_per_m2.push_back(multiply(found->second, field));
+        fields.current_a_per_m2.push_back(multiply(sigma, field));
     }
     return fields;
 }

@@ -93,4 +93,12 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
     return result;
 }
 
+const Mat3& Conductivities::of(Label tissue, std::size_t tet) const
+{
+    const auto found = by_label.find(tissue);
+    if (found == by_label.end())
+        throw InputError(concat("tissue ", tissue, " (tet ", tet, ") has no conductivity; add it to the conductivity table"));
+    return found->second;
+}
+
 } // namespace tissuemesh::fem

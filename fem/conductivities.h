@@ -15,6 +15,10 @@ Mat3 isotropic(double sigma);
 /// Conductivity of every tissue of a mesh, by label. Tensors in S/m, in world (RAS) axes.
 struct Conductivities {
     std::map<Label, Mat3> by_label;
+
+    /// The tensor of `tissue` (S/m); `tet` only names the element in the message.
+    /// @throws InputError when the tissue has no conductivity
+    const Mat3& of(Label tissue, std::size_t tet) const;
 };
 
 /// A user's table: keys are tissue names ("skull", matched case-insensitively against mesh.names) or
