@@ -5,19 +5,25 @@
 #include <cstdint>
 #include <limits>
 #include <set>
+#include <unordered_map>
 
 #include "core/error.h"
+#include "surface/detail/priority_cube.h"
 
 namespace tissuemesh::surface {
 namespace {
 
 constexpr std::uint32_t no_vertex = std::numeric_limits<std::uint32_t>::max();
+constexpr std::size_t max_priority_side = 80'000;  // (side + 2) * 24 fits 21 bits
+constexpr std::uint64_t coordinate_mask = (std::uint64_t{1} << 21) - 1;
 
-/// Positions inside one cube in twelfths of a voxel (edge midpoints are multiples of 6, face centroids of
-/// 4, tetrahedron centroids of 3), so orientation tests are exact integer determinants.
+/// Positions inside one cube in 24ths of a voxel, so that every dual point is exact (down to the
+/// centroids of split-cube tetrahedra, at odd multiples of 3) and orientation tests are exact integer
+/// determinants.
 using Local = std::array<int, 3>;
-
-Local corner_local(int corner) { return {12 * (corner & 1), 12 * (corner >> 1 & 1), 12 * (corner >> 2 & 1)}; }
+/// Labels of a cube's vertices: corners 0-7 (bit 0: +x, bit 1: +y, bit 2: +z) and the centre, 8 (used by
+/// split cubes only).
+using Labels9 = std::array<Label, 9>;
 
 /// The 6 Kuhn tetrahedra of a cube, as chains of cube corners (bit 0: +x, bit 1: +y, bit 2: +z): every
 /// tetrahedron runs from corner 0 to corner 7 adding one axis at a time, so each corner is a subset of the
@@ -55,8 +61,9 @@ struct DualPoint {
 /// the current slab only.
 class SlabExtractor {
 public:
-    SlabExtractor(const LabelImage& image, std::vector<Label> label_map, Label background)
-        : image_(image), map_(std::move(label_map)), background_(background),
+    SlabExtractor(const LabelImage& image, std::vector<Label> label_map, Label background,
+                  const std::map<Label, int>& priority)
+        : image_(image), map_(std::move(label_map)), background_(background), rule_(priority),
           px_(image.dims()[0] + 2), py_(image.dims()[1] + 2), flip_(determinant(image.direction()) < 0)
     {
         for (int layer = 0; layer < 2; ++layer) {
@@ -79,6 +86,8 @@ public:
             std::fill(faces_[1].begin(), faces_[1].end(), no_vertex);
             load_layer(1, k + 1);
             k_ = k;
+            // Split-cube points on the plane z = k stay shared with this slab; older ones are done.
+            std::erase_if(shared_, [k](const auto& entry) { return (entry.first & coordinate_mask) < 24 * k; });
             extract_slab();
             ticker.step();
         }
@@ -116,87 +125,18 @@ private:
                 for (int c = 1; c < 8; ++c) uniform = uniform && corners[c] == corners[0];
                 if (uniform) continue;
                 i_ = i, j_ = j;
-                for (const auto& tet : kuhn_tets) extract_tet(tet, corners);
+                if (rule_.active()) {
+                    const detail::CubePlan plan = rule_.plan(corners);
+                    if (plan.split) {
+                        extract_split_cube(plan, corners);
+                        continue;
+                    }
+                }
+                Labels9 labels{};
+                std::copy(corners.begin(), corners.end(), labels.begin());
+                for (const auto& tet : kuhn_tets) extract_tet(tet, labels);
             }
         }
-    }
-
-    void extract_tet(const std::array<int, 4>& tet, const std::array<Label, 8>& corners)
-    {
-        std::array<Label, 4> labels{};
-        for (int v = 0; v < 4; ++v) labels[v] = corners[tet[v]];
-        std::array<Label, 4> distinct = labels;
-        std::sort(distinct.begin(), distinct.end());
-        const auto count = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
-        if (count == 1) return;
-        if (count == 2) return extract_two_label_tet(tet, labels);
-        DualPoint centroid;
-        for (int v = 0; v < 4; ++v)
-            for (int axis = 0; axis < 3; ++axis) centroid.local[axis] += corner_local(tet[v])[axis] / 4;
-        centroid.id = new_vertex(centroid.local);
-        for (int omitted = 3; omitted >= 0; --omitted) {
-            std::array<int, 3> face{};
-            for (int v = 0, n = 0; v < 4; ++v)
-                if (v != omitted) face[n++] = v;
-            cone_face(tet, labels, face, centroid);
-        }
-    }
-
-    /// Marching tetrahedra: one triangle around a lone corner, or the planar quad between two pairs.
-    void extract_two_label_tet(const std::array<int, 4>& tet, const std::array<Label, 4>& labels)
-    {
-        std::array<int, 4> side_a{}, side_b{};
-        int na = 0, nb = 0;
-        for (int v = 0; v < 4; ++v) (labels[v] == labels[0] ? side_a[na++] : side_b[nb++]) = v;
-        if (na == 1 || nb == 1) {
-            const std::array<int, 4>& lone = na == 1 ? side_a : side_b;
-            const std::array<int, 4>& rest = na == 1 ? side_b : side_a;
-            const int w = lone[0];
-            emit(edge_point(tet, w, rest[0]), edge_point(tet, w, rest[1]), edge_point(tet, w, rest[2]), tet[w],
-                 labels[w], labels[rest[0]]);
-            return;
-        }
-        const int a = side_a[0], b = side_a[1], c = side_b[0], d = side_b[1];
-        const DualPoint ac = edge_point(tet, a, c), bd = edge_point(tet, b, d);
-        emit(ac, edge_point(tet, a, d), bd, tet[a], labels[a], labels[c]);
-        emit(ac, bd, edge_point(tet, b, c), tet[a], labels[a], labels[c]);
-    }
-
-    /// The triangles from the tetrahedron's centroid to the separating curve on one face.
-    void cone_face(const std::array<int, 4>& tet, const std::array<Label, 4>& labels,
-                   const std::array<int, 3>& face, const DualPoint& centroid)
-    {
-        const Label l0 = labels[face[0]], l1 = labels[face[1]], l2 = labels[face[2]];
-        if (l0 == l1 && l1 == l2) return;
-        if (l0 != l1 && l1 != l2 && l0 != l2) {
-            const DualPoint middle = face_point(tet, face);
-            for (int e = 0; e < 3; ++e) {
-                const int x = face[e], y = face[(e + 1) % 3];
-                emit(edge_point(tet, x, y), middle, centroid, tet[x], labels[x], labels[y]);
-            }
-            return;
-        }
-        // Two labels: the lone corner w against the pair (v1, v2).
-        const int w = l1 == l2 ? face[0] : (l0 == l2 ? face[1] : face[2]);
-        std::array<int, 2> pair{};
-        for (int v = 0, n = 0; v < 3; ++v)
-            if (face[v] != w) pair[n++] = face[v];
-        emit(edge_point(tet, w, pair[0]), edge_point(tet, w, pair[1]), centroid, tet[w], labels[w],
-             labels[pair[0]]);
-    }
-
-    /// Appends triangle (p, q, r) separating `reference_label` (the label of cube corner `reference`, which
-    /// lies strictly on one side of the triangle's plane) from `other`, oriented from `from` into `to`.
-    void emit(const DualPoint& p, DualPoint q, DualPoint r, int reference, Label reference_label, Label other)
-    {
-        const LabelPair pair = sides_of(reference_label, other);
-        const long long side = orientation(p.local, q.local, r.local, corner_local(reference));
-        if (side == 0)
-            throw AlgorithmError("extract_interfaces: degenerate dual triangle; this is a bug, please report it");
-        // side > 0: the reference corner is in front of the triangle; `from` must be behind it.
-        if ((side > 0) == (reference_label == pair.from)) std::swap(q, r);
-        if (flip_) std::swap(q, r);
-        out_.add_triangle({p.id, q.id, r.id}, pair);
     }
 
     LabelPair sides_of(Label a, Label b) const
@@ -206,51 +146,187 @@ private:
         return a > b ? LabelPair{a, b} : LabelPair{b, a};
     }
 
-    /// Midpoint of the tetrahedron edge between local corners u < v (cube corner tet[u] is a subset of
-    /// tet[v], so the grid edge starts at tet[u] and goes in direction tet[v] - tet[u]).
-    DualPoint edge_point(const std::array<int, 4>& tet, int u, int v)
-    {
-        const int low = tet[std::min(u, v)], high = tet[std::max(u, v)];
-        DualPoint point;
-        for (int axis = 0; axis < 3; ++axis) point.local[axis] = (corner_local(low)[axis] + corner_local(high)[axis]) / 2;
-        std::uint32_t& slot = edges_[low >> 2][grid_index(low) * 8 + static_cast<std::size_t>(high & ~low)];
-        if (slot == no_vertex) slot = new_vertex(point.local);
-        point.id = slot;
-        return point;
-    }
-
-    /// Centroid of a tetrahedron face given by local corners f0 < f1 < f2.
-    DualPoint face_point(const std::array<int, 4>& tet, const std::array<int, 3>& face)
-    {
-        const int c0 = tet[face[0]], c1 = tet[face[1]], c2 = tet[face[2]];
-        DualPoint point;
-        for (int axis = 0; axis < 3; ++axis)
-            point.local[axis] = (corner_local(c0)[axis] + corner_local(c1)[axis] + corner_local(c2)[axis]) / 3;
-        const auto kind = face_slots[static_cast<std::size_t>(8 * (c1 & ~c0) + (c2 & ~c0))];
-        std::uint32_t& slot = faces_[c0 >> 2][grid_index(c0) * 12 + static_cast<std::size_t>(kind)];
-        if (slot == no_vertex) slot = new_vertex(point.local);
-        point.id = slot;
-        return point;
-    }
-
     std::size_t grid_index(int corner) const
     {
         return (j_ + static_cast<std::size_t>(corner >> 1 & 1)) * px_ + i_ + static_cast<std::size_t>(corner & 1);
+    }
+
+    /// Position of cube vertex v (corner 0-7 or centre 8).
+    static Local vertex_local(int v)
+    {
+        return v == 8 ? Local{12, 12, 12} : Local{24 * (v & 1), 24 * (v >> 1 & 1), 24 * (v >> 2 & 1)};
+    }
+
+    /// The priority rule's split cube: 12 tetrahedra, each a face triangle (on the face's chosen diagonal)
+    /// coned to the centre.
+    void extract_split_cube(const detail::CubePlan& plan, const std::array<Label, 8>& corners)
+    {
+        Labels9 labels{};
+        std::copy(corners.begin(), corners.end(), labels.begin());
+        labels[8] = plan.centre;
+        for (std::size_t f = 0; f < detail::cube_faces.size(); ++f) {
+            const auto& c = detail::cube_faces[f];
+            // The face's two triangles on its chosen diagonal, each coned to the centre.
+            const std::array<std::array<int, 3>, 2> triangles =
+                plan.anti[f] ? std::array<std::array<int, 3>, 2>{{{c[1], c[3], c[0]}, {c[1], c[3], c[2]}}}
+                             : std::array<std::array<int, 3>, 2>{{{c[0], c[2], c[1]}, {c[0], c[2], c[3]}}};
+            for (const auto& t : triangles) extract_tet({t[0], t[1], t[2], 8}, labels);
+        }
+    }
+
+    /// The barycentric-dual surface in tetrahedron `tet` (cube vertices; a Kuhn tetrahedron lists them
+    /// in chain order).
+    void extract_tet(const std::array<int, 4>& tet, const Labels9& all)
+    {
+        std::array<Label, 4> labels{};
+        for (int v = 0; v < 4; ++v) labels[v] = all[tet[v]];
+        std::array<Label, 4> distinct = labels;
+        std::sort(distinct.begin(), distinct.end());
+        const auto count = std::unique(distinct.begin(), distinct.end()) - distinct.begin();
+        if (count == 1) return;
+        if (count == 2) return extract_two_label_tet(tet, labels);
+        DualPoint centroid;
+        for (int v = 0; v < 4; ++v)
+            for (int axis = 0; axis < 3; ++axis) centroid.local[axis] += vertex_local(tet[v])[axis] / 4;
+        centroid.id = new_vertex(centroid.local);
+        for (int omitted = 3; omitted >= 0; --omitted) {
+            std::array<int, 3> face{};
+            for (int v = 0, n = 0; v < 4; ++v)
+                if (v != omitted) face[n++] = tet[v];
+            cone_face(face, all, centroid);
+        }
+    }
+
+    /// Marching tetrahedra: one triangle around a lone vertex, or the planar quad between two pairs (split
+    /// along the diagonal from the midpoint of the edge between the first vertices of each side).
+    void extract_two_label_tet(const std::array<int, 4>& tet, const std::array<Label, 4>& labels)
+    {
+        std::array<int, 4> side_a{}, side_b{};
+        int na = 0, nb = 0;
+        for (int v = 0; v < 4; ++v) (labels[v] == labels[0] ? side_a[na++] : side_b[nb++]) = tet[v];
+        const Label la = labels[0];
+        Label other = la;
+        for (const Label label : labels)
+            if (label != la) other = label;
+        if (na == 1 || nb == 1) {
+            const bool a_lone = na == 1;
+            const std::array<int, 4>& lone = a_lone ? side_a : side_b;
+            const std::array<int, 4>& rest = a_lone ? side_b : side_a;
+            const int w = lone[0];
+            emit(edge_point(w, rest[0]), edge_point(w, rest[1]), edge_point(w, rest[2]), w,
+                   a_lone ? la : other, a_lone ? other : la);
+            return;
+        }
+        const int a = side_a[0], b = side_a[1], c = side_b[0], d = side_b[1];
+        const DualPoint ac = edge_point(a, c), bd = edge_point(b, d);
+        emit(ac, edge_point(a, d), bd, a, la, other);
+        emit(ac, bd, edge_point(b, c), a, la, other);
+    }
+
+    /// The triangles from the tetrahedron's centroid to the separating curve on one face.
+    void cone_face(const std::array<int, 3>& face, const Labels9& all, const DualPoint& centroid)
+    {
+        const Label l0 = all[face[0]], l1 = all[face[1]], l2 = all[face[2]];
+        if (l0 == l1 && l1 == l2) return;
+        if (l0 != l1 && l1 != l2 && l0 != l2) {
+            const DualPoint middle = face_point(face);
+            for (int e = 0; e < 3; ++e) {
+                const int x = face[e], y = face[(e + 1) % 3];
+                emit(edge_point(x, y), middle, centroid, x, all[x], all[y]);
+            }
+            return;
+        }
+        const int w = l1 == l2 ? face[0] : (l0 == l2 ? face[1] : face[2]);
+        std::array<int, 2> pair{};
+        for (int v = 0, n = 0; v < 3; ++v)
+            if (face[v] != w) pair[n++] = face[v];
+        emit(edge_point(w, pair[0]), edge_point(w, pair[1]), centroid, w, all[w], all[pair[0]]);
+    }
+
+    /// Appends triangle (p, q, r) separating `reference_label` (the label of cube vertex `reference`, which
+    /// lies strictly on one side of the triangle's plane) from `other`, oriented from `from` into `to`.
+    void emit(const DualPoint& p, DualPoint q, DualPoint r, int reference, Label reference_label, Label other)
+    {
+        const LabelPair pair = sides_of(reference_label, other);
+        const long long side = orientation(p.local, q.local, r.local, vertex_local(reference));
+        if (side == 0)
+            throw AlgorithmError("extract_interfaces: degenerate dual triangle; this is a bug, please report it");
+        // side > 0: the reference vertex is in front of the triangle; `from` must be behind it.
+        if ((side > 0) == (reference_label == pair.from)) std::swap(q, r);
+        if (flip_) std::swap(q, r);
+        out_.add_triangle({p.id, q.id, r.id}, pair);
+    }
+
+    /// Midpoint of the edge between cube vertices x and y. A grid edge of the Kuhn kind (one corner a
+    /// subset of the other: it starts at the lower one in a non-negative grid direction) has a slot per
+    /// grid point; any other edge (a split face's other diagonal, a centre edge) is keyed by position.
+    DualPoint edge_point(int x, int y)
+    {
+        DualPoint point;
+        for (int axis = 0; axis < 3; ++axis) point.local[axis] = (vertex_local(x)[axis] + vertex_local(y)[axis]) / 2;
+        const int low = std::min(x, y), high = std::max(x, y);
+        if (high < 8 && (low & high) == low) {
+            std::uint32_t& slot = edges_[low >> 2][grid_index(low) * 8 + static_cast<std::size_t>(high & ~low)];
+            if (slot == no_vertex) slot = new_vertex(point.local);
+            point.id = slot;
+        } else {
+            point.id = shared_vertex(point.local);
+        }
+        return point;
+    }
+
+    /// Centroid of a triangle of cube vertices: a Kuhn triangle (corners a chain of subsets) has a slot per
+    /// grid point; any other is keyed by position.
+    DualPoint face_point(std::array<int, 3> face)
+    {
+        DualPoint point;
+        for (int axis = 0; axis < 3; ++axis)
+            point.local[axis] =
+                (vertex_local(face[0])[axis] + vertex_local(face[1])[axis] + vertex_local(face[2])[axis]) / 3;
+        std::sort(face.begin(), face.end());
+        const int c0 = face[0], c1 = face[1], c2 = face[2];
+        if (c2 < 8 && (c0 & c1) == c0 && (c1 & c2) == c1) {
+            const auto kind = face_slots[static_cast<std::size_t>(8 * (c1 & ~c0) + (c2 & ~c0))];
+            std::uint32_t& slot = faces_[c0 >> 2][grid_index(c0) * 12 + static_cast<std::size_t>(kind)];
+            if (slot == no_vertex) slot = new_vertex(point.local);
+            point.id = slot;
+        } else {
+            point.id = shared_vertex(point.local);
+        }
+        return point;
+    }
+
+    /// The vertex at `local` in the current cube, created on first use (see shared_).
+    std::uint32_t shared_vertex(const Local& local)
+    {
+        const auto global = [&](int axis, std::size_t base) {
+            return static_cast<std::uint64_t>(24 * base) + static_cast<std::uint64_t>(local[static_cast<std::size_t>(axis)]);
+        };
+        const std::uint64_t key = global(0, i_) << 42 | global(1, j_) << 21 | global(2, k_);
+        const auto [it, inserted] = shared_.try_emplace(key, no_vertex);
+        if (inserted) it->second = new_vertex(local);
+        return it->second;
     }
 
     std::uint32_t new_vertex(const Local& local)
     {
         if (out_.vertices.size() >= no_vertex)
             throw InputError("extract_interfaces: more than 4 294 967 294 vertices; crop or coarsen the image");
-        const Vec3 index{static_cast<double>(i_) - 1 + local[0] / 12.0, static_cast<double>(j_) - 1 + local[1] / 12.0,
-                         static_cast<double>(k_) - 1 + local[2] / 12.0};
+        const Vec3 index{static_cast<double>(i_) - 1 + local[0] / 24.0, static_cast<double>(j_) - 1 + local[1] / 24.0,
+                         static_cast<double>(k_) - 1 + local[2] / 24.0};
         out_.vertices.push_back(image_.index_to_world(index));
         return static_cast<std::uint32_t>(out_.vertices.size() - 1);
     }
 
+
     const LabelImage& image_;
     std::vector<Label> map_;
     Label background_;
+    detail::PriorityRule rule_;
+    /// Vertex ids of split-cube dual points that no grid slot holds, keyed by their padded-grid position
+    /// in 24ths of a voxel (21 bits per axis): a dual point is the barycentre of one simplex, and distinct
+    /// simplices of a triangulation have distinct barycentres, so the key names the simplex exactly.
+    std::unordered_map<std::uint64_t, std::uint32_t> shared_;
     std::size_t px_, py_;
     bool flip_;
     std::size_t i_ = 0, j_ = 0, k_ = 0;
@@ -293,7 +369,17 @@ InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOption
     if (tissues.empty())
         throw InputError(concat("extract_interfaces: the image holds only background (label ", options.background,
                                 "); there is no tissue to extract. Check --background and --tissues"));
-    SlabExtractor extractor(image, std::move(map), options.background);
+    if (!options.priority.empty() &&
+        std::max({image.dims()[0], image.dims()[1], image.dims()[2]}) > max_priority_side)
+        throw InputError(concat("extract_interfaces: the image has a side over ", max_priority_side,
+                                " voxels, too large for the priority rule's vertex keys; crop the image or "
+                                "drop the priority"));
+    for (const auto& [label, value] : options.priority)
+        if (!tissues.contains(label) && label != options.background)
+            throw InputError(concat("extract_interfaces: priority given for label ", label, " (priority ", value,
+                                    "), which is not a tissue of the image; check the priority list against "
+                                    "tm-info"));
+    SlabExtractor extractor(image, std::move(map), options.background, options.priority);
     InterfaceComplex complex = extractor.run(progress);
     // No tissue may be lost: padding gives every tissue a boundary, so this is a guard against bugs.
     std::set<Label> seen;

@@ -2,6 +2,7 @@
 // tetrahedralization of the voxel-centre grid, with the barycentric-dual surface in each tetrahedron.
 #pragma once
 
+#include <map>
 #include <vector>
 
 #include "core/interface_complex.h"
@@ -17,6 +18,9 @@ struct ExtractOptions {
     /// The label standing for "no tissue"; the image is padded with one voxel layer of it, so the outside
     /// of the image counts as background and every surface is closed.
     Label background = 0;
+    /// Thin-tissue priority per label (higher wins; unlisted labels rank below every listed one; empty:
+    /// the plain Kuhn rule, output identical to having no such option). See "Priority rule" below.
+    std::map<Label, int> priority;
 };
 
 /// Builds the interface complex of `image`.
@@ -48,12 +52,36 @@ struct ExtractOptions {
 ///    the vertex order is flipped so normals still point from `from` into `to`;
 ///  - vertex positions are the dual points' index positions (midpoints: labels carry no sub-voxel
 ///    information); smoothing is a later step.
-/// There are no ambiguous configurations to resolve: the fixed diagonal of the decomposition decides
-/// them, as the connectivity rule states. (A per-tissue priority would have to choose diagonals per cube
-/// face and re-triangulate cubes; not offered.)
-/// Works slab by slab (two voxel layers at a time); memory beyond the output is O(nx * ny).
+/// Without a priority there are no ambiguous configurations to resolve: the fixed diagonal of the
+/// decomposition decides them, as the connectivity rule states.
+///
+/// Priority rule (ExtractOptions::priority non-empty), for tissues one voxel thick that touch themselves
+/// only through cube edges/corners (a one-voxel shell, a CSF layer):
+///  - face diagonal: a cube face (4 corners) uses its non-Kuhn diagonal exactly when that diagonal joins
+///    two corners of a listed tissue T and both other corners are not T and rank below T ("checkerboard
+///    for T"); otherwise the Kuhn diagonal. It depends on the face's labels only, so both cubes sharing
+///    the face agree;
+///  - cube: let T be the cube's top label (highest rank; ties: the most frequent, then the smallest
+///    label). The cube is split into 12 tetrahedra (each face's two triangles coned to the cube centre,
+///    a lattice point labelled T) when T is listed and a face uses its non-Kuhn diagonal, or T's corners
+///    are not connected by the cube's Kuhn edges, or corners 0 and (1,1,1) are both not T and every path
+///    of cube edges between them meets T (the Kuhn main diagonal would cross T); otherwise it keeps its 6
+///    Kuhn tetrahedra;
+///  - the dual surface is built on these tetrahedra exactly as above (new points keyed by the exact
+///    barycentre of their simplex, which names it, so sharing stays exact; points lie on the 1/24-voxel
+///    lattice instead of 1/12);
+///  - connectivity rule: two lattice points (voxel centres and centres of split cubes) of the same tissue
+///    are connected when an edge of this tetrahedralization joins them: the 6 face neighbours, each
+///    face's chosen diagonal, the Kuhn main diagonal of unsplit cubes, and centre-to-corner edges of split
+///    cubes. So wherever a listed tissue is a cube's top label, any two of its corners in that cube are
+///    connected (26-style; split or not), and the 14-neighbourhood holds everywhere else; in a split
+///    cube the other labels are connected only along cube edges and chosen face diagonals. The surface of a tissue has c(tissue) + c(rest) - 1
+///    pieces with c counted under this rule (rest: every other label, split-cube centres included).
+/// Works slab by slab (two voxel layers at a time); memory beyond the output is O(nx * ny) (with a
+/// priority, plus a hash map of the current slab's split-cube points).
 /// @throws InputError when the image is empty, `background` is among `tissues`, a chosen tissue is absent
-///         from the image, or nothing but background remains
+///         from the image, nothing but background remains, a priority names a label that is neither a
+///         kept tissue nor the background, or (with a priority) an image side exceeds 80 000 voxels
 InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options = {},
                                     const Progress& progress = {});
 

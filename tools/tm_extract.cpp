@@ -1,9 +1,11 @@
 // tm-extract: the interface complex of a label image (multi-material marching cubes), optionally with
 // one closed surface per tissue.
 #include <cctype>
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "core/atomic_file.h"
@@ -52,6 +54,38 @@ nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const fs::
     return written;
 }
 
+/// "csf=2", "3=1", ...: tissue (a name from --labels or a number) = integer priority.
+std::map<Label, int> parse_priority(const std::vector<std::string>& items, const LabelImage& image)
+{
+    std::map<Label, int> priority;
+    for (const std::string& item : items) {
+        const auto eq = item.find('=');
+        const std::string tissue = item.substr(0, eq == std::string::npos ? 0 : eq);
+        const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+        std::optional<Label> label;
+        for (const auto& [l, name] : image.names())
+            if (name == tissue) label = l;
+        int number = 0;
+        const auto parse_int = [](const std::string& text, int& out) {
+            const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+            return !text.empty() && error == std::errc{} && end == text.data() + text.size();
+        };
+        if (!label && parse_int(tissue, number) && number >= 0 && number <= 65535) label = static_cast<Label>(number);
+        if (!label || !parse_int(value, number))
+            throw InputError(concat("--priority ", item, ": expected TISSUE=INTEGER with TISSUE a label number or a "
+                                    "name from --labels (e.g. --priority csf=2,3=1)"));
+        priority[*label] = number;
+    }
+    return priority;
+}
+
+nlohmann::json priority_summary(const std::map<Label, int>& priority)
+{
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [label, value] : priority) out[std::to_string(label)] = value;
+    return out;
+}
+
 /// Peak resident memory so far (MiB, Linux VmHWM; 0 when unknown): measured right after extraction,
 /// before writing and counting add their own buffers.
 double peak_memory_mib()
@@ -82,6 +116,7 @@ nlohmann::json tissue_summary(const LabelImage& image, const InterfaceComplex& c
 int main(int argc, char** argv)
 {
     std::string input, output, per_tissue_dir, per_tissue_format = "stl";
+    std::vector<std::string> priority;
     io::ReadImageOptions read_options;
     surface::ExtractOptions options;
     return tools::run_tool(
@@ -93,7 +128,8 @@ int main(int argc, char** argv)
          "Writes .ply (binary, label_a/label_b per face) or .vtp by the output's extension.",
          "Examples:\n  tm-extract -i head.nii.gz -o head.ply\n"
          "  tm-extract -i head.nii.gz -o brain.vtp --tissues 4,5 --labels head.json --json extract.json\n"
-         "  tm-extract -i head.nii.gz -o head.ply --per-tissue surfaces --per-tissue-format off\n"},
+         "  tm-extract -i head.nii.gz -o head.ply --per-tissue surfaces --per-tissue-format off\n"
+         "  tm-extract -i head.nii.gz -o head.ply --labels head.json --priority csf=1\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Label image (.nii, .nii.gz, .nrrd, .mha, ...)")->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
@@ -101,6 +137,10 @@ int main(int argc, char** argv)
                 ->delimiter(',');
             app.add_option("--background", options.background, "Background label (also outside the image)")
                 ->capture_default_str();
+            app.add_option("--priority", priority,
+                           "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
+                           "one-voxel layer in one piece), e.g. csf=2,3=1")
+                ->delimiter(',');
             app.add_option("--labels", read_options.names_json, "Tissue names JSON ({\"1\": \"scalp\"})");
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
@@ -116,6 +156,7 @@ int main(int argc, char** argv)
             auto start = std::chrono::steady_clock::now();
             const LabelImage image = io::read_label_image(input, read_options);
             const double read_seconds = seconds_since(start);
+            options.priority = parse_priority(priority, image);
             start = std::chrono::steady_clock::now();
             const InterfaceComplex complex = surface::extract_interfaces(image, options, ctx.progress);
             const double extract_seconds = seconds_since(start);
@@ -130,6 +171,7 @@ int main(int argc, char** argv)
                            {"dims", image.dims()}, {"voxels", image.voxel_count()},
                            {"triangles", complex.triangle_count()}, {"vertices", complex.vertex_count()},
                            {"background", options.background},      {"tissues", tissue_summary(image, complex)},
+                           {"priority", priority_summary(options.priority)},
                            {"per_tissue", per_tissue},
                            {"seconds_read", read_seconds},          {"seconds_extract", extract_seconds},
                            {"seconds_write", seconds_since(start)}, {"peak_memory_after_extract_mb", extract_peak_mib}};

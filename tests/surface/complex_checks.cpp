@@ -21,7 +21,7 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x)
     return x;
 }
 
-/// Integer points (twelfths of a mm) and exact predicates for the intersection test.
+/// Integer points (24ths of a mm) and exact predicates for the intersection test.
 using IPoint = std::array<long long, 3>;
 
 long long orient3(const IPoint& p, const IPoint& q, const IPoint& r, const IPoint& s)
@@ -98,13 +98,14 @@ bool triangles_meet(const std::array<IPoint, 3>& s, const std::array<IPoint, 3>&
     return false;
 }
 
-IPoint twelfths(const Vec3& p)
+/// 24ths, not 12ths: the priority rule's split cubes put tetrahedron centroids on the 1/24 lattice.
+IPoint twenty_fourths(const Vec3& p)
 {
     IPoint q{};
     for (int axis = 0; axis < 3; ++axis) {
-        q[axis] = std::llround(p[axis] * 12.0);
-        if (std::abs(p[axis] * 12.0 - static_cast<double>(q[axis])) > 1e-6)
-            throw InputError("intersecting_pairs: vertex not on the 1/12 mm lattice");
+        q[axis] = std::llround(p[axis] * 24.0);
+        if (std::abs(p[axis] * 24.0 - static_cast<double>(q[axis])) > 1e-6)
+            throw InputError("intersecting_pairs: vertex not on the 1/24 mm lattice");
     }
     return q;
 }
@@ -228,7 +229,7 @@ std::size_t degenerate_triangles(const InterfaceComplex& complex, double min_are
 std::size_t intersecting_pairs(const InterfaceComplex& complex)
 {
     std::vector<IPoint> points;
-    for (const Vec3& v : complex.vertices) points.push_back(twelfths(v));
+    for (const Vec3& v : complex.vertices) points.push_back(twenty_fourths(v));
     const std::size_t n = complex.triangles.size();
     std::vector<std::array<IPoint, 3>> tris(n);
     std::vector<std::array<long long, 6>> boxes(n);
@@ -330,7 +331,7 @@ std::size_t boundary_cubes(const LabelImage& image, Label label, Label backgroun
 }
 
 std::string invariant_failures(const LabelImage& image, const InterfaceComplex& complex, Label background,
-                               bool exact_intersections)
+                               bool exact_intersections, const std::map<Label, int>& priority)
 {
     std::ostringstream failures;
     const double voxel = image.voxel_volume_mm3();
@@ -341,8 +342,11 @@ std::string invariant_failures(const LabelImage& image, const InterfaceComplex& 
         const TissueSurfaceFacts facts = tissue_facts(complex, label);
         if (facts.triangles == 0) failures << "tissue " << label << " lost\n";
         if (facts.bad_edges != 0) failures << "tissue " << label << ": " << facts.bad_edges << " bad edges\n";
-        const std::size_t expected = voxel_components(image, label, background, false) +
-                                     voxel_components(image, label, background, true) - 1;
+        const std::size_t expected =
+            priority.empty() ? voxel_components(image, label, background, false) +
+                                   voxel_components(image, label, background, true) - 1
+                             : priority_components(image, label, background, false, priority) +
+                                   priority_components(image, label, background, true, priority) - 1;
         if (facts.components != expected)
             failures << "tissue " << label << ": " << facts.components << " surface components, expected "
                      << expected << "\n";

@@ -30,7 +30,7 @@ std::size_t duplicate_triangles(const InterfaceComplex& complex);
 std::size_t degenerate_triangles(const InterfaceComplex& complex, double min_area_mm2);
 
 /// Pairs of triangles that meet other than at shared vertices and shared edges. Exact: needs vertex
-/// coordinates that are multiples of 1/12 mm (images with spacing 1, identity direction, integer
+/// coordinates that are multiples of 1/24 mm (images with spacing 1, identity direction, integer
 /// origin), which holds for the dual points of extract_interfaces. Brute force with a bounding-box
 /// filter: small complexes only.
 std::size_t intersecting_pairs(const InterfaceComplex& complex);
@@ -40,14 +40,22 @@ std::size_t intersecting_pairs(const InterfaceComplex& complex);
 /// decomposition: face neighbours, (1,1,0)-type diagonals with equal signs, and +-(1,1,1).
 std::size_t voxel_components(const LabelImage& image, Label label, Label background, bool complement);
 
+/// Like voxel_components(), under the priority connectivity rule of extract_interfaces() (see
+/// ExtractOptions::priority): lattice points are the padded voxel centres and the centres of split cubes,
+/// joined by the edges of the rule's tetrahedralization. With an empty `priority` it equals
+/// voxel_components(). Re-implemented from the header's text (tests/surface/priority_components.cpp).
+std::size_t priority_components(const LabelImage& image, Label label, Label background, bool complement,
+                                const std::map<Label, int>& priority);
+
 /// Non-uniform grid cubes (corners at voxel centres, padded image) having `label` at a corner: the only
 /// places where a dual surface and the voxel-cube boundary can differ, so |volume - voxels| is at most
 /// this count times the voxel volume.
 std::size_t boundary_cubes(const LabelImage& image, Label label, Label background);
 
 /// Runs every invariant on `complex` extracted from `image` and returns the failures, one per line
-/// (empty: all good). `exact_intersections` enables intersecting_pairs().
+/// (empty: all good). `exact_intersections` enables intersecting_pairs(). `priority`: the one given to
+/// extract_interfaces (surface pieces are then predicted by priority_components()).
 std::string invariant_failures(const LabelImage& image, const InterfaceComplex& complex, Label background,
-                               bool exact_intersections);
+                               bool exact_intersections, const std::map<Label, int>& priority = {});
 
 } // namespace tissuemesh::testing

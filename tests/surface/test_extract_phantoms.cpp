@@ -2,6 +2,7 @@
 // lost, and each tissue's surface pieces follow its voxel pieces under the 14-neighbourhood rule.
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "image/phantom.h"
 #include "io/read_label_image.h"
 #include "surface/check_complex.h"
@@ -41,20 +42,54 @@ TEST_P(ExtractPhantom, FitForTetrahedralizationAt2mm)
 INSTANTIATE_TEST_SUITE_P(AllPhantoms, ExtractPhantom,
                          ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
 
-// Known gap (open issue "Tissue interfaces from labels"): under the 14-neighbourhood a one-voxel shell
-// breaks into pieces where it touches itself only diagonally (7 pieces at 1 mm) and the ball inside leaks
-// through those gaps (one surface instead of two at 2 mm). It needs the thin-tissue priority rule (face
-// diagonals and a cube-centre point chosen for the thin tissue). Enable this test with that rule.
-TEST(ExtractPhantomThin, DISABLED_OneVoxelShellStaysOneClosedPiece)
+/// The complex of `image` under `priority` is fit, complete, and its pieces follow the priority rule.
+void expect_fit_under_priority(const LabelImage& image, const std::map<Label, int>& priority,
+                               const std::string& what)
 {
-    // The shell is exactly one voxel thick: it must stay a single piece, bounded by two closed surfaces.
+    const InterfaceComplex complex = surface::extract_interfaces(image, {.priority = priority});
+    const surface::CheckReport report = surface::check_complex(complex);
+    EXPECT_TRUE(report.ok()) << what << ": " << (report.first_error() ? report.first_error()->description : "");
+    for (const auto& [label, voxels] : count_labels(image)) {
+        ASSERT_TRUE(report.tissues.contains(label)) << what << ": tissue " << label << " lost";
+        if (label == complex.background) continue;
+        // P pieces and Q pieces of the rest give P + Q - 1 closed surfaces, counted under the rule.
+        const std::size_t pieces = testing::priority_components(image, label, complex.background, false, priority);
+        const std::size_t rest = testing::priority_components(image, label, complex.background, true, priority);
+        EXPECT_EQ(report.tissues.at(label).components, pieces + rest - 1) << what << ": tissue " << label;
+        EXPECT_TRUE(report.tissues.at(label).closed) << what << ": tissue " << label;
+    }
+}
+
+TEST_P(ExtractPhantom, LongFitUnderEachSingleTissuePriorityAt2mm)
+{
+    const image::Phantom phantom = image::make_phantom(GetParam(), {.voxel_mm = 2.0});
+    for (const auto& [label, voxels] : count_labels(phantom.image))
+        if (label != 0) expect_fit_under_priority(phantom.image, {{label, 1}}, concat(GetParam(), " priority ", label));
+}
+
+TEST_P(ExtractPhantom, FitUnderRankedPrioritiesAt2mm)
+{
+    // Every tissue listed, the larger label higher: ties never arise, every cube has a listed top label.
+    const image::Phantom phantom = image::make_phantom(GetParam(), {.voxel_mm = 2.0});
+    std::map<Label, int> priority;
+    for (const auto& [label, voxels] : count_labels(phantom.image)) priority[label] = label;
+    expect_fit_under_priority(phantom.image, priority, concat(GetParam(), " ranked"));
+}
+
+// Under the plain 14-neighbourhood a one-voxel shell breaks into pieces where it touches itself only
+// diagonally (7 pieces at 1 mm) and the ball inside leaks through the gaps at 2 mm; a priority for the
+// shell keeps it one piece between two closed surfaces.
+TEST(ExtractPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
+{
+    const std::map<Label, int> priority{{1, 1}};
     for (const double voxel_mm : {1.0, 2.0}) {
         const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
-        const InterfaceComplex complex = surface::extract_interfaces(phantom.image);
+        const InterfaceComplex complex = surface::extract_interfaces(phantom.image, {.priority = priority});
         const surface::CheckReport report = surface::check_complex(complex);
-        ASSERT_TRUE(report.ok());
-        EXPECT_EQ(testing::voxel_components(phantom.image, 1, 0, false), 1u) << voxel_mm << " mm";
+        ASSERT_TRUE(report.ok()) << voxel_mm << " mm";
+        EXPECT_EQ(testing::priority_components(phantom.image, 1, 0, false, priority), 1u) << voxel_mm << " mm";
         EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
+        EXPECT_EQ(report.tissues.at(2).components, 1u) << voxel_mm << " mm";
     }
 }
 

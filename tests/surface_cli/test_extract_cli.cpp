@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "image/phantom.h"
 #include "io/surface_io.h"
 #include "io/write_label_image.h"
 #include "tests/support/cli.h"
@@ -78,6 +79,29 @@ TEST(ExtractCli, TissueSelectionMergesTheRestIntoBackground)
     }
 }
 
+TEST(ExtractCli, PriorityKeepsAOneVoxelShellBetweenBallAndOutside)
+{
+    // The "thin" phantom at 2 mm: without a priority the ball touches the outside through the diagonal
+    // gaps of its one-voxel shell; with the shell (named via --labels) prioritized it never does.
+    TempDir dir;
+    io::write_label_image(image::make_phantom("thin", {.voxel_mm = 2.0}).image, dir / "thin.nii.gz");
+    std::ofstream(dir / "names.json") << R"({"1": "shell", "2": "ball"})";
+    const auto ball_meets_outside = [&](const std::vector<std::string>& extra) {
+        std::vector<std::string> args{"-i", (dir / "thin.nii.gz").string(), "-o", (dir / "out.ply").string(),
+                                      "--labels", (dir / "names.json").string(), "--json", (dir / "s.json").string()};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const auto result = run_cli("tm-extract", args);
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        std::size_t count = 0;
+        for (const LabelPair& side : io::read_surface(dir / "out.ply").sides) count += side.from == 2 && side.to == 0;
+        return count;
+    };
+    EXPECT_GT(ball_meets_outside({}), 0u);
+    EXPECT_EQ(ball_meets_outside({"--priority", "shell=1"}), 0u);
+    std::ifstream in(dir / "s.json");
+    EXPECT_EQ(nlohmann::json::parse(in)["priority"]["1"].get<int>(), 1);
+}
+
 TEST(ExtractCli, BadInputExitsTwoWithOneLineAndNoOutput)
 {
     TempDir dir;
@@ -93,6 +117,10 @@ TEST(ExtractCli, BadInputExitsTwoWithOneLineAndNoOutput)
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "7"}, "tissue 7"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "1",
           "--background", "1"}, "background"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "bone=1"},
+         "--priority bone=1"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "7=1"},
+         "priority given for label 7"},
     };
     for (const auto& c : cases) {
         const auto result = run_cli("tm-extract", c.args);
