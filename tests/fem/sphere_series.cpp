@@ -86,4 +86,25 @@ double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& positio
     return sum / (4 * std::numbers::pi * outer_m * outer_m);
 }
 
+Agreement compare_potentials(std::vector<double> numeric, std::vector<double> analytic)
+{
+    const auto centre = [](std::vector<double>& v) {
+        double mean = 0;
+        for (double value : v) mean += value / static_cast<double>(v.size());
+        double sum2 = 0;
+        for (double& value : v) {
+            value -= mean;
+            sum2 += value * value;
+        }
+        return std::sqrt(sum2);
+    };
+    const double numeric_norm = centre(numeric), analytic_norm = centre(analytic);
+    double rdm2 = 0;
+    for (std::size_t k = 0; k < numeric.size(); ++k) {
+        const double d = numeric[k] / numeric_norm - analytic[k] / analytic_norm;
+        rdm2 += d * d;
+    }
+    return {std::sqrt(rdm2), numeric_norm / analytic_norm};
+}
+
 } // namespace tissuemesh::testing

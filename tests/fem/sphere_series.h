@@ -21,4 +21,12 @@ struct LayeredSphere {
 double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
                                 const Vec3& surface_point_mm, int terms = 150);
 
+/// How numeric surface potentials agree with analytic ones, both average-referenced: the relative
+/// difference measure RDM (0..2: the distance between the two unit-norm patterns) and the magnitude
+/// ratio MAG (numeric norm / analytic norm).
+struct Agreement {
+    double rdm = 0, mag = 0;
+};
+Agreement compare_potentials(std::vector<double> numeric, std::vector<double> analytic);
+
 } // namespace tissuemesh::testing

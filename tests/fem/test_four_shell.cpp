@@ -14,30 +14,8 @@
 namespace tissuemesh::fem {
 namespace {
 
-struct Agreement {
-    double rdm = 0, mag = 0;
-};
-
-Agreement compare(std::vector<double> numeric, std::vector<double> analytic)
-{
-    const auto centre = [](std::vector<double>& v) {
-        double mean = 0;
-        for (double value : v) mean += value / static_cast<double>(v.size());
-        double sum2 = 0;
-        for (double& value : v) {
-            value -= mean;
-            sum2 += value * value;
-        }
-        return std::sqrt(sum2);
-    };
-    const double numeric_norm = centre(numeric), analytic_norm = centre(analytic);
-    double rdm2 = 0;
-    for (std::size_t k = 0; k < numeric.size(); ++k) {
-        const double d = numeric[k] / numeric_norm - analytic[k] / analytic_norm;
-        rdm2 += d * d;
-    }
-    return {std::sqrt(rdm2), numeric_norm / analytic_norm};
-}
+using testing::Agreement;
+using testing::compare_potentials;
 
 const testing::LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
@@ -68,7 +46,7 @@ void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Ve
         numeric.push_back(phi[node]);
         analytic.push_back(testing::sphere_surface_potential(head, position, moment, mesh.vertices[node]));
     }
-    const Agreement a = compare(numeric, analytic);
+    const Agreement a = compare_potentials(numeric, analytic);
     std::printf("[4-shell] dipole at (%.0f, %.0f, %.0f) mm moment (%.0e, %.0e, %.0e): %zu nodes, RDM %.4f, MAG %.4f, "
                 "%d AMG-CG iterations\n", position[0], position[1], position[2], moment[0], moment[1], moment[2],
                 mesh.vertex_count(), a.rdm, a.mag, report.solver.iterations);

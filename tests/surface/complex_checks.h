@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,6 +12,9 @@
 #include "core/label_image.h"
 
 namespace tissuemesh::testing {
+
+/// An image on the unit grid (1 mm voxels, origin 0) whose label at voxel (i, j, k) is `label_of(i, j, k)`.
+LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)>& label_of);
 
 /// The closed surface of one tissue as the tests see it.
 struct TissueSurfaceFacts {

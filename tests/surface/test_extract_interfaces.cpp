@@ -11,21 +11,13 @@
 namespace tissuemesh {
 namespace {
 
+using testing::make_image;
+
 using surface::extract_interfaces;
 using testing::invariant_failures;
 using testing::tissue_facts;
 using testing::voxel_components;
 
-/// An image on the unit grid whose label at voxel (i, j, k) is `label_of(i, j, k)`.
-LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)>& label_of)
-{
-    LabelImage image(dims, {1, 1, 1});
-    for (std::size_t k = 0; k < dims[2]; ++k)
-        for (std::size_t j = 0; j < dims[1]; ++j)
-            for (std::size_t i = 0; i < dims[0]; ++i)
-                image.at(i, j, k) = label_of(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k));
-    return image;
-}
 
 LabelImage ball(int n, double radius, Label inside)
 {

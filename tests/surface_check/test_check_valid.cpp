@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "surface/check_complex.h"
-#include "tests/surface_check/complexes.h"
+#include "tests/support/complexes.h"
 
 namespace tissuemesh {
 namespace {

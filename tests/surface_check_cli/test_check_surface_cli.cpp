@@ -5,31 +5,17 @@
 
 #include "io/surface_io.h"
 #include "tests/support/cli.h"
+#include "tests/support/complexes.h"
 
 namespace tissuemesh {
 namespace {
 
-using testing::read_json;
+using testing::add_box;
 using testing::read_json;
 using testing::run_cli;
 using testing::TempDir;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-/// A box [low, high] of tissue `inside` against `outside`: 8 new vertices, 12 outward triangles.
-void add_box(InterfaceComplex& complex, const Vec3& low, const Vec3& high, Label inside, Label outside)
-{
-    const auto base = static_cast<std::uint32_t>(complex.vertices.size());
-    for (int corner = 0; corner < 8; ++corner)
-        complex.vertices.push_back({corner & 1 ? high[0] : low[0], corner & 2 ? high[1] : low[1],
-                                    corner & 4 ? high[2] : low[2]});
-    // Faces as quads of corner bits (x = bit 0, y = bit 1, z = bit 2), counter-clockwise from outside.
-    const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    for (const auto& q : quads) {
-        complex.add_triangle({base + q[0], base + q[1], base + q[2]}, {inside, outside});
-        complex.add_triangle({base + q[0], base + q[2], base + q[3]}, {inside, outside});
-    }
-}
 
 TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
 {

@@ -6,6 +6,7 @@
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tests/support/cli.h"
+#include "tests/support/complexes.h"
 
 namespace tissuemesh {
 namespace {
@@ -69,18 +70,8 @@ TEST(TetraCli, IntersectingSurfaceFailsWithTissuesAndPlaceAndLeavesNoMesh)
 {
     // Two closed boxes of different tissues that pass through each other.
     InterfaceComplex complex;
-    auto add_box = [&](const Vec3& lo, double size, Label tissue) {
-        const auto first = static_cast<std::uint32_t>(complex.vertices.size());
-        for (int c = 0; c < 8; ++c)
-            complex.vertices.push_back({lo[0] + size * (c & 1), lo[1] + size * (c >> 1 & 1), lo[2] + size * (c >> 2 & 1)});
-        const std::uint32_t quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-        for (const auto& q : quads) {
-            complex.add_triangle({first + q[0], first + q[1], first + q[2]}, {tissue, 0});
-            complex.add_triangle({first + q[0], first + q[2], first + q[3]}, {tissue, 0});
-        }
-    };
-    add_box({0, 0, 0}, 10, 1);
-    add_box({5, 5, 5}, 10, 2);
+    testing::add_box(complex, {0, 0, 0}, {10, 10, 10}, 1, 0);
+    testing::add_box(complex, {5, 5, 5}, {15, 15, 15}, 2, 0);
     complex.names = {{0, "background"}, {1, "scalp"}, {2, "skull"}};
     TempDir dir;
     io::write_surface(complex, dir / "bad.ply");

@@ -1,4 +1,4 @@
-#include "tests/surface_check/complexes.h"
+#include "tests/support/complexes.h"
 
 #include <algorithm>
 #include <cmath>
