@@ -27,6 +27,12 @@ std::vector<TrianglePair> find_intersecting_pairs(const std::vector<Vec3>& verti
                                                   const std::vector<Triangle>& triangles,
                                                   const std::vector<std::uint32_t>& candidates);
 
+/// Whether triangles `a` and `b` (indices into `vertices`) meet anywhere other than at the vertices and
+/// edge they share by index; exact. The local test behind find_intersecting_pairs(), for editors that
+/// check each change where it happens.
+/// @pre both non-degenerate (are_collinear() false) and not on the same three vertices
+bool triangles_intersect(const std::vector<Vec3>& vertices, const Triangle& a, const Triangle& b);
+
 /// A point of the intersection of two triangles (the centroid of the intersection, rounded), or the
 /// midpoint of their centroids when they do not intersect. For locating defects in messages.
 Vec3 intersection_point(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b);

@@ -9,6 +9,7 @@
 #include "image/phantom.h"
 #include "surface/check_complex.h"
 #include "surface/extract_interfaces.h"
+#include "tests/support/phantom_distance.h"
 #include "tests/surface/complex_checks.h"
 
 namespace tissuemesh {
@@ -16,10 +17,8 @@ namespace {
 
 using surface::extract_interfaces;
 
-struct DistanceFigures {
-    double max_voxels = 0;
-    double mean_voxels = 0;
-};
+using testing::DistanceFigures;
+using testing::phantom_distances;
 
 TEST(ExtractFidelity, SphereOfRadius30mmAt1mm)
 {
@@ -57,41 +56,6 @@ TEST(ExtractFidelity, SphereOfRadius30mmAt1mm)
               << " mm^3\n";
     EXPECT_NEAR(facts.volume_mm3, exact, 0.01 * exact) << "1% of the ball at 30 voxels radius";
     EXPECT_NEAR(voxels, exact, 0.001 * exact);
-}
-
-/// Distance to the exact interface between the two tissues of `pair`; where the voxelisation makes two
-/// tissues touch that do not in the phantom (a thin shell broken by sampling), the nearest exact
-/// interface of either tissue.
-double distance_to_nearest_interface(const image::Phantom& phantom, const Vec3& point, LabelPair pair)
-{
-    double nearest = std::numeric_limits<double>::max();
-    for (const LabelPair& exact : phantom.geometry.interfaces()) {
-        const bool same = std::minmax(exact.from, exact.to) == std::minmax(pair.from, pair.to);
-        if (same) return phantom.geometry.distance_to_interface(point, exact);
-        if (exact.from == pair.from || exact.to == pair.from || exact.from == pair.to || exact.to == pair.to)
-            nearest = std::min(nearest, phantom.geometry.distance_to_interface(point, exact));
-    }
-    return nearest;
-}
-
-/// Distances of every vertex to the exact interface of its triangles' tissue pair, in voxels.
-DistanceFigures phantom_distances(const image::Phantom& phantom, const InterfaceComplex& complex)
-{
-    std::vector<double> distance(complex.vertices.size(), 0);
-    std::vector<char> seen(complex.vertices.size(), 0);
-    for (std::size_t t = 0; t < complex.triangles.size(); ++t)
-        for (const std::uint32_t v : complex.triangles[t]) {
-            if (seen[v]) continue;
-            seen[v] = 1;
-            distance[v] = distance_to_nearest_interface(phantom, complex.vertices[v], complex.sides[t]);
-        }
-    DistanceFigures figures;
-    const double voxel = phantom.image.spacing_mm()[0];
-    for (const double d : distance) {
-        figures.max_voxels = std::max(figures.max_voxels, d / voxel);
-        figures.mean_voxels += d / voxel / static_cast<double>(distance.size());
-    }
-    return figures;
 }
 
 void check_spheres4(double voxel_mm)

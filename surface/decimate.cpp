@@ -1,0 +1,300 @@
+#include "surface/decimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include <OpenMesh/Core/Utils/vector_traits.hh>
+#include <OpenMesh/Core/Geometry/QuadricT.hh>
+#include <OpenMesh/Core/Geometry/VectorT.hh>
+
+#include "core/error.h"
+#include "surface/detail/complex_editor.h"
+#include "surface/detail/mesh_measures.h"
+
+namespace tissuemesh::surface {
+namespace {
+
+using detail::ComplexEditor;
+using detail::TriangleCorners;
+using detail::VertexKind;
+using Quadric = OpenMesh::Geometry::QuadricT<double>;
+
+void validate(const DecimateOptions& options)
+{
+    if (!(options.max_distance_mm > 0))
+        throw InputError(concat("decimate: max distance ", options.max_distance_mm, " mm must be positive"));
+    if (!(options.max_normal_change_deg > 0 && options.max_normal_change_deg <= 180))
+        throw InputError(concat("decimate: max normal change ", options.max_normal_change_deg, " deg is outside (0, 180]"));
+    if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
+        throw InputError(concat("decimate: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
+    if (!(options.min_gap_mm >= 0)) throw InputError("decimate: min gap must not be negative");
+    if (options.mode == DecimateMode::size && !(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
+        throw InputError("decimate: size mode needs a target edge length (target_edge_mm or per tissue pair)");
+    for (const auto& [pair, length] : options.target_edge_mm_by_pair)
+        if (!(length > 0))
+            throw InputError(concat("decimate: target edge length ", length, " mm for tissues ", pair.first, '|',
+                                    pair.second, " must be positive"));
+}
+
+struct Candidate {
+    double cost = 0;
+    std::uint32_t v = 0;  ///< disappears
+    std::uint32_t w = 0;  ///< stays
+    std::uint32_t version = 0;
+    bool operator>(const Candidate& other) const
+    {
+        return std::tie(cost, v, w) > std::tie(other.cost, other.v, other.w);
+    }
+};
+
+class Decimator {
+public:
+    /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in.
+    Decimator(InterfaceComplex&& complex, double cell_mm, const DecimateOptions& options, DecimateReport& report)
+        : options_(options), report_(report),
+          editor_(std::move(complex),
+                  {.min_angle_deg = options.min_angle_deg,
+                   .max_normal_change_deg = options.max_normal_change_deg,
+                   .min_gap_mm = options.min_gap_mm},
+                  cell_mm),
+          quadrics_(editor_.vertex_slots()), samples_(editor_.triangle_slots()), version_(editor_.vertex_slots(), 0)
+    {
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
+            const TriangleCorners c = editor_.corners(t);
+            const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
+            const double area2 = norm(n);
+            if (area2 <= 0) continue;
+            const Vec3 u = (1.0 / area2) * n;
+            Quadric plane(u[0], u[1], u[2], -dot(u, c[0]));
+            plane *= 0.5 * area2;  // area-weighted
+            for (const std::uint32_t v : editor_.triangle(t)) quadrics_[v] += plane;
+        }
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
+            if (editor_.vertex_alive(v)) samples_[editor_.star(v).front()].push_back(v);
+    }
+
+    void collapse_all(const Progress& progress)
+    {
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) enqueue(v);
+        const std::size_t start = editor_.triangle_count();
+        std::size_t next_rebuild = start / 2;
+        while (!queue_.empty()) {
+            if (options_.target_triangles > 0 && editor_.triangle_count() <= options_.target_triangles) break;
+            const Candidate c = queue_.top();
+            queue_.pop();
+            if (c.version != version_[c.v] || !editor_.vertex_alive(c.v)) continue;
+            const std::optional<std::uint32_t> w = collapse_cheapest(c.v);
+            if (!w) continue;
+            ++report_.collapses;
+            enqueue(*w);
+            for (const std::uint32_t u : editor_.neighbours(*w)) enqueue(u);
+            if (editor_.triangle_count() < next_rebuild) {
+                editor_.rebuild_grid(2 * editor_.mean_edge_length());
+                next_rebuild = editor_.triangle_count() / 2;
+                progress.update("decimate", 1.0 - static_cast<double>(editor_.triangle_count()) / static_cast<double>(start));
+            }
+        }
+    }
+
+    void split_long_edges()
+    {
+        std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
+            if (!editor_.triangle_alive(t)) continue;
+            const Triangle& tri = editor_.triangle(t);
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
+                const double length = distance(editor_.position(a), editor_.position(b));
+                if (length > 4.0 / 3.0 * target_edge(a, b)) edges.push_back({-length, {a, b}});
+            }
+        }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (const auto& [length, edge] : edges) {
+            const auto [a, b] = edge;
+            if (editor_.edge_multiplicity(a, b) == 0) continue;
+            const std::optional<std::uint32_t> m =
+                editor_.try_split(a, b, 0.5 * (editor_.position(a) + editor_.position(b)));
+            if (!m) continue;
+            ++report_.splits;
+            redistribute_samples(*m);
+        }
+    }
+
+    InterfaceComplex result() const { return editor_.result(); }
+    const ComplexEditor& editor() const { return editor_; }
+
+private:
+    /// Size mode: the target edge length for edge ab, the smallest over the tissue pairs around it.
+    double target_edge(std::uint32_t a, std::uint32_t b) const
+    {
+        double target = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
+        if (options_.target_edge_mm_by_pair.empty()) return target;
+        double by_pair = std::numeric_limits<double>::max();
+        for (const std::uint32_t t : editor_.star(a)) {
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
+            const LabelPair& side = editor_.side(t);
+            for (const auto& key : {std::pair{side.from, side.to}, std::pair{side.to, side.from}})
+                if (const auto it = options_.target_edge_mm_by_pair.find(key); it != options_.target_edge_mm_by_pair.end())
+                    by_pair = std::min(by_pair, it->second);
+        }
+        return by_pair < std::numeric_limits<double>::max() ? by_pair : target;
+    }
+
+    /// The cost of collapsing v into w.
+    std::optional<double> cost(std::uint32_t v, std::uint32_t w) const
+    {
+        const Vec3& p = editor_.position(w);
+        if (options_.mode == DecimateMode::size) {
+            const double length = distance(editor_.position(v), p), target = target_edge(v, w);
+            if (length >= 0.8 * target) return std::nullopt;
+            return length / target;
+        }
+        Quadric q = quadrics_[v];
+        q += quadrics_[w];
+        return q(OpenMesh::Vec3d(p[0], p[1], p[2]));
+    }
+
+    /// Allowed targets of v (curve neighbours for curve vertices), cheapest first.
+    std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const
+    {
+        std::vector<std::pair<double, std::uint32_t>> targets;
+        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return targets;
+        const std::vector<std::uint32_t> candidates =
+            editor_.kind(v) == VertexKind::curve ? editor_.curve_neighbours(v) : editor_.neighbours(v);
+        for (const std::uint32_t w : candidates)
+            if (const std::optional<double> c = cost(v, w)) targets.emplace_back(*c, w);
+        std::sort(targets.begin(), targets.end());
+        return targets;
+    }
+
+    /// Queues v with the cost of its cheapest collapse.
+    void enqueue(std::uint32_t v)
+    {
+        ++version_[v];
+        const auto targets = targets_of(v);
+        if (!targets.empty()) queue_.push({targets.front().first, v, targets.front().second, version_[v]});
+    }
+
+    /// Tries v's collapses cheapest first; returns the target it collapsed into.
+    std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v)
+    {
+        for (const auto& [c, w] : targets_of(v))
+            if (collapse(v, w)) return w;
+        return std::nullopt;
+    }
+
+    /// The triangles around w after collapsing v into w: geometry and slot (slots of v's changed triangles).
+    bool collapse(std::uint32_t v, std::uint32_t w)
+    {
+        std::vector<std::uint32_t> targets, sources;
+        std::vector<TriangleCorners> shapes;
+        for (const std::uint32_t t : editor_.star(v)) {
+            sources.push_back(t);
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
+            TriangleCorners c = editor_.corners(t);
+            for (int k = 0; k < 3; ++k)
+                if (tri[k] == v) c[k] = editor_.position(w);
+            targets.push_back(t);
+            shapes.push_back(c);
+        }
+        for (const std::uint32_t t : editor_.star(w)) {
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
+            targets.push_back(t);
+            shapes.push_back(editor_.corners(t));
+        }
+        // Every input vertex the changed triangles answer for must stay within the bound.
+        std::vector<std::pair<std::size_t, std::uint32_t>> assignment;
+        double worst = 0;
+        for (const std::uint32_t t : sources)
+            for (const std::uint32_t s : samples_[t]) {
+                const Vec3& p = editor_.position(s);
+                std::size_t nearest = 0;
+                double best = std::numeric_limits<double>::max();
+                for (std::size_t i = 0; i < shapes.size(); ++i) {
+                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
+                    if (d < best) best = d, nearest = i;
+                }
+                if (best > options_.max_distance_mm) {
+                    ++report_.refused_by_distance;
+                    return false;
+                }
+                worst = std::max(worst, best);
+                assignment.emplace_back(nearest, s);
+            }
+        if (!editor_.try_collapse(v, w)) {
+            ++report_.refused_by_checks;
+            return false;
+        }
+        for (const std::uint32_t t : sources) samples_[t].clear();
+        for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
+        quadrics_[w] += quadrics_[v];
+        report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
+        return true;
+    }
+
+    /// After a split at m, each sample of the split triangles goes to the nearer half.
+    void redistribute_samples(std::uint32_t m)
+    {
+        if (samples_.size() < editor_.triangle_slots()) samples_.resize(editor_.triangle_slots());
+        if (quadrics_.size() < editor_.vertex_slots()) quadrics_.resize(editor_.vertex_slots());
+        if (version_.size() < editor_.vertex_slots()) version_.resize(editor_.vertex_slots(), 0);
+        std::vector<std::uint32_t> pool;
+        const std::vector<std::uint32_t>& star = editor_.star(m);
+        for (const std::uint32_t t : star) {
+            pool.insert(pool.end(), samples_[t].begin(), samples_[t].end());
+            samples_[t].clear();
+        }
+        for (const std::uint32_t s : pool) {
+            const Vec3& p = editor_.position(s);
+            std::uint32_t nearest = star.front();
+            double best = std::numeric_limits<double>::max();
+            for (const std::uint32_t t : star) {
+                const double d = distance(p, detail::closest_point_on_triangle(p, editor_.corners(t)));
+                if (d < best) best = d, nearest = t;
+            }
+            samples_[nearest].push_back(s);
+        }
+    }
+
+    const DecimateOptions& options_;
+    DecimateReport& report_;
+    ComplexEditor editor_;
+    std::vector<Quadric> quadrics_;
+    std::vector<std::vector<std::uint32_t>> samples_;
+    std::vector<std::uint32_t> version_;
+    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
+};
+
+} // namespace
+
+DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& options, const Progress& progress)
+{
+    validate(options);
+    validate_indices(complex, "decimate input");
+    DecimateReport report;
+    report.triangles_before = complex.triangle_count();
+    const double cell_mm = 2 * detail::mean_edge_length(complex);
+    Decimator decimator(std::move(complex), cell_mm, options, report);
+    decimator.collapse_all(progress);
+    if (options.mode == DecimateMode::size) decimator.split_long_edges();
+    complex = decimator.result();
+    const detail::EditCounters& counters = decimator.editor().counters();
+    report.refused_topology = counters.topology;
+    report.refused_shape = counters.shape;
+    report.refused_fold = counters.normal;
+    report.refused_intersection = counters.intersection;
+    report.refused_gap = counters.gap;
+    report.triangles_after = complex.triangle_count();
+    progress.info("decimate", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; ",
+                                     report.refused_by_distance, " collapses refused by the distance bound, ",
+                                     report.refused_by_checks, " by the validity checks"));
+    return report;
+}
+
+} // namespace tissuemesh::surface

@@ -1,0 +1,62 @@
+// Decimation of an interface complex by edge collapses: few triangles where the surface is flat, many
+// where it curves (or sizes from a size field), never an invalid complex.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <utility>
+
+#include "core/interface_complex.h"
+#include "core/progress.h"
+
+namespace tissuemesh::surface {
+
+/// What decides which edges go first.
+enum class DecimateMode {
+    curvature,  ///< quadric error (Garland-Heckbert): flat places coarsen first, curved places stay fine
+    size,       ///< edge length against a target size per tissue pair: short edges collapse, long ones split
+};
+
+/// Options of decimate(). Lengths in mm, angles in degrees.
+struct DecimateOptions {
+    DecimateMode mode = DecimateMode::curvature;
+    std::size_t target_triangles = 0;    ///< stop at or below this count (0: only the limits stop it)
+    /// No vertex of the input may end up further than this from the output surface (a one-sided
+    /// Hausdorff bound, tracked through every collapse).
+    double max_distance_mm = 0.5;
+    double max_normal_change_deg = 20;   ///< a collapse may tilt a triangle at most this much
+    double min_angle_deg = 5;            ///< no collapse may create an angle below this (unless not worse)
+    double min_gap_mm = 0.1;             ///< triangles sharing no vertex keep this distance (unless closer before)
+    /// Size mode: target edge length (0: none). Edges shorter than 4/5 of it collapse, longer than 4/3 split.
+    double target_edge_mm = 0;
+    /// Size mode: target edge length per tissue pair (either order), overriding target_edge_mm.
+    std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
+};
+
+/// What decimate() did.
+struct DecimateReport {
+    std::size_t triangles_before = 0;
+    std::size_t triangles_after = 0;
+    std::size_t collapses = 0;
+    std::size_t splits = 0;
+    std::size_t refused_by_distance = 0;  ///< collapses that would leave an input vertex too far
+    std::size_t refused_by_checks = 0;    ///< collapses refused as invalid (the five below)
+    std::size_t refused_topology = 0;     ///< link condition, junction rules
+    std::size_t refused_shape = 0;        ///< small angle or degenerate
+    std::size_t refused_fold = 0;         ///< a triangle would tilt too much
+    std::size_t refused_intersection = 0; ///< a triangle would meet another
+    std::size_t refused_gap = 0;          ///< a triangle would come too close to another patch
+    double max_distance_mm = 0;           ///< largest tracked distance of an input vertex to the output
+};
+
+/// Simplifies `complex` in place by half-edge collapses (a vertex merges into a neighbour, which keeps
+/// its place), cheapest first. Junction curves are features: a vertex on one collapses only along it;
+/// curve corners stay. Every collapse must pass the editor's validity checks (link condition, no fold,
+/// no intersection, no gap closing: surface/detail/complex_editor.h) and the distance bound, so the
+/// result passes check_complex() whenever the input does.
+/// @pre  `complex` passes check_complex()      @post it still does, with the same topology per tissue
+/// @throws InputError when options are out of range
+DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& options = {},
+                        const Progress& progress = {});
+
+} // namespace tissuemesh::surface

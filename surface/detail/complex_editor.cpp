@@ -1,0 +1,480 @@
+#include "surface/detail/complex_editor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "surface/detail/cgal_intersections.h"
+
+namespace tissuemesh::surface::detail {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+bool contains(const Triangle& t, std::uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+bool shares_vertex(const Triangle& a, const Triangle& b)
+{
+    return contains(b, a[0]) || contains(b, a[1]) || contains(b, a[2]);
+}
+
+bool same_vertex_set(Triangle a, Triangle b)
+{
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    return a == b;
+}
+
+Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
+
+double smallest_angle_deg(const TriangleCorners& p)
+{
+    double smallest = 180;
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 u = p[(k + 1) % 3] - p[k];
+        const Vec3 w = p[(k + 2) % 3] - p[k];
+        smallest = std::min(smallest, std::atan2(norm(cross(u, w)), dot(u, w)) * 180.0 / pi);
+    }
+    return smallest;
+}
+
+double angle_between_deg(const Vec3& a, const Vec3& b)
+{
+    return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / pi;
+}
+
+/// A cheap sufficient test for distance(a, b) > gap: the bounding spheres around the centroids are apart.
+bool farther_than(const TriangleCorners& a, const TriangleCorners& b, double gap)
+{
+    const Vec3 ca = (1.0 / 3.0) * (a[0] + a[1] + a[2]), cb = (1.0 / 3.0) * (b[0] + b[1] + b[2]);
+    double ra = 0, rb = 0;
+    for (int k = 0; k < 3; ++k) {
+        ra = std::max(ra, distance(a[k], ca));
+        rb = std::max(rb, distance(b[k], cb));
+    }
+    return distance(ca, cb) - ra - rb > gap;
+}
+
+/// Whether triangle `now` (formerly `before`) comes closer than `gap` to `other`, vertex to face, where
+/// it was not that close before.
+bool closes_gap(const TriangleCorners& now, const TriangleCorners& before, const TriangleCorners& other, double gap)
+{
+    for (int k = 0; k < 3; ++k) {
+        const double d = distance(now[k], closest_point_on_triangle(now[k], other));
+        if (d < gap && d < distance(before[k], closest_point_on_triangle(before[k], other)) - 1e-12) return true;
+        const double e = distance(other[k], closest_point_on_triangle(other[k], now));
+        if (e < gap && e < distance(other[k], closest_point_on_triangle(other[k], before)) - 1e-12) return true;
+    }
+    return false;
+}
+
+/// Canonical orientation of a patch: the larger label behind, except that the background is always in front.
+bool canonical(const LabelPair& side, Label background)
+{
+    if (side.to == background) return true;
+    if (side.from == background) return false;
+    return side.from > side.to;
+}
+
+/// Rotates t so that it starts with v.
+Triangle starting_at(const Triangle& t, std::uint32_t v)
+{
+    if (t[1] == v) return {t[1], t[2], t[0]};
+    if (t[2] == v) return {t[2], t[0], t[1]};
+    return t;
+}
+
+} // namespace
+
+ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm)
+    : limits_(limits), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
+      sides_(std::move(complex.sides)), alive_(triangles_.size(), 1), stars_(positions_.size()),
+      kinds_(positions_.size(), VertexKind::corner), alive_triangles_(triangles_.size())
+{
+    background_ = complex.background;
+    names_ = std::move(complex.names);
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        if (!canonical(sides_[t], background_)) {
+            std::swap(triangles_[t][1], triangles_[t][2]);
+            std::swap(sides_[t].from, sides_[t].to);
+        }
+        for (const std::uint32_t v : triangles_[t]) stars_[v].push_back(t);
+    }
+    for (std::uint32_t v = 0; v < positions_.size(); ++v) kinds_[v] = classify(v);
+    rebuild_grid(cell_mm);
+}
+
+void ComplexEditor::rebuild_grid(double cell_mm)
+{
+    Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+    for (std::uint32_t v = 0; v < positions_.size(); ++v) {
+        if (!vertex_alive(v)) continue;
+        for (int i = 0; i < 3; ++i) {
+            bounds.low[i] = std::min(bounds.low[i], positions_[v][i]);
+            bounds.high[i] = std::max(bounds.high[i], positions_[v][i]);
+        }
+    }
+    if (bounds.low[0] > bounds.high[0]) bounds = Box3{};
+    grid_ = TriangleGrid(bounds, cell_mm, triangles_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) grid_.insert(t, bounding_box(corners(t)));
+}
+
+TriangleCorners ComplexEditor::corners(std::uint32_t t) const
+{
+    const Triangle& tri = triangles_[t];
+    return {positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]};
+}
+
+double ComplexEditor::mean_edge_length() const
+{
+    double sum = 0;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) sum += distance(positions_[triangles_[t][0]], positions_[triangles_[t][1]]);
+    return alive_triangles_ == 0 ? 1.0 : sum / static_cast<double>(alive_triangles_);
+}
+
+std::vector<std::uint32_t> ComplexEditor::neighbours(std::uint32_t v) const
+{
+    std::vector<std::uint32_t> result;
+    for (const std::uint32_t t : stars_[v])
+        for (const std::uint32_t u : triangles_[t])
+            if (u != v) result.push_back(u);
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
+}
+
+std::size_t ComplexEditor::edge_multiplicity(std::uint32_t v, std::uint32_t w) const
+{
+    std::size_t count = 0;
+    for (const std::uint32_t t : stars_[v]) count += contains(triangles_[t], w) ? 1 : 0;
+    return count;
+}
+
+std::vector<std::uint32_t> ComplexEditor::curve_neighbours(std::uint32_t v) const
+{
+    std::vector<std::uint32_t> result;
+    for (const std::uint32_t u : neighbours(v))
+        if (edge_multiplicity(v, u) >= 3) result.push_back(u);
+    return result;
+}
+
+/// patch: one closed fan of one patch (every edge at v shared by two triangles of that patch);
+/// curve: exactly two junction edges, every other edge shared by two triangles; corner: anything else.
+VertexKind ComplexEditor::classify(std::uint32_t v) const
+{
+    const auto& star = stars_[v];
+    if (star.empty()) return VertexKind::corner;
+    std::size_t junction = 0;
+    for (const std::uint32_t u : neighbours(v)) {
+        const std::size_t m = edge_multiplicity(v, u);
+        if (m >= 3) ++junction;
+        else if (m != 2) return VertexKind::corner;
+    }
+    if (junction == 2) return VertexKind::curve;
+    if (junction != 0) return VertexKind::corner;
+    const LabelPair first = sides_[star.front()];
+    for (const std::uint32_t t : star)
+        if (!(sides_[t] == first)) return VertexKind::corner;
+    // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
+    return neighbours(v).size() == star.size() ? VertexKind::patch : VertexKind::corner;
+}
+
+void ComplexEditor::update_kinds(std::uint32_t v)
+{
+    kinds_[v] = classify(v);
+    for (const std::uint32_t u : neighbours(v)) kinds_[u] = classify(u);
+}
+
+bool ComplexEditor::shape_ok(const Change& change)
+{
+    const Triangle& t = change.triangle;
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+        are_collinear(positions_[t[0]], positions_[t[1]], positions_[t[2]])) {
+        ++counters_.shape;
+        return false;
+    }
+    const TriangleCorners now{positions_[t[0]], positions_[t[1]], positions_[t[2]]};
+    const double angle = smallest_angle_deg(now);
+    if (angle < limits_.min_angle_deg && angle < smallest_angle_deg(change.before) - 1e-9) {
+        ++counters_.shape;
+        return false;
+    }
+    if (angle_between_deg(normal_of(now), normal_of(change.before)) > limits_.max_normal_change_deg) {
+        ++counters_.normal;
+        return false;
+    }
+    return true;
+}
+
+/// No changed triangle meets another (changed or not) improperly, nor comes closer than the gap to one
+/// it shares no vertex with (unless its old version was closer still).
+bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
+{
+    const double gap = limits_.min_gap_mm;
+    std::vector<TriangleCorners> shapes;
+    std::vector<Box3> boxes;
+    Box3 all{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+    for (const Change& change : changes) {
+        const Triangle& a = change.triangle;
+        shapes.push_back({positions_[a[0]], positions_[a[1]], positions_[a[2]]});
+        boxes.push_back(bounding_box(shapes.back(), gap));
+        for (int i = 0; i < 3; ++i) {
+            all.low[i] = std::min(all.low[i], boxes.back().low[i]);
+            all.high[i] = std::max(all.high[i], boxes.back().high[i]);
+        }
+    }
+    for (std::size_t i = 0; i < changes.size(); ++i)
+        for (std::size_t j = i + 1; j < changes.size(); ++j)
+            if (same_vertex_set(changes[i].triangle, changes[j].triangle) ||
+                (boxes_overlap(boxes[i], boxes[j]) &&
+                 triangles_intersect(positions_, changes[i].triangle, changes[j].triangle))) {
+                ++counters_.intersection;
+                return false;
+            }
+    grid_.query(all, nearby_);
+    for (const std::uint32_t t : nearby_) {
+        if (!alive_[t] || std::find(excluded.begin(), excluded.end(), t) != excluded.end()) continue;
+        const TriangleCorners cb = corners(t);
+        const Box3 box = bounding_box(cb);
+        if (!boxes_overlap(all, box)) continue;
+        for (std::size_t i = 0; i < changes.size(); ++i) {
+            if (!boxes_overlap(boxes[i], box)) continue;
+            const Triangle& a = changes[i].triangle;
+            if (same_vertex_set(a, triangles_[t]) || triangles_intersect(positions_, a, triangles_[t])) {
+                ++counters_.intersection;
+                return false;
+            }
+            // The gap keeps layers apart: it applies between different patches only (within a patch, folds
+            // are what the normal and intersection tests are for), and is measured between vertices and
+            // faces (the closest approach of nearly parallel layers).
+            if (gap > 0 && !shares_vertex(a, triangles_[t]) && !farther_than(shapes[i], cb, gap) &&
+                !(sides_[t] == side_of(changes[i])) && closes_gap(shapes[i], changes[i].before, cb, gap)) {
+                ++counters_.gap;
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+LabelPair ComplexEditor::side_of(const Change& change) const
+{
+    return change.slot < sides_.size() ? sides_[change.slot] : change.side;
+}
+
+bool ComplexEditor::acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
+{
+    for (const Change& change : changes)
+        if (!shape_ok(change)) return false;
+    std::vector<std::uint32_t> excluded = removed;
+    for (const Change& change : changes) excluded.push_back(change.slot);
+    return clear_of_others(changes, excluded);
+}
+
+void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
+{
+    for (const std::uint32_t t : removed) {
+        grid_.erase(t, bounding_box(corners(t)));
+        for (const std::uint32_t v : triangles_[t]) std::erase(stars_[v], t);
+        alive_[t] = 0;
+        --alive_triangles_;
+    }
+    for (const Change& change : changes) {
+        const std::uint32_t t = change.slot;
+        if (t < triangles_.size() && alive_[t]) {
+            grid_.erase(t, bounding_box(change.before));
+            for (const std::uint32_t v : triangles_[t]) std::erase(stars_[v], t);
+        } else {
+            if (t >= triangles_.size()) {
+                triangles_.resize(t + 1);
+                sides_.resize(t + 1);
+                alive_.resize(t + 1, 0);
+            }
+            ++alive_triangles_;
+        }
+        triangles_[t] = change.triangle;
+        alive_[t] = 1;
+        for (const std::uint32_t v : change.triangle) stars_[v].push_back(t);
+        grid_.insert(t, bounding_box(corners(t)));
+    }
+    ++counters_.accepted;
+}
+
+bool ComplexEditor::try_move(std::uint32_t v, const Vec3& p)
+{
+    if (!vertex_alive(v)) return false;
+    std::vector<Change> changes;
+    for (const std::uint32_t t : stars_[v]) changes.push_back({t, triangles_[t], corners(t)});
+    const Vec3 old = positions_[v];
+    positions_[v] = p;
+    if (!acceptable(changes, {})) {
+        positions_[v] = old;
+        return false;
+    }
+    // apply() re-files each triangle in the grid: erase by the old box, insert by the new one.
+    apply(changes, {});
+    return true;
+}
+
+/// Lk(v) n Lk(w) = Lk(vw): the common neighbours are exactly the third vertices of triangles on vw, and
+/// no edge ab has both triangles vab and wab. Plus the interface rule that merged edges keep their
+/// multiplicity (no two junction edges fuse).
+bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
+{
+    const std::vector<std::uint32_t> nv = neighbours(v), nw = neighbours(w);
+    std::vector<std::uint32_t> common;
+    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
+    std::vector<std::uint32_t> apexes;
+    for (const std::uint32_t t : stars_[v])
+        if (contains(triangles_[t], w))
+            for (const std::uint32_t u : triangles_[t])
+                if (u != v && u != w) apexes.push_back(u);
+    std::sort(apexes.begin(), apexes.end());
+    apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
+    common.erase(std::remove(common.begin(), common.end(), w), common.end());
+    if (common != apexes) return false;
+    // Edges vx and wx merge; at most one of them may be a junction edge, or two junction curves would
+    // fuse into an edge where a tissue touches itself.
+    for (const std::uint32_t x : apexes)
+        if (std::min(edge_multiplicity(v, x), edge_multiplicity(w, x)) != 2) return false;
+    for (const std::uint32_t t : stars_[v]) {
+        const Triangle r = starting_at(triangles_[t], v);
+        if (r[1] == w || r[2] == w) continue;
+        for (const std::uint32_t s : stars_[w])
+            if (contains(triangles_[s], r[1]) && contains(triangles_[s], r[2])) return false;
+    }
+    return true;
+}
+
+bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
+{
+    if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
+    const std::size_t multiplicity = edge_multiplicity(v, w);
+    const bool allowed = multiplicity > 0 && kinds_[v] != VertexKind::corner &&
+                         (kinds_[v] == VertexKind::patch || multiplicity >= 3);
+    if (!allowed || !link_condition(v, w)) {
+        ++counters_.topology;
+        return false;
+    }
+    std::vector<std::uint32_t> removed;
+    std::vector<Change> changes;
+    for (const std::uint32_t t : stars_[v]) {
+        if (contains(triangles_[t], w)) {
+            removed.push_back(t);
+            continue;
+        }
+        Triangle moved = triangles_[t];
+        std::replace(moved.begin(), moved.end(), v, w);
+        changes.push_back({t, moved, corners(t)});
+    }
+    if (!acceptable(changes, removed)) return false;
+    apply(changes, removed);
+    update_kinds(w);
+    return true;
+}
+
+std::uint32_t ComplexEditor::add_vertex(const Vec3& p)
+{
+    positions_.push_back(p);
+    stars_.emplace_back();
+    kinds_.push_back(VertexKind::corner);
+    return static_cast<std::uint32_t>(positions_.size() - 1);
+}
+
+std::optional<std::uint32_t> ComplexEditor::try_split(std::uint32_t v, std::uint32_t w, const Vec3& p)
+{
+    std::vector<std::uint32_t> on_edge;
+    for (const std::uint32_t t : stars_[v])
+        if (contains(triangles_[t], w)) on_edge.push_back(t);
+    if (on_edge.empty()) return std::nullopt;
+    const std::uint32_t m = add_vertex(p);
+    std::vector<Change> changes;
+    auto next_slot = static_cast<std::uint32_t>(triangles_.size());
+    for (const std::uint32_t t : on_edge) {
+        Triangle first = triangles_[t], second = triangles_[t];
+        std::replace(first.begin(), first.end(), w, m);
+        std::replace(second.begin(), second.end(), v, m);
+        changes.push_back({t, first, corners(t)});
+        changes.push_back({next_slot++, second, corners(t), sides_[t]});
+    }
+    if (!acceptable(changes, {})) {
+        positions_.pop_back();
+        stars_.pop_back();
+        kinds_.pop_back();
+        return std::nullopt;
+    }
+    for (std::size_t i = 1; i < changes.size(); i += 2) {
+        const std::uint32_t t = changes[i].slot;
+        triangles_.resize(t + 1);
+        alive_.resize(t + 1, 0);
+        sides_.resize(t + 1);
+        sides_[t] = sides_[changes[i - 1].slot];
+    }
+    apply(changes, {});
+    update_kinds(m);
+    return m;
+}
+
+bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
+{
+    std::vector<std::uint32_t> on_edge;
+    for (const std::uint32_t t : stars_[v])
+        if (contains(triangles_[t], w)) on_edge.push_back(t);
+    if (on_edge.size() != 2 || !(sides_[on_edge[0]] == sides_[on_edge[1]])) {
+        ++counters_.topology;
+        return false;
+    }
+    // Orient: first = (v, w, a), second = (w, v, b).
+    std::uint32_t t1 = on_edge[0], t2 = on_edge[1];
+    if (starting_at(triangles_[t1], v)[1] != w) std::swap(t1, t2);
+    const Triangle r1 = starting_at(triangles_[t1], v), r2 = starting_at(triangles_[t2], w);
+    if (r1[1] != w || r2[1] != v) {
+        ++counters_.topology;
+        return false;
+    }
+    const std::uint32_t a = r1[2], b = r2[2];
+    const auto fan_size = [&](std::uint32_t u) {
+        std::size_t n = 0;
+        for (const std::uint32_t t : stars_[u]) n += sides_[t] == sides_[t1] ? 1 : 0;
+        return n;
+    };
+    const auto keeps_fan = [&](std::uint32_t u) {
+        return kinds_[u] == VertexKind::patch ? stars_[u].size() > 3 : fan_size(u) > 1;
+    };
+    if (a == b || edge_multiplicity(a, b) != 0 || !keeps_fan(v) || !keeps_fan(w)) {
+        ++counters_.topology;
+        return false;
+    }
+    const TriangleCorners before1 = corners(t1), before2 = corners(t2);
+    std::vector<Change> changes{{t1, {v, b, a}, before1}, {t2, {w, a, b}, before2}};
+    // Each new triangle must not tilt much from either old one (no flipping across a crease).
+    if (!acceptable(changes, {})) return false;
+    std::vector<Change> swapped{{t1, {v, b, a}, before2}, {t2, {w, a, b}, before1}};
+    for (const Change& change : swapped)
+        if (!shape_ok(change)) return false;
+    apply(changes, {});
+    for (const std::uint32_t u : {v, w, a, b}) kinds_[u] = classify(u);
+    return true;
+}
+
+InterfaceComplex ComplexEditor::result() const
+{
+    InterfaceComplex out;
+    out.background = background_;
+    out.names = names_;
+    std::vector<std::uint32_t> index(positions_.size(), 0);
+    for (std::uint32_t v = 0; v < positions_.size(); ++v) {
+        if (!vertex_alive(v)) continue;
+        index[v] = static_cast<std::uint32_t>(out.vertices.size());
+        out.vertices.push_back(positions_[v]);
+    }
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        if (!alive_[t]) continue;
+        const Triangle& tri = triangles_[t];
+        out.add_triangle({index[tri[0]], index[tri[1]], index[tri[2]]}, sides_[t]);
+    }
+    return out;
+}
+
+} // namespace tissuemesh::surface::detail

@@ -1,0 +1,129 @@
+// ComplexEditor: local edits of an interface complex (move, collapse, split, flip), each accepted only
+// when the complex stays valid. The shared engine of smooth(), decimate(), remesh() and repair().
+//
+// Why our own structure and not OpenMesh's half-edges: an interface complex is not a 2-manifold. Along
+// junction curves three or more triangles share an edge, which a half-edge mesh cannot hold, and
+// decimating each patch on its own could not collapse a junction edge in all patches at once.
+//
+// Validity of every edit is decided locally, where it happens:
+//  - topology: a collapse must satisfy the link condition Lk(v) n Lk(w) = Lk(vw) (Dey, Edelsbrunner,
+//    Guha, Nekhayev 1999), which keeps the topological type of the whole 2-complex, junctions included;
+//    vertices on a junction curve move and collapse only along their curve, curve corners never change;
+//  - geometry: no changed triangle is degenerate (exact test), gets a smaller angle than both its old one
+//    and EditLimits::min_angle_deg, tilts by more than EditLimits::max_normal_change_deg, or meets any
+//    other triangle other than at shared vertices and edges (exact predicates, candidates from a grid);
+//    and none comes closer than EditLimits::min_gap_mm to a triangle it shares no vertex with, unless it
+//    was already that close (so thin layers keep a positive thickness).
+// So an edit sequence applied to a complex that passes check_complex() yields one that passes it too.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/interface_complex.h"
+#include "surface/detail/triangle_grid.h"
+
+namespace tissuemesh::surface::detail {
+
+/// Where a vertex may go: anywhere on its patch, only along its junction curve, or nowhere.
+enum class VertexKind : std::uint8_t { patch, curve, corner };
+
+/// Geometric limits every edit must respect. Lengths in mm, angles in degrees.
+struct EditLimits {
+    double min_angle_deg = 2.0;            ///< new triangles' smallest angle (unless not worse than before)
+    double max_normal_change_deg = 60.0;   ///< a changed triangle may tilt at most this much in one edit
+    double min_gap_mm = 0.0;               ///< distance kept between triangles sharing no vertex
+};
+
+/// Why edits were refused, for reports.
+struct EditCounters {
+    std::size_t accepted = 0;
+    std::size_t topology = 0;      ///< link condition, junction rules, valence
+    std::size_t shape = 0;         ///< degenerate or too small an angle
+    std::size_t normal = 0;        ///< tilted too much (a fold)
+    std::size_t intersection = 0;  ///< would meet another triangle
+    std::size_t gap = 0;           ///< would come too close to another triangle
+};
+
+class ComplexEditor {
+public:
+    /// Takes the complex over. Patches are oriented canonically (the larger label is `from`, the
+    /// background always `to`), which does not change what the triangles mean.
+    /// `cell_mm`: grid cell size for neighbour searches (about twice the typical edge length).
+    ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm);
+
+    // --- reading ---
+    std::size_t vertex_slots() const { return positions_.size(); }
+    std::size_t triangle_slots() const { return triangles_.size(); }
+    std::size_t triangle_count() const { return alive_triangles_; }
+    bool vertex_alive(std::uint32_t v) const { return !stars_[v].empty(); }
+    bool triangle_alive(std::uint32_t t) const { return alive_[t] != 0; }
+    const Vec3& position(std::uint32_t v) const { return positions_[v]; }
+    const std::vector<Vec3>& positions() const { return positions_; }
+    VertexKind kind(std::uint32_t v) const { return kinds_[v]; }
+    const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }
+    const LabelPair& side(std::uint32_t t) const { return sides_[t]; }
+    /// Alive triangles incident to v (unordered).
+    const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
+    /// Vertices sharing an edge with v, ascending.
+    std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
+    /// The neighbours of v across junction edges (two for a curve vertex).
+    std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
+    /// Number of alive triangles on edge vw (0: no such edge; 3 or more: a junction edge).
+    std::size_t edge_multiplicity(std::uint32_t v, std::uint32_t w) const;
+    TriangleCorners corners(std::uint32_t t) const;
+    /// Mean edge length over alive triangles (first edges), mm.
+    double mean_edge_length() const;
+    const EditLimits& limits() const { return limits_; }
+    void set_limits(const EditLimits& limits) { limits_ = limits; }
+    const EditCounters& counters() const { return counters_; }
+
+    // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
+    /// Moves v to p (junction-curve and corner rules are the caller's business: see VertexKind).
+    bool try_move(std::uint32_t v, const Vec3& p);
+    /// Collapses edge vw into w: v disappears, w keeps its position.
+    bool try_collapse(std::uint32_t v, std::uint32_t w);
+    /// Splits edge vw (every triangle on it) at p; returns the new vertex.
+    std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
+    /// Replaces edge vw (two triangles of one patch) by the edge between their opposite vertices.
+    bool try_flip(std::uint32_t v, std::uint32_t w);
+    /// Rebuilds the neighbour grid with a new cell size (after triangles grew or shrank a lot).
+    void rebuild_grid(double cell_mm);
+
+    /// The edited complex, compacted (dead vertices and triangles dropped, order otherwise kept).
+    InterfaceComplex result() const;
+
+private:
+    struct Change {
+        std::uint32_t slot;       ///< triangle slot it replaces (or a new slot)
+        Triangle triangle;        ///< new vertex indices
+        TriangleCorners before;   ///< geometry of the triangle it replaces, for the "not worse" rules
+        LabelPair side{};         ///< tissues of a new slot (existing slots keep theirs)
+    };
+    LabelPair side_of(const Change& change) const;
+    bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
+    bool shape_ok(const Change& change);
+    bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    bool link_condition(std::uint32_t v, std::uint32_t w) const;
+    void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
+    void update_kinds(std::uint32_t v);
+    VertexKind classify(std::uint32_t v) const;
+    std::uint32_t add_vertex(const Vec3& p);
+
+    Label background_ = 0;
+    TissueNames names_;
+    EditLimits limits_;
+    std::vector<Vec3> positions_;
+    std::vector<Triangle> triangles_;
+    std::vector<LabelPair> sides_;
+    std::vector<char> alive_;
+    std::vector<std::vector<std::uint32_t>> stars_;
+    std::vector<VertexKind> kinds_;
+    std::size_t alive_triangles_ = 0;
+    TriangleGrid grid_;
+    std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
+    EditCounters counters_;
+};
+
+} // namespace tissuemesh::surface::detail

@@ -1,0 +1,51 @@
+// Smoothing of an interface complex, held to the voxel evidence: terraces of marching cubes become
+// smooth surfaces without leaving what the label image allows.
+#pragma once
+
+#include <cstddef>
+
+#include "core/interface_complex.h"
+#include "core/label_image.h"
+#include "core/progress.h"
+
+namespace tissuemesh::surface {
+
+/// Options of smooth(). Angles in degrees.
+struct SmoothOptions {
+    std::size_t iterations = 10;        ///< Taubin lambda|mu step pairs
+    double lambda = 0.6307;             ///< shrinking step factor (Taubin 1995: pass band k_PB = 0.1)
+    double mu = -0.6732;                ///< inflating step factor, |mu| > lambda
+    /// A vertex must stay within this distance (voxels) of the voxels of each tissue it separates (three
+    /// where more meet): so no other tissue, nor one of its own, is deeper than this where it sits.
+    double max_depth_voxels = 0.5;
+    /// Triangles sharing no vertex keep at least this distance (voxels of the smallest spacing), unless
+    /// they were closer to begin with: layers keep a thickness.
+    double min_gap_voxels = 0.1;
+    double min_angle_deg = 2.0;         ///< no move may create an angle below this (unless not worse)
+    double max_normal_change_deg = 30;  ///< one move may tilt a triangle at most this much (no folds)
+};
+
+/// What smooth() did.
+struct SmoothReport {
+    std::size_t iterations = 0;
+    std::size_t moves = 0;               ///< vertex moves made (full or halved steps)
+    std::size_t refused_by_image = 0;    ///< moves the voxel evidence refused (even halved)
+    std::size_t refused_by_checks = 0;   ///< moves refused as invalid (fold, intersection, gap, shape)
+    std::size_t fixed_vertices = 0;      ///< junction-curve corners, never moved
+    double mean_displacement_mm = 0;     ///< over all vertices, from start to end
+    double max_displacement_mm = 0;
+};
+
+/// Smooths `complex` in place by Taubin's lambda|mu filter with uniform (umbrella) weights: vertices
+/// inside a patch move towards the mean of their neighbours; vertices on a junction curve towards the
+/// mean of their two curve neighbours (1-D smoothing along the curve, so they stay on it); corners of
+/// junction curves stay. Every move is checked against `image` (SmoothOptions::max_depth_voxels; a
+/// refused move is retried at half length) and against the complex (no fold, no intersection, no gap
+/// closing, see surface/detail/complex_editor.h), so the topology and validity never change.
+/// @pre  `complex` passes check_complex() and lies over `image` (as extract_interfaces() makes it)
+/// @post it still passes check_complex(); triangles and connectivity unchanged
+/// @throws InputError when options are out of range
+SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const SmoothOptions& options = {},
+                    const Progress& progress = {});
+
+} // namespace tissuemesh::surface

@@ -1,0 +1,95 @@
+// decimate(): fewer triangles, within the distance bound, and a complex that still passes the checker
+// with the same pieces per tissue; junction curves collapse only along themselves.
+#include <gtest/gtest.h>
+#include <iostream>
+
+#include "core/error.h"
+#include "image/phantom.h"
+#include "surface/check_complex.h"
+#include "surface/decimate.h"
+#include "surface/extract_interfaces.h"
+#include "tests/support/phantom_distance.h"
+
+namespace tissuemesh {
+namespace {
+
+void check_decimation(const std::string& name, double voxel_mm, const surface::DecimateOptions& options,
+                      double min_reduction)
+{
+    const image::Phantom phantom = image::make_phantom(name, {.voxel_mm = voxel_mm});
+    InterfaceComplex complex = surface::extract_interfaces(phantom.image);
+    const surface::CheckReport before = surface::check_complex(complex);
+    ASSERT_TRUE(before.ok());
+    const testing::DistanceFigures raw = testing::phantom_distances(phantom, complex);
+    const surface::DecimateReport report = surface::decimate(complex, options);
+    const testing::DistanceFigures after_figures = testing::phantom_distances(phantom, complex);
+    const surface::CheckReport after = surface::check_complex(complex);
+    std::cout << "[ figures  ] " << name << " at " << voxel_mm << " mm: " << report.triangles_before << " -> "
+              << report.triangles_after << " triangles (" << report.collapses << " collapses, refused "
+              << report.refused_by_distance << " by distance, " << report.refused_by_checks
+              << " by checks: topology " << report.refused_topology << " shape " << report.refused_shape << " fold "
+              << report.refused_fold << " intersection " << report.refused_intersection << " gap " << report.refused_gap
+              << "); tracked distance max " << report.max_distance_mm << " mm; vertex distance to the exact "
+              << "interfaces max/mean " << raw.max_voxels << "/" << raw.mean_voxels << " -> " << after_figures.max_voxels
+              << "/" << after_figures.mean_voxels << " voxel\n";
+    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
+    EXPECT_LE(report.max_distance_mm, options.max_distance_mm);
+    EXPECT_GE(static_cast<double>(report.triangles_before), min_reduction * static_cast<double>(report.triangles_after));
+    ASSERT_EQ(after.tissues.size(), before.tissues.size());
+    for (const auto& [tissue, facts] : before.tissues) {
+        const surface::TissueCheck& now = after.tissues.at(tissue);
+        EXPECT_EQ(now.components, facts.components) << "tissue " << tissue;
+        // Each input vertex stays within max_distance_mm of the output, so volumes move by about the surface
+        // area times that bound at most; 5% holds on these phantoms (figures above).
+        EXPECT_NEAR(now.volume_mm3, facts.volume_mm3, 0.05 * std::abs(facts.volume_mm3)) << "tissue " << tissue;
+    }
+    EXPECT_EQ(after.junction_edges > 0, before.junction_edges > 0) << "junction curves kept";
+}
+
+// Raw marching-cubes terraces are creases everywhere: most collapses would fold a triangle by more than
+// 20 degrees, so raw input reduces about 3x (smoothed input much more).
+TEST(Decimate, JunctionCurvatureMode) { check_decimation("junction", 2.0, {.max_distance_mm = 1.0}, 3); }
+
+TEST(Decimate, ThinShellStaysOnePiece) { check_decimation("thin", 1.0, {.max_distance_mm = 0.5}, 2); }
+
+TEST(Decimate, LongBoxesFlatFacesCollapse) { check_decimation("boxes", 2.0, {.max_distance_mm = 1.0}, 20); }
+
+TEST(Decimate, RefusesCollapsesThatWouldCrossTheOtherSideOfAThinLayer)
+{
+    // The shell is one voxel (1 mm) thick; a 2 mm distance bound alone would let its two surfaces cross.
+    const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = 1.0});
+    InterfaceComplex complex = surface::extract_interfaces(phantom.image);
+    const surface::DecimateReport report = surface::decimate(complex, {.max_distance_mm = 2.0});
+    std::cout << "[ figures  ] thin, 2 mm bound: " << report.triangles_before << " -> " << report.triangles_after
+              << " triangles; refused by intersection " << report.refused_intersection << ", by gap "
+              << report.refused_gap << "\n";
+    EXPECT_GT(report.refused_intersection + report.refused_gap, 0u);
+    const surface::CheckReport after = surface::check_complex(complex);
+    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
+}
+
+TEST(Decimate, SizeModeSplitsAndCollapses)
+{
+    check_decimation("junction", 2.0, {.mode = surface::DecimateMode::size, .max_distance_mm = 1.0, .target_edge_mm = 6.0}, 3);
+}
+
+TEST(Decimate, TargetTriangleCountStopsEarly)
+{
+    const image::Phantom phantom = image::make_phantom("junction", {.voxel_mm = 2.0});
+    InterfaceComplex complex = surface::extract_interfaces(phantom.image);
+    const std::size_t target = complex.triangle_count() / 2;
+    surface::decimate(complex, {.target_triangles = target});
+    EXPECT_LE(complex.triangle_count(), target);
+    EXPECT_GE(complex.triangle_count() + 4, target) << "stops as soon as it reaches the target";
+    EXPECT_TRUE(surface::check_complex(complex).ok());
+}
+
+TEST(Decimate, RejectsBadOptions)
+{
+    InterfaceComplex complex;
+    EXPECT_THROW(surface::decimate(complex, {.max_distance_mm = 0}), InputError);
+    EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size}), InputError);
+}
+
+} // namespace
+} // namespace tissuemesh
