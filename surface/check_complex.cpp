@@ -255,7 +255,7 @@ void require_fit_for_tetrahedralization(const InterfaceComplex& complex, const s
     const Defect* first = report.first_error();
     throw InputError(concat(what, ": not fit for tetrahedralization: ", report.error_count(), " defect",
                             report.error_count() == 1 ? "" : "s", ", first: ", first ? first->description : "?",
-                            "; run tm-repair first (tm-check-surface lists them)"));
+                            "; tm-check-surface lists them; re-extract it with tm-extract, whose output is always fit, and edit it only with tm-smooth and tm-decimate, which keep it fit"));
 }
 
 } // namespace tissuemesh::surface

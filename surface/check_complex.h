@@ -98,7 +98,7 @@ CheckReport check_complex(const InterfaceComplex& complex, const CheckOptions& o
 
 /// For steps that need a valid complex: runs check_complex() and throws when it is not fit.
 /// @throws InputError naming `what`, the number of errors and the first defect, with the hint
-///         "run tm-repair first"; also when the complex has no triangle.
+///         "re-extract it with tm-extract"; also when the complex has no triangle.
 void require_fit_for_tetrahedralization(const InterfaceComplex& complex, const std::string& what);
 
 } // namespace tissuemesh::surface

@@ -200,7 +200,7 @@ TEST(CheckComplexDefects, RequireFitThrowsWithFirstDefectAndHint)
         const std::string message = e.what();
         EXPECT_NE(message.find("head.ply: not fit for tetrahedralization: 6 defects"), std::string::npos) << message;
         EXPECT_NE(message.find("open edge"), std::string::npos) << message;
-        EXPECT_NE(message.find("run tm-repair first"), std::string::npos) << message;
+        EXPECT_NE(message.find("re-extract it with tm-extract"), std::string::npos) << message;
     }
     EXPECT_NO_THROW(surface::require_fit_for_tetrahedralization(skull_cube(), "head.ply"));
     EXPECT_THROW(surface::require_fit_for_tetrahedralization(InterfaceComplex{}, "empty.ply"), InputError);

@@ -62,7 +62,7 @@ TEST(CheckSurfaceCli, IntersectingBoxesExitOneNamingTissuesAndPlace)
     EXPECT_TRUE(contains(result.err, "scalp|air triangle")) << result.err;
     EXPECT_TRUE(contains(result.err, "skull|air triangle")) << result.err;
     EXPECT_TRUE(contains(result.err, "near (")) << result.err;
-    EXPECT_TRUE(contains(result.err, "run tm-repair first")) << result.err;
+    EXPECT_TRUE(contains(result.err, "re-extract it with tm-extract")) << result.err;
     const nlohmann::json summary = read_json(dir / "c.json");
     EXPECT_EQ(summary["fit_for_tetrahedralization"], false);
     EXPECT_GT(summary["defect_counts"]["patch-intersection"].get<int>(), 3);

@@ -1,0 +1,82 @@
+// tm-smooth and tm-decimate as a user chains them after tm-extract: valid outputs, summaries, refusals.
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "image/phantom.h"
+#include "io/surface_io.h"
+#include "io/write_label_image.h"
+#include "surface/check_complex.h"
+#include "surface/extract_interfaces.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+using testing::run_cli;
+using testing::TempDir;
+
+/// The junction phantom at 6 mm (small and quick) written as image and extracted complex.
+struct Inputs {
+    std::string image, surface;
+};
+
+Inputs write_inputs(const TempDir& dir)
+{
+    const image::Phantom phantom = image::make_phantom("junction", {.voxel_mm = 6.0});
+    Inputs inputs{(dir / "j.nii.gz").string(), (dir / "j.ply").string()};
+    io::write_label_image(phantom.image, inputs.image);
+    io::write_surface(surface::extract_interfaces(phantom.image), inputs.surface);
+    return inputs;
+}
+
+TEST(SmoothDecimateCli, ChainKeepsTheComplexFitAndReportsCounts)
+{
+    const TempDir dir;
+    const Inputs in = write_inputs(dir);
+    const auto smooth = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "s.ply").string(), "--json",
+                                              (dir / "s.json").string()});
+    ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+    const nlohmann::json s = testing::read_json((dir / "s.json").string());
+    EXPECT_GT(s.at("moves").get<std::size_t>(), 0u);
+    const auto decimate = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "d.ply").string(), "--json",
+                                                  (dir / "d.json").string(), "--max-distance-mm", "3"});
+    ASSERT_EQ(decimate.exit_code, 0) << decimate.err;
+    const nlohmann::json d = testing::read_json((dir / "d.json").string());
+    EXPECT_LT(d.at("triangles_after").get<std::size_t>(), d.at("triangles_before").get<std::size_t>());
+    EXPECT_LE(d.at("max_distance_mm").get<double>(), 3.0);
+    const InterfaceComplex result = io::read_surface((dir / "d.ply").string());
+    EXPECT_EQ(result.triangle_count(), d.at("triangles_after").get<std::size_t>());
+    EXPECT_TRUE(surface::check_complex(result).ok());
+    const auto sized = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "z.ply").string(), "--mode", "size",
+                                               "--target-edge-mm", "12"});
+    EXPECT_EQ(sized.exit_code, 0) << sized.err;
+}
+
+TEST(SmoothDecimateCli, RefusesUnfitInputBadOptionsAndLossyFormats)
+{
+    const TempDir dir;
+    const Inputs in = write_inputs(dir);
+    // A complex with one triangle removed has holes: refused before any work, nothing written.
+    InterfaceComplex broken = io::read_surface(in.surface);
+    broken.triangles.pop_back();
+    broken.sides.pop_back();
+    io::write_surface(broken, (dir / "broken.ply").string());
+    const auto unfit = run_cli("tm-decimate", {"-i", (dir / "broken.ply").string(), "-o", (dir / "out.ply").string()});
+    EXPECT_EQ(unfit.exit_code, 2);
+    EXPECT_NE(unfit.err.find("broken.ply: not fit for tetrahedralization"), std::string::npos) << unfit.err;
+    EXPECT_FALSE(std::filesystem::exists((dir / "out.ply").string()));
+    const auto stl = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "out.stl").string()});
+    EXPECT_EQ(stl.exit_code, 2);
+    EXPECT_NE(stl.err.find("written as .ply or .vtp"), std::string::npos) << stl.err;
+    const auto size = run_cli("tm-decimate", {"-i", in.surface, "-o", (dir / "out.ply").string(), "--mode", "size"});
+    EXPECT_EQ(size.exit_code, 2);
+    EXPECT_NE(size.err.find("size mode needs a target edge length"), std::string::npos) << size.err;
+    const auto lambda = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "out.ply").string(),
+                                              "--max-depth-voxels", "3"});
+    EXPECT_EQ(lambda.exit_code, 2);
+    EXPECT_FALSE(std::filesystem::exists((dir / "out.ply").string()));
+}
+
+} // namespace
+} // namespace tissuemesh
