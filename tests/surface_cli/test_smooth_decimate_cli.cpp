@@ -1,4 +1,4 @@
-// tm-smooth and tm-decimate as a user chains them after tm-extract: valid outputs, summaries, refusals.
+// tm-smooth, tm-decimate and tm-remesh as a user chains them after tm-extract: valid outputs, summaries, refusals.
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -48,6 +48,16 @@ TEST(SmoothDecimateCli, ChainKeepsTheComplexFitAndReportsCounts)
     const InterfaceComplex result = io::read_surface((dir / "d.ply").string());
     EXPECT_EQ(result.triangle_count(), d.at("triangles_after").get<std::size_t>());
     EXPECT_TRUE(surface::check_complex(result).ok());
+    const auto remeshed = run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "r.ply").string(), "--edge-mm",
+                                                "12", "--edge-mm-pair", "2:3=9", "--json", (dir / "r.json").string()});
+    ASSERT_EQ(remeshed.exit_code, 0) << remeshed.err;
+    const nlohmann::json r = testing::read_json(dir / "r.json");
+    EXPECT_GT(r.at("triangles_after").get<std::size_t>(), 0u);
+    EXPECT_TRUE(surface::check_complex(io::read_surface((dir / "r.ply").string())).ok());
+    const auto bad_pair = run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "x.ply").string(),
+                                                "--edge-mm-pair", "2=9"});
+    EXPECT_EQ(bad_pair.exit_code, 2);
+    EXPECT_NE(bad_pair.err.find("expected TISSUE:TISSUE=MM"), std::string::npos) << bad_pair.err;
     const auto sized = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "z.ply").string(), "--mode", "size",
                                                "--target-edge-mm", "12"});
     EXPECT_EQ(sized.exit_code, 0) << sized.err;

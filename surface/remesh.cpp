@@ -1,0 +1,341 @@
+#include "surface/remesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "surface/detail/complex_editor.h"
+#include "surface/detail/mesh_measures.h"
+
+namespace tissuemesh::surface {
+namespace {
+
+using detail::Box3;
+using detail::ComplexEditor;
+using detail::TriangleCorners;
+using detail::TriangleGrid;
+using detail::VertexKind;
+using Edge = std::pair<std::uint32_t, std::uint32_t>;
+
+constexpr double pi = 3.14159265358979323846;
+
+void validate(const RemeshOptions& options)
+{
+    if (!(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
+        throw InputError("remesh: no target edge length; give target_edge_mm (tm-remesh --edge-mm) in mm");
+    if (options.target_edge_mm < 0) throw InputError("remesh: the target edge length must be positive");
+    for (const auto& [pair, length] : options.target_edge_mm_by_pair)
+        if (!(length > 0))
+            throw InputError(concat("remesh: target edge length ", length, " mm for tissues ", pair.first, '|',
+                                    pair.second, " must be positive"));
+    if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
+        throw InputError(concat("remesh: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
+}
+
+std::pair<Label, Label> unordered(const LabelPair& side) { return std::minmax(side.from, side.to); }
+
+double smallest_angle_deg(const TriangleCorners& p)
+{
+    double smallest = 180;
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
+        smallest = std::min(smallest, std::atan2(norm(cross(u, w)), dot(u, w)) * 180.0 / pi);
+    }
+    return smallest;
+}
+
+double smallest_angle_deg(const InterfaceComplex& complex)
+{
+    double smallest = 180;
+    for (const Triangle& t : complex.triangles)
+        smallest = std::min(smallest, smallest_angle_deg({complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]}));
+    return smallest;
+}
+
+/// The input surface, for projecting vertices back: its triangles by tissue pair, and its junction edges.
+class Reference {
+public:
+    Reference(const InterfaceComplex& input, double cell_mm) : input_(input)
+    {
+        Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
+        for (const Vec3& v : input.vertices)
+            for (int i = 0; i < 3; ++i) bounds.low[i] = std::min(bounds.low[i], v[i]), bounds.high[i] = std::max(bounds.high[i], v[i]);
+        triangles_ = TriangleGrid(bounds, cell_mm, input.triangle_count());
+        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) triangles_.insert(t, detail::bounding_box(corners(t)));
+        std::map<Edge, int> count;
+        for (const Triangle& t : input.triangles)
+            for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
+        for (const auto& [edge, n] : count)
+            if (n >= 3) junction_.push_back(edge);
+        segments_ = TriangleGrid(bounds, cell_mm, junction_.size());
+        for (std::uint32_t s = 0; s < junction_.size(); ++s)
+            segments_.insert(s, detail::bounding_box(segment(s)));
+    }
+
+    /// The nearest point of the input patch of `pair` to p (p itself when none is within reach).
+    Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach)
+    {
+        Vec3 best = p;
+        double nearest = std::numeric_limits<double>::max();
+        triangles_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
+        for (const std::uint32_t t : found_) {
+            if (unordered(input_.sides[t]) != pair) continue;
+            const Vec3 q = detail::closest_point_on_triangle(p, corners(t));
+            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
+        }
+        return best;
+    }
+
+    /// The nearest point of the input junction curves to p (p itself when none is within reach).
+    Vec3 onto_curve(const Vec3& p, double reach)
+    {
+        Vec3 best = p;
+        double nearest = std::numeric_limits<double>::max();
+        segments_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
+        for (const std::uint32_t s : found_) {
+            const Vec3 q = detail::closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
+            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
+        }
+        return best;
+    }
+
+private:
+    TriangleCorners corners(std::uint32_t t) const
+    {
+        const Triangle& tri = input_.triangles[t];
+        return {input_.vertices[tri[0]], input_.vertices[tri[1]], input_.vertices[tri[2]]};
+    }
+    TriangleCorners segment(std::uint32_t s) const
+    {
+        const Vec3& a = input_.vertices[junction_[s].first];
+        return {a, a, input_.vertices[junction_[s].second]};
+    }
+
+    const InterfaceComplex& input_;
+    TriangleGrid triangles_;
+    TriangleGrid segments_;
+    std::vector<Edge> junction_;
+    std::vector<std::uint32_t> found_;
+};
+
+class Remesher {
+public:
+    Remesher(InterfaceComplex&& complex, const InterfaceComplex& input, const RemeshOptions& options, double cell_mm,
+             RemeshReport& report)
+        : options_(options), report_(report),
+          editor_(std::move(complex),
+                  {.min_angle_deg = options.min_angle_deg,
+                   .max_normal_change_deg = options.max_normal_change_deg,
+                   .min_gap_mm = options.min_gap_mm},
+                  cell_mm),
+          reference_(input, cell_mm)
+    {
+    }
+
+    void run(const Progress& progress)
+    {
+        for (std::size_t i = 0; i < options_.iterations; ++i) {
+            split_long_edges();
+            collapse_short_edges();
+            editor_.rebuild_grid(2 * editor_.mean_edge_length());
+            flip_towards_valence_six();
+            relax();
+            progress.update("remesh", static_cast<double>(i + 1) / static_cast<double>(options_.iterations));
+        }
+    }
+
+    const ComplexEditor& editor() const { return editor_; }
+
+private:
+    /// The target length of edge ab: the smallest target of the patches around it.
+    double target(std::uint32_t a, std::uint32_t b) const
+    {
+        double length = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
+        for (const std::uint32_t t : editor_.star(a)) {
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
+            const auto it = options_.target_edge_mm_by_pair.find(unordered(editor_.side(t)));
+            if (it != options_.target_edge_mm_by_pair.end()) length = std::min(length, it->second);
+            const auto reversed = options_.target_edge_mm_by_pair.find({unordered(editor_.side(t)).second, unordered(editor_.side(t)).first});
+            if (reversed != options_.target_edge_mm_by_pair.end()) length = std::min(length, reversed->second);
+        }
+        return length;
+    }
+
+    std::vector<Edge> edges() const
+    {
+        std::vector<Edge> result;
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
+            if (!editor_.triangle_alive(t)) continue;
+            const Triangle& tri = editor_.triangle(t);
+            for (int k = 0; k < 3; ++k) result.push_back(std::minmax(tri[k], tri[(k + 1) % 3]));
+        }
+        std::sort(result.begin(), result.end());
+        result.erase(std::unique(result.begin(), result.end()), result.end());
+        return result;
+    }
+
+    double length(const Edge& e) const { return distance(editor_.position(e.first), editor_.position(e.second)); }
+
+    void split_long_edges()
+    {
+        std::vector<std::pair<double, Edge>> long_edges;
+        for (const Edge& e : edges())
+            if (const double l = length(e); l > 4.0 / 3.0 * target(e.first, e.second)) long_edges.push_back({-l, e});
+        std::sort(long_edges.begin(), long_edges.end());
+        for (const auto& [l, e] : long_edges) {
+            if (editor_.edge_multiplicity(e.first, e.second) == 0) continue;
+            if (editor_.try_split(e.first, e.second, 0.5 * (editor_.position(e.first) + editor_.position(e.second))))
+                ++report_.splits;
+            else
+                ++report_.refused;
+        }
+    }
+
+    /// Whether collapsing v into w keeps every edge at w below 4/3 of its target.
+    bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
+    {
+        for (const std::uint32_t u : editor_.neighbours(v))
+            if (u != w && distance(editor_.position(u), editor_.position(w)) > 4.0 / 3.0 * target(v, u)) return false;
+        return true;
+    }
+
+    bool may_collapse(std::uint32_t v, std::uint32_t w) const
+    {
+        const VertexKind kind = editor_.kind(v);
+        if (kind == VertexKind::corner) return false;
+        if (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3) return false;
+        return keeps_edges_short(v, w);
+    }
+
+    void collapse_short_edges()
+    {
+        std::vector<std::pair<double, Edge>> short_edges;
+        for (const Edge& e : edges())
+            if (const double l = length(e); l < 0.8 * target(e.first, e.second)) short_edges.push_back({l, e});
+        std::sort(short_edges.begin(), short_edges.end());
+        for (const auto& [l, e] : short_edges) {
+            const auto [a, b] = e;
+            if (!editor_.vertex_alive(a) || !editor_.vertex_alive(b) || editor_.edge_multiplicity(a, b) == 0) continue;
+            if (length(e) >= 0.8 * target(a, b)) continue;
+            if ((may_collapse(a, b) && editor_.try_collapse(a, b)) || (may_collapse(b, a) && editor_.try_collapse(b, a)))
+                ++report_.collapses;
+            else
+                ++report_.refused;
+        }
+    }
+
+    int valence_target(std::uint32_t v) const { return editor_.kind(v) == VertexKind::patch ? 6 : 4; }
+
+    int deviation(std::uint32_t v, int change) const
+    {
+        return std::abs(static_cast<int>(editor_.neighbours(v).size()) + change - valence_target(v));
+    }
+
+    void flip_towards_valence_six()
+    {
+        for (const Edge& e : edges()) {
+            const auto [v, w] = e;
+            if (editor_.edge_multiplicity(v, w) != 2) continue;
+            std::vector<std::uint32_t> apexes;
+            for (const std::uint32_t t : editor_.star(v)) {
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), w) == tri.end()) continue;
+                for (const std::uint32_t u : tri)
+                    if (u != v && u != w) apexes.push_back(u);
+            }
+            if (apexes.size() != 2) continue;
+            const int before = deviation(v, 0) + deviation(w, 0) + deviation(apexes[0], 0) + deviation(apexes[1], 0);
+            const int after = deviation(v, -1) + deviation(w, -1) + deviation(apexes[0], 1) + deviation(apexes[1], 1);
+            if (after >= before) continue;
+            if (editor_.try_flip(v, w)) ++report_.flips;
+            else ++report_.refused;
+        }
+    }
+
+    /// Area-weighted normal of v's star.
+    Vec3 normal_at(std::uint32_t v) const
+    {
+        Vec3 n{0, 0, 0};
+        for (const std::uint32_t t : editor_.star(v)) {
+            const TriangleCorners c = editor_.corners(t);
+            n = n + cross(c[1] - c[0], c[2] - c[0]);
+        }
+        const double length = norm(n);
+        return length > 0 ? (1.0 / length) * n : n;
+    }
+
+    void relax()
+    {
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) {
+            if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) continue;
+            const bool curve = editor_.kind(v) == VertexKind::curve;
+            const std::vector<std::uint32_t> ring = curve ? editor_.curve_neighbours(v) : editor_.neighbours(v);
+            Vec3 mean{0, 0, 0};
+            for (const std::uint32_t u : ring) mean = mean + editor_.position(u);
+            mean = (1.0 / static_cast<double>(ring.size())) * mean;
+            const Vec3& p = editor_.position(v);
+            Vec3 target_point = mean;
+            const double reach = 2 * target(v, ring.front()) + distance(p, mean);
+            if (curve) {
+                target_point = reference_.onto_curve(mean, reach);
+            } else {
+                const Vec3 n = normal_at(v);
+                const Vec3 tangential = p + (mean - p) - dot(mean - p, n) * n;
+                target_point = reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
+            }
+            if (editor_.try_move(v, target_point)) ++report_.moves;
+            else ++report_.refused;
+        }
+    }
+
+    const RemeshOptions& options_;
+    RemeshReport& report_;
+    ComplexEditor editor_;
+    Reference reference_;
+};
+
+/// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any
+/// input triangle), for the report.
+double distance_to_input(const InterfaceComplex& result, const InterfaceComplex& input, double cell_mm)
+{
+    Reference reference(input, cell_mm);
+    double largest = 0;
+    std::vector<char> seen(result.vertex_count(), 0);
+    for (std::size_t t = 0; t < result.triangle_count(); ++t)
+        for (const std::uint32_t v : result.triangles[t]) {
+            if (seen[v]) continue;
+            seen[v] = 1;
+            const Vec3& p = result.vertices[v];
+            const Vec3 q = reference.onto_patch(p, unordered(result.sides[t]), 4 * cell_mm);
+            largest = std::max(largest, distance(p, q));
+        }
+    return largest;
+}
+
+} // namespace
+
+RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, const Progress& progress)
+{
+    validate(options);
+    validate_indices(complex, "remesh input");
+    RemeshReport report;
+    report.triangles_before = complex.triangle_count();
+    report.min_angle_before_deg = smallest_angle_deg(complex);
+    const InterfaceComplex input = complex;
+    const double cell_mm = 2 * std::max(detail::mean_edge_length(complex), options.target_edge_mm);
+    Remesher remesher(std::move(complex), input, options, cell_mm, report);
+    remesher.run(progress);
+    complex = remesher.editor().result();
+    report.triangles_after = complex.triangle_count();
+    report.min_angle_after_deg = smallest_angle_deg(complex);
+    report.mean_edge_after_mm = detail::mean_edge_length(complex);
+    report.max_distance_mm = distance_to_input(complex, input, cell_mm);
+    progress.info("remesh", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; smallest angle ",
+                                   format_mm(report.min_angle_before_deg, 2), " -> ",
+                                   format_mm(report.min_angle_after_deg, 2), " deg"));
+    return report;
+}
+
+} // namespace tissuemesh::surface

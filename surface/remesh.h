@@ -1,0 +1,51 @@
+// Isotropic remeshing of an interface complex: well-shaped triangles of a target size on the same surfaces,
+// junction curves remeshed as curves, never an invalid complex.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <utility>
+
+#include "core/interface_complex.h"
+#include "core/progress.h"
+
+namespace tissuemesh::surface {
+
+/// Options of remesh(). Lengths in mm, angles in degrees.
+struct RemeshOptions {
+    double target_edge_mm = 0;  ///< target edge length (required unless every patch has one by pair)
+    /// Target edge length per tissue pair (either order), overriding target_edge_mm on that patch; an edge
+    /// takes the smallest target of the patches around it.
+    std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
+    std::size_t iterations = 5;          ///< split / collapse / flip / relax rounds
+    double min_angle_deg = 15;           ///< no edit may create an angle below this (unless not worse)
+    double max_normal_change_deg = 30;   ///< one edit may tilt a triangle at most this much
+    double min_gap_mm = 0.1;             ///< distance kept between patches (unless closer before)
+};
+
+/// What remesh() did.
+struct RemeshReport {
+    std::size_t triangles_before = 0;
+    std::size_t triangles_after = 0;
+    std::size_t splits = 0;
+    std::size_t collapses = 0;
+    std::size_t flips = 0;
+    std::size_t moves = 0;
+    std::size_t refused = 0;              ///< edits the validity checks refused
+    double min_angle_before_deg = 0;      ///< smallest triangle angle
+    double min_angle_after_deg = 0;
+    double mean_edge_after_mm = 0;
+    double max_distance_mm = 0;           ///< largest distance of a final vertex to the input surface
+};
+
+/// Remeshes `complex` in place towards edges of the target length (Botsch and Kobbelt 2004): split edges
+/// longer than 4/3 of it, collapse edges shorter than 4/5 of it, flip edges towards valence 6, and move
+/// vertices to the mean of their neighbours within the tangent plane, then back onto the input surface
+/// (patch vertices onto the input patch of the same tissue pair, junction vertices onto the input junction
+/// curves). Junction edges are split and collapsed along their curve; corners stay. Every edit goes
+/// through the validity checks of surface/detail/complex_editor.h, so a valid input stays valid.
+/// @pre  `complex` passes check_complex()      @post it still does, with the same topology per tissue
+/// @throws InputError when no target length is given or options are out of range
+RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, const Progress& progress = {});
+
+} // namespace tissuemesh::surface
