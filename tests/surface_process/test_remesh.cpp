@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 #include <iostream>
 
+#include <chrono>
+
 #include "core/error.h"
+#include "io/read_label_image.h"
+#include "tests/support/cli.h"
 #include "image/phantom.h"
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
@@ -74,6 +78,41 @@ TEST(SurfaceChain, LongSpheres4At2mm)
     }
     expect_same_tissues(before, after);
     EXPECT_GE(extracted, 10 * complex.triangle_count());
+}
+
+} // namespace
+} // namespace tissuemesh
+
+namespace tissuemesh {
+namespace {
+
+/// extract -> smooth -> decimate -> remesh on `image`; every step's output must pass the checker with the
+/// same pieces per tissue. Prints the figures.
+void check_chain(const std::string& what, const LabelImage& image, std::size_t smooth_iterations, double edge_mm)
+{
+    InterfaceComplex complex = surface::extract_interfaces(image);
+    const surface::CheckReport before = surface::check_complex(complex);
+    const std::size_t extracted = complex.triangle_count();
+    const auto start = std::chrono::steady_clock::now();
+    surface::smooth(complex, image, {.iterations = smooth_iterations});
+    expect_same_tissues(before, surface::check_complex(complex));
+    surface::decimate(complex, {.max_distance_mm = 0.5 * edge_mm});
+    expect_same_tissues(before, surface::check_complex(complex));
+    const surface::RemeshReport remeshed = surface::remesh(complex, {.target_edge_mm = edge_mm});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    expect_same_tissues(before, surface::check_complex(complex));
+    std::cout << "[ figures  ] " << what << ": " << extracted << " -> " << complex.triangle_count()
+              << " triangles in " << seconds << " s (smooth " << smooth_iterations << " iterations), smallest angle "
+              << remeshed.min_angle_after_deg << " deg\n";
+}
+
+TEST(SurfaceChain, LongEveryPhantomAndTheRealSamples)
+{
+    for (const auto& [name, voxel] : std::vector<std::pair<std::string, double>>{
+             {"spheres4", 4.0}, {"junction", 2.0}, {"thin", 1.0}, {"boxes", 2.0}, {"ellipsoids", 2.0}})
+        check_chain(name, image::make_phantom(name, {.voxel_mm = voxel}).image, 10, 2 * voxel);
+    check_chain("liver.inr.gz", io::read_label_image(testing::data_path("samples/liver.inr.gz")), 5, 3.0);
+    check_chain("usc19-5_head.nii.gz", io::read_label_image(testing::data_path("samples/usc19-5_head.nii.gz")), 2, 3.0);
 }
 
 } // namespace
