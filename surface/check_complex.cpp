@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "surface/detail/cgal_intersections.h"
+#include "surface/detail/mesh_measures.h"
 #include "surface/detail/check_topology.h"
 #include "surface/detail/defect_log.h"
 
@@ -16,7 +17,6 @@ namespace {
 
 using detail::DefectLog;
 constexpr std::uint32_t no_triangle = std::numeric_limits<std::uint32_t>::max();
-constexpr double pi = 3.14159265358979323846;
 
 /// Maps every vertex to the lowest index at the same coordinates, and logs every further vertex used
 /// by a triangle there: triangles must share vertex indices, or the tissues' surfaces are open.
@@ -65,18 +65,6 @@ Defect triangle_defect(const DefectLog& log, std::uint32_t t, const std::string&
     return defect;
 }
 
-/// Smallest interior angle of a triangle, degrees.
-double smallest_angle_deg(const std::array<Vec3, 3>& p)
-{
-    double smallest = 180;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 u = p[(k + 1) % 3] - p[k];
-        const Vec3 w = p[(k + 2) % 3] - p[k];
-        smallest = std::min(smallest, std::atan2(norm(cross(u, w)), dot(u, w)) * 180.0 / pi);
-    }
-    return smallest;
-}
-
 /// Logs degenerate triangles (a repeated vertex once coincident vertices are merged, or exactly
 /// collinear vertices) and warns about needles; returns which triangles are degenerate.
 std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merged, double needle_angle_deg)
@@ -94,7 +82,7 @@ std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merg
             });
             continue;
         }
-        const double angle = smallest_angle_deg(p);
+        const double angle = detail::smallest_angle_deg(p);
         if (angle < needle_angle_deg)
             log.add(DefectKind::needle_triangle, [&] {
                 return triangle_defect(log, t, concat("needle (smallest angle ", format_mm(angle, 4), " deg)"));

@@ -18,7 +18,6 @@ using detail::TriangleGrid;
 using detail::VertexKind;
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
-constexpr double pi = 3.14159265358979323846;
 
 void validate(const RemeshOptions& options)
 {
@@ -35,21 +34,11 @@ void validate(const RemeshOptions& options)
 
 std::pair<Label, Label> unordered(const LabelPair& side) { return std::minmax(side.from, side.to); }
 
-double smallest_angle_deg(const TriangleCorners& p)
-{
-    double smallest = 180;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 u = p[(k + 1) % 3] - p[k], w = p[(k + 2) % 3] - p[k];
-        smallest = std::min(smallest, std::atan2(norm(cross(u, w)), dot(u, w)) * 180.0 / pi);
-    }
-    return smallest;
-}
-
 double smallest_angle_deg(const InterfaceComplex& complex)
 {
     double smallest = 180;
     for (const Triangle& t : complex.triangles)
-        smallest = std::min(smallest, smallest_angle_deg({complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]}));
+        smallest = std::min(smallest, detail::smallest_angle_deg({complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]}));
     return smallest;
 }
 

@@ -1,13 +1,10 @@
 // tm-decimate: fewer triangles where the surface is flat (or to a target size), never an invalid complex.
-#include <chrono>
 #include <string>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "io/surface_io.h"
-#include "surface/check_complex.h"
 #include "surface/decimate.h"
 #include "tools/run_tool.h"
+#include "tools/surface_step.h"
 
 using namespace tissuemesh;
 
@@ -47,16 +44,11 @@ int main(int argc, char** argv)
         },
         [&](tools::ToolContext& ctx) {
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
-            const std::string extension = full_extension(output);
-            if (extension != ".ply" && extension != ".vtp")
-                throw InputError(concat(output, ": the interface complex is written as .ply or .vtp (label pairs per "
-                                        "triangle); other formats would lose the tissues"));
-            InterfaceComplex complex = io::read_surface(input);
-            surface::require_fit_for_tetrahedralization(complex, input);
-            const auto start = std::chrono::steady_clock::now();
-            const surface::DecimateReport report = surface::decimate(complex, options, ctx.progress);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            surface::require_fit_for_tetrahedralization(complex, concat(output, " (decimated)"));
+            tools::require_complex_output(output);
+            InterfaceComplex complex = tools::read_fit_complex(input);
+            surface::DecimateReport report;
+            const double seconds = tools::run_checked_step(complex, output, "decimated",
+                                                           [&] { report = surface::decimate(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
                            format_mm(seconds, 2), " s)"));
             io::write_surface(complex, output);

@@ -1,16 +1,13 @@
 // tm-remesh: well-shaped triangles of a target size on the same interfaces, junction curves kept.
-#include <chrono>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
-#include "io/surface_io.h"
-#include "surface/check_complex.h"
 #include "surface/remesh.h"
 #include "tools/run_tool.h"
+#include "tools/surface_step.h"
 
 using namespace tissuemesh;
 
@@ -81,17 +78,12 @@ int main(int argc, char** argv)
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
-            const std::string extension = full_extension(output);
-            if (extension != ".ply" && extension != ".vtp")
-                throw InputError(concat(output, ": the interface complex is written as .ply or .vtp (label pairs per "
-                                        "triangle); other formats would lose the tissues"));
-            InterfaceComplex complex = io::read_surface(input);
+            tools::require_complex_output(output);
+            InterfaceComplex complex = tools::read_fit_complex(input);
             options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, complex);
-            surface::require_fit_for_tetrahedralization(complex, input);
-            const auto start = std::chrono::steady_clock::now();
-            const surface::RemeshReport report = surface::remesh(complex, options, ctx.progress);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            surface::require_fit_for_tetrahedralization(complex, concat(output, " (remeshed)"));
+            surface::RemeshReport report;
+            const double seconds = tools::run_checked_step(complex, output, "remeshed",
+                                                           [&] { report = surface::remesh(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles, smallest angle ",
                            format_mm(report.min_angle_before_deg, 3), " -> ", format_mm(report.min_angle_after_deg, 3),
                            " deg (", format_mm(seconds, 2), " s)"));

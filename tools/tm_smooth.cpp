@@ -1,15 +1,12 @@
 // tm-smooth: smooths an interface complex (Taubin lambda|mu), every vertex held to the voxel evidence and
 // every move checked, so the output is as fit for tetrahedralization as the input.
-#include <chrono>
 #include <string>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/read_label_image.h"
-#include "io/surface_io.h"
-#include "surface/check_complex.h"
 #include "surface/smooth.h"
 #include "tools/run_tool.h"
+#include "tools/surface_step.h"
 
 using namespace tissuemesh;
 
@@ -40,17 +37,12 @@ int main(int argc, char** argv)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
-            const std::string extension = full_extension(output);
-            if (extension != ".ply" && extension != ".vtp")
-                throw InputError(concat(output, ": the interface complex is written as .ply or .vtp (label pairs per "
-                                        "triangle); other formats would lose the tissues"));
-            InterfaceComplex complex = io::read_surface(input);
-            surface::require_fit_for_tetrahedralization(complex, input);
+            tools::require_complex_output(output);
+            InterfaceComplex complex = tools::read_fit_complex(input);
             const LabelImage image = io::read_label_image(image_path);
-            const auto start = std::chrono::steady_clock::now();
-            const surface::SmoothReport report = surface::smooth(complex, image, options, ctx.progress);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            surface::require_fit_for_tetrahedralization(complex, concat(output, " (smoothed)"));
+            surface::SmoothReport report;
+            const double seconds = tools::run_checked_step(complex, output, "smoothed",
+                                                           [&] { report = surface::smooth(complex, image, options, ctx.progress); });
             ctx.log(concat(report.moves, " moves in ", report.iterations, " iterations (", format_mm(seconds, 2),
                            " s); mean displacement ", format_mm(report.mean_displacement_mm, 3), " mm"));
             io::write_surface(complex, output);

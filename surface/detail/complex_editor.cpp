@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "surface/detail/cgal_intersections.h"
+#include "surface/detail/mesh_measures.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
@@ -25,17 +26,6 @@ bool same_vertex_set(Triangle a, Triangle b)
 }
 
 Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
-
-double smallest_angle_deg(const TriangleCorners& p)
-{
-    double smallest = 180;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 u = p[(k + 1) % 3] - p[k];
-        const Vec3 w = p[(k + 2) % 3] - p[k];
-        smallest = std::min(smallest, std::atan2(norm(cross(u, w)), dot(u, w)) * 180.0 / pi);
-    }
-    return smallest;
-}
 
 double angle_between_deg(const Vec3& a, const Vec3& b)
 {
