@@ -18,11 +18,10 @@ bool shares_vertex(const Triangle& a, const Triangle& b)
     return contains(b, a[0]) || contains(b, a[1]) || contains(b, a[2]);
 }
 
-bool same_vertex_set(Triangle a, Triangle b)
+/// Whether a and b use the same three vertices (triangles never repeat a vertex).
+bool same_vertex_set(const Triangle& a, const Triangle& b)
 {
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    return a == b;
+    return contains(b, a[0]) && contains(b, a[1]) && contains(b, a[2]);
 }
 
 Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
