@@ -34,14 +34,27 @@ std::vector<Label> tissues_at(const ComplexEditor& editor, std::uint32_t v)
     return tissues;
 }
 
-/// The umbrella vector: mean of the neighbours the vertex is smoothed towards, minus its position.
+/// The umbrella vector: mean of the neighbours the vertex is smoothed towards, minus its position. Inside
+/// a patch only its component along the vertex normal: the tangential part would only slide vertices
+/// over the surface (and the marching-cubes triangles are already well shaped; remeshing is a later step),
+/// so flat places do not move at all and cost nothing.
 Vec3 umbrella(const ComplexEditor& editor, std::uint32_t v)
 {
-    const std::vector<std::uint32_t> ring =
-        editor.kind(v) == VertexKind::curve ? editor.curve_neighbours(v) : editor.neighbours(v);
+    const bool curve = editor.kind(v) == VertexKind::curve;
+    const std::vector<std::uint32_t> ring = curve ? editor.curve_neighbours(v) : editor.neighbours(v);
     Vec3 mean{0, 0, 0};
     for (const std::uint32_t u : ring) mean = mean + editor.position(u);
-    return (1.0 / static_cast<double>(ring.size())) * mean - editor.position(v);
+    const Vec3 shift = (1.0 / static_cast<double>(ring.size())) * mean - editor.position(v);
+    if (curve) return shift;
+    Vec3 normal{0, 0, 0};
+    for (const std::uint32_t t : editor.star(v)) {
+        const detail::TriangleCorners c = editor.corners(t);
+        normal = normal + cross(c[1] - c[0], c[2] - c[0]);
+    }
+    const double length = norm(normal);
+    if (length == 0) return shift;
+    const Vec3 n = (1.0 / length) * normal;
+    return dot(shift, n) * n;
 }
 
 /// One Jacobi step of factor `factor`: displacements from the current positions, applied vertex by
@@ -54,6 +67,7 @@ void step(ComplexEditor& editor, const detail::VoxelEvidence& evidence, const st
         if (editor.kind(v) != VertexKind::corner && editor.vertex_alive(v)) shift[v] = factor * umbrella(editor, v);
     for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
         if (editor.kind(v) == VertexKind::corner || !editor.vertex_alive(v)) continue;
+        if (dot(shift[v], shift[v]) < 1e-20) continue;  // flat here: nothing to do
         Vec3 target = editor.position(v) + shift[v];
         if (!evidence.allows(target, tissues[v])) {
             target = editor.position(v) + 0.5 * shift[v];

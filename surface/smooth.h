@@ -37,7 +37,8 @@ struct SmoothReport {
 };
 
 /// Smooths `complex` in place by Taubin's lambda|mu filter with uniform (umbrella) weights: vertices
-/// inside a patch move towards the mean of their neighbours; vertices on a junction curve towards the
+/// inside a patch move along their normal by the normal part of the step towards the mean of their
+/// neighbours (no tangential sliding: flat places stay, shapes stay); vertices on a junction curve towards the
 /// mean of their two curve neighbours (1-D smoothing along the curve, so they stay on it); corners of
 /// junction curves stay. Every move is checked against `image` (SmoothOptions::max_depth_voxels; a
 /// refused move is retried at half length) and against the complex (no fold, no intersection, no gap

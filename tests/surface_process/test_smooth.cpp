@@ -41,10 +41,10 @@ void check_smoothing(const std::string& phantom_name, double voxel_mm, double ma
 
 namespace {
 
-// Figures measured (10 Taubin iterations): junction 2 mm max/mean 0.91/0.233 -> 1.17/0.190 voxel; thin 1 mm
-// 0.90/0.267 -> 1.17/0.252 voxel. Junction-curve vertices may lie a little over a voxel from the exact
+// Figures measured (10 Taubin iterations, normal component inside patches): junction 2 mm max/mean
+// 0.91/0.233 -> 1.17/0.169 voxel. Junction-curve vertices may lie a little over a voxel from the exact
 // interface of one of their tissue pairs while staying within half a voxel of all their tissues' voxels.
-TEST(Smooth, JunctionAt2mm) { check_smoothing("junction", 2.0, 1.25, 0.2); }
+TEST(Smooth, JunctionAt2mm) { check_smoothing("junction", 2.0, 1.25, 0.18); }
 
 TEST(Smooth, LongThinAt1mm) { check_smoothing("thin", 1.0, 1.25, 0.26); }
 
