@@ -52,13 +52,16 @@ TEST(PipelineSpheres, LongSmoothedSurfacesAt2mm)
     surface::decimate(complex, {.max_distance_mm = 1.0});
     surface::remesh(complex, {.target_edge_mm = 3.0});
     volume::TetrahedralizeReport report;
-    const TetMesh mesh = volume::tetrahedralize(complex, {}, {}, &report);
+    // Tets up to 10 mm^3 as in the icosphere tests (test_four_shell.cpp): large brain tets around the
+    // dipole cost more accuracy than the surfaces.
+    const TetMesh mesh = volume::tetrahedralize(complex, {.max_volume_mm3 = 10}, {}, &report);
     std::printf("[pipeline] %zu triangles -> %zu tets, %zu nodes, min dihedral %.2f deg\n", complex.triangle_count(),
                 mesh.tet_count(), mesh.vertex_count(), report.min_dihedral_deg);
     const auto [rdm, mag] = worst_agreement(mesh, "spheres4 2 mm, smoothed + decimated + remeshed (3 mm)");
-    // Measured on the terraced (unsmoothed) 2 mm surfaces: RDM 0.18. The target (0.02) is for 1 mm.
-    EXPECT_LT(rdm, 0.10);
-    EXPECT_LT(mag, 0.10);
+    // Measured: RDM 0.014-0.038 and |MAG - 1| <= 0.006 over the six dipoles (121 k nodes, 713 k tets); on the
+    // terraced (unsmoothed) 2 mm surfaces the RDM was 0.18. The target (RDM 0.02) is for 1 mm voxels.
+    EXPECT_LT(rdm, 0.06);
+    EXPECT_LT(mag, 0.02);
 }
 
 } // namespace
