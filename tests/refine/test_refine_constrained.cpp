@@ -1,0 +1,85 @@
+// Constrained refinement of a tm-tetra mesh: interfaces kept face by face, labels never cross them, and the
+// total error volume never rises.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "image/phantom.h"
+#include "surface/extract_interfaces.h"
+#include "volume/assess.h"
+#include "volume/check_mesh.h"
+#include "volume/refine.h"
+#include "volume/tetrahedralize.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+struct Meshed {
+    LabelImage image;
+    TetMesh mesh;
+};
+
+/// The junction phantom (three tissues meeting along a circle) at 4 mm through tm-extract's and tm-tetra's steps.
+const Meshed& junction()
+{
+    static const Meshed meshed = [] {
+        Meshed m;
+        m.image = image::make_phantom("junction", {.voxel_mm = 4}).image;
+        m.mesh = tetrahedralize(surface::extract_interfaces(m.image));
+        return m;
+    }();
+    return meshed;
+}
+
+std::map<Label, double> tissue_volumes(const TetMesh& mesh)
+{
+    std::map<Label, double> volumes;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) volumes[mesh.tet_labels[t]] += signed_volume(mesh, t);
+    return volumes;
+}
+
+class RefineConstrained : public ::testing::TestWithParam<Placement> {};
+
+TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
+{
+    const Meshed& m = junction();
+    RefineReport report;
+    const TetMesh refined = refine(m.image, &m.mesh, {.placement = GetParam(), .max_iterations = 2}, {}, &report);
+    ASSERT_EQ(report.iterations.size(), 3u) << report.stop_reason;
+    EXPECT_GT(refined.vertices.size(), m.mesh.vertices.size());
+    const MeshCheckReport check = check_mesh(refined, &m.image);
+    EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
+    // The very same interface faces: old nodes keep their indices and TetGen (-Y) splits no face.
+    EXPECT_EQ(refined.faces, m.mesh.faces);
+    EXPECT_EQ(refined.face_sides, m.mesh.face_sides);
+    for (std::size_t v = 0; v < m.mesh.vertices.size(); ++v) ASSERT_EQ(refined.vertices[v], m.mesh.vertices[v]);
+    // Tissue regions unchanged: volumes agree to round-off (different tets summed).
+    const auto before = tissue_volumes(m.mesh), after = tissue_volumes(refined);
+    ASSERT_EQ(before.size(), after.size());
+    for (const auto& [label, volume] : before) EXPECT_NEAR(after.at(label), volume, 1e-9 * volume) << "tissue " << label;
+    // The same regions hold the same voxel centres: the error volume is exactly that of the start, every round.
+    const double start = report.iterations.front().total_error_volume_mm3;
+    for (const RefineIteration& it : report.iterations) EXPECT_LE(it.total_error_volume_mm3, start) << "round " << it.iteration;
+    EXPECT_EQ(assess_elements(refined, m.image).total_error_volume_mm3, start);
+}
+
+INSTANTIATE_TEST_SUITE_P(Placements, RefineConstrained,
+                         ::testing::Values(Placement::centroid, Placement::incentre, Placement::longest_edge,
+                                           Placement::material_half_edges, Placement::material_centroid),
+                         [](const ::testing::TestParamInfo<Placement>& param) {
+                             std::string name = placement_name(param.param);
+                             std::erase(name, '-');
+                             return name;
+                         });
+
+TEST(RefineInput, BadOptionsAndNamesAreInputErrors)
+{
+    EXPECT_THROW(refine(LabelImage{}, nullptr), InputError);
+    EXPECT_THROW(refine(junction().image, nullptr, {.batch_fraction = 2}), InputError);
+    EXPECT_THROW(parse_placement("circumcentre"), InputError);
+    EXPECT_EQ(parse_placement("material-centroid"), Placement::material_centroid);
+    TetMesh empty;
+    EXPECT_THROW(refine(junction().image, &empty), InputError);
+}
+
+} // namespace
+} // namespace tissuemesh::volume

@@ -1,0 +1,149 @@
+#include "volume/detail/refine_mesh.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/error.h"
+#include "volume/detail/tetgen_adapter.h"
+
+namespace tissuemesh::volume::detail {
+namespace {
+
+constexpr double cone_tolerance = -1e-9;  // a direction on a corner's boundary still counts as inside
+
+std::vector<double> flatten(const std::vector<Vec3>& points)
+{
+    std::vector<double> flat;
+    flat.reserve(3 * points.size());
+    for (const Vec3& p : points) flat.insert(flat.end(), p.begin(), p.end());
+    return flat;
+}
+
+Vec3 point_at(const std::vector<double>& flat, int index) { return {flat[3 * index], flat[3 * index + 1], flat[3 * index + 2]}; }
+
+/// TetGen's tets as positively oriented Tets over `vertices`.
+std::vector<Tet> oriented(const TetgenOutput& out, const std::vector<Vec3>& vertices)
+{
+    std::vector<Tet> tets;
+    tets.reserve(out.tets.size());
+    for (const auto& t : out.tets) {
+        Tet tet{static_cast<std::uint32_t>(t[0]), static_cast<std::uint32_t>(t[1]), static_cast<std::uint32_t>(t[2]),
+                static_cast<std::uint32_t>(t[3])};
+        const Vec3& a = vertices[tet[0]];
+        if (dot(vertices[tet[1]] - a, cross(vertices[tet[2]] - a, vertices[tet[3]] - a)) < 0) std::swap(tet[2], tet[3]);
+        tets.push_back(tet);
+    }
+    return tets;
+}
+
+/// Old tets around each old node (CSR).
+struct NodeTets {
+    std::vector<std::size_t> offsets;
+    std::vector<std::uint32_t> tets;
+};
+
+NodeTets node_tets(const TetMesh& mesh)
+{
+    NodeTets result;
+    result.offsets.assign(mesh.vertices.size() + 1, 0);
+    for (const Tet& tet : mesh.tets)
+        for (const std::uint32_t v : tet) ++result.offsets[v + 1];
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) result.offsets[v + 1] += result.offsets[v];
+    result.tets.resize(result.offsets.back());
+    std::vector<std::size_t> next(result.offsets.begin(), result.offsets.end() - 1);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        for (const std::uint32_t v : mesh.tets[t]) result.tets[next[v]++] = static_cast<std::uint32_t>(t);
+    return result;
+}
+
+/// How deep direction `d` from node `v` lies in the corner of old tet `t` at `v`: the smallest of its
+/// coordinates along the tet's three edges from `v` (>= 0 inside the corner).
+double corner_depth(const TetMesh& mesh, std::uint32_t t, std::uint32_t v, const Vec3& d)
+{
+    std::array<Vec3, 3> edge;
+    int e = 0;
+    for (const std::uint32_t w : mesh.tets[t])
+        if (w != v) edge[e++] = mesh.vertices[w] - mesh.vertices[v];
+    const double whole = dot(edge[0], cross(edge[1], edge[2]));
+    if (whole == 0) return -std::numeric_limits<double>::infinity();
+    const double a = dot(d, cross(edge[1], edge[2])) / whole, b = dot(edge[0], cross(d, edge[2])) / whole,
+                 c = dot(edge[0], cross(edge[1], d)) / whole;
+    return std::min({a, b, c}) / (std::abs(a) + std::abs(b) + std::abs(c));
+}
+
+/// The old tet whose corner at node `v` holds the direction towards `target`, or -1.
+std::int64_t old_tet_towards(const TetMesh& mesh, const NodeTets& around, std::uint32_t v, const Vec3& target)
+{
+    const Vec3 d = target - mesh.vertices[v];
+    std::int64_t best = -1;
+    double best_depth = cone_tolerance;
+    for (std::size_t k = around.offsets[v]; k < around.offsets[v + 1]; ++k) {
+        const double depth = corner_depth(mesh, around.tets[k], v, d);
+        if (depth >= best_depth) best_depth = depth, best = around.tets[k];
+    }
+    return best;
+}
+
+} // namespace
+
+std::vector<Tet> delaunay_tets(const std::vector<Vec3>& points)
+{
+    const TetgenOutput out = run_tetgen({flatten(points), {}, {}, "zQ"});
+    return oriented(out, points);
+}
+
+TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points, const std::vector<std::uint32_t>& source_tets)
+{
+    TetgenInput input;
+    input.points = flatten(mesh.vertices);
+    const std::vector<double> added = flatten(points);
+    input.points.insert(input.points.end(), added.begin(), added.end());
+    for (const Triangle& face : mesh.faces)
+        input.triangles.push_back({static_cast<int>(face[0]), static_cast<int>(face[1]), static_cast<int>(face[2])});
+    // p: a PLC (the faces); Y: no Steiner point on them; M: no merging of coplanar faces; z: zero-based.
+    input.switches = "pzQMY";
+    const TetgenOutput out = run_tetgen(input);
+
+    TetMesh result;
+    result.names = mesh.names, result.faces = mesh.faces, result.face_sides = mesh.face_sides;
+    for (int v = 0; v < static_cast<int>(out.points.size() / 3); ++v) result.vertices.push_back(point_at(out.points, v));
+    const std::size_t old_nodes = mesh.vertices.size(), placed = old_nodes + points.size();
+    const NodeTets around = node_tets(mesh);
+    for (const Tet& tet : oriented(out, result.vertices)) {
+        std::int64_t source = -1;
+        bool any_known = false;
+        for (const std::uint32_t v : tet) {
+            if (v >= old_nodes && v < placed) source = source_tets[v - old_nodes], any_known = true;
+            if (source >= 0) break;
+            if (v >= old_nodes) continue;
+            any_known = true;
+            const Vec3 centroid = 0.25 * (result.vertices[tet[0]] + result.vertices[tet[1]] + result.vertices[tet[2]] + result.vertices[tet[3]]);
+            source = old_tet_towards(mesh, around, v, centroid);
+        }
+        if (!any_known)
+            throw AlgorithmError("TetGen made a tetrahedron of Steiner points only while refining; its tissue is unknown. "
+                                 "Refine with a smaller --batch, or remesh with tm-tetra");
+        if (source < 0) continue;  // in a hole of the old mesh
+        result.tets.push_back(tet);
+        result.tet_labels.push_back(mesh.tet_labels[static_cast<std::size_t>(source)]);
+    }
+    return result;
+}
+
+void drop_unused_nodes(TetMesh& mesh)
+{
+    constexpr std::uint32_t unused = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> new_index(mesh.vertices.size(), unused);
+    for (const Tet& tet : mesh.tets)
+        for (const std::uint32_t v : tet) new_index[v] = 0;
+    std::uint32_t next = 0;
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+        if (new_index[v] != unused) mesh.vertices[next] = mesh.vertices[v], new_index[v] = next++;
+    mesh.vertices.resize(next);
+    for (Tet& tet : mesh.tets)
+        for (std::uint32_t& v : tet) v = new_index[v];
+    for (Triangle& face : mesh.faces)
+        for (std::uint32_t& v : face) v = new_index[v];
+}
+
+} // namespace tissuemesh::volume::detail

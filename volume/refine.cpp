@@ -1,0 +1,283 @@
+#include "volume/refine.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "volume/detail/refine_mesh.h"
+#include "volume/detail/refine_placement.h"
+#include "volume/mark_interfaces.h"
+
+namespace tissuemesh::volume {
+namespace {
+
+/// What refine() keeps of a tet's assessment between rounds.
+struct TetState {
+    double error_mm3 = 0;   ///< error volume for the tet's tissue (an estimate when sampled)
+    double key = 0;         ///< quality key, larger = worse
+    bool sampled = false;   ///< holds no voxel centre: error_mm3 is not in the totals
+};
+
+/// A tet by its sorted node indices, to recognise the tets a rebuild left unchanged.
+struct TetKeyHash {
+    std::size_t operator()(const Tet& tet) const
+    {
+        std::uint64_t h = 0;
+        for (const std::uint32_t v : tet) h = (h ^ v) * 0x9E3779B97F4A7C15ull;
+        return static_cast<std::size_t>(h ^ (h >> 31));
+    }
+};
+
+Tet sorted(Tet tet)
+{
+    std::sort(tet.begin(), tet.end());
+    return tet;
+}
+
+struct Refinement {
+    const LabelImage& image;
+    const RefineOptions& options;
+    bool constrained;
+    TetMesh mesh;
+    std::vector<TetState> state;  ///< #T, like mesh.tets
+};
+
+/// Assesses the tets listed in `which` (all nodes kept, so rasterization's tie rule sees the same faces as
+/// in the whole mesh). Delaunay-only: each takes its majority tissue.
+void assess_tets(Refinement& r, const std::vector<std::uint32_t>& which)
+{
+    if (which.empty()) return;
+    TetMesh part;
+    part.vertices = r.mesh.vertices;
+    for (const std::uint32_t t : which) part.tets.push_back(r.mesh.tets[t]), part.tet_labels.push_back(r.mesh.tet_labels[t]);
+    const Assessment a = assess_elements(part, r.image, r.options.assess);
+    const double per_voxel = r.options.assess.error_weight / r.image.voxel_volume_mm3();
+    for (std::size_t k = 0; k < which.size(); ++k) {
+        TetState& s = r.state[which[k]];
+        s.sampled = a.sampled[k] != 0;
+        s.error_mm3 = a.error_volume_mm3[k];
+        s.key = a.quality_key[k];
+        if (!r.constrained) {
+            // The key's error term, moved from the placeholder tissue to the majority.
+            r.mesh.tet_labels[which[k]] = a.majority[k];
+            s.key -= per_voxel * (a.error_volume_mm3[k] - a.majority_error_volume_mm3[k]);
+            s.error_mm3 = a.majority_error_volume_mm3[k];
+        }
+    }
+}
+
+/// Carries the state of unchanged tets over from `old` and assesses the new ones; returns how many.
+std::size_t reassess(Refinement& r, const TetMesh& old, const std::vector<TetState>& old_state)
+{
+    std::unordered_map<Tet, std::uint32_t, TetKeyHash> before;
+    before.reserve(old.tets.size());
+    for (std::size_t t = 0; t < old.tets.size(); ++t) before.emplace(sorted(old.tets[t]), static_cast<std::uint32_t>(t));
+    r.state.assign(r.mesh.tets.size(), {});
+    std::vector<std::uint32_t> changed;
+    for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) {
+        const auto found = before.find(sorted(r.mesh.tets[t]));
+        if (found == before.end()) {
+            changed.push_back(static_cast<std::uint32_t>(t));
+            continue;
+        }
+        r.state[t] = old_state[found->second];
+        r.mesh.tet_labels[t] = old.tet_labels[found->second];
+    }
+    assess_tets(r, changed);
+    return changed.size();
+}
+
+RefineIteration summarize(const Refinement& r, std::size_t iteration)
+{
+    RefineIteration it;
+    it.iteration = iteration, it.nodes = r.mesh.vertices.size(), it.tets = r.mesh.tets.size();
+    for (const TetState& s : r.state) {
+        if (!s.sampled) it.total_error_volume_mm3 += s.error_mm3;
+        it.worst_quality_key = std::max(it.worst_quality_key, s.key);
+    }
+    return it;
+}
+
+/// The tets to refine this round: worst keys first (Delaunay-only: only tets with an error).
+std::vector<std::uint32_t> select_batch(const Refinement& r, std::size_t budget)
+{
+    std::vector<std::uint32_t> candidates;
+    for (std::size_t t = 0; t < r.state.size(); ++t)
+        if (r.constrained || r.state[t].error_mm3 > 0) candidates.push_back(static_cast<std::uint32_t>(t));
+    const auto wanted = std::max(r.options.min_batch, static_cast<std::size_t>(std::ceil(r.options.batch_fraction * static_cast<double>(r.state.size()))));
+    const std::size_t count = std::min({wanted, budget, candidates.size()});
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(count), candidates.end(),
+                      [&](std::uint32_t a, std::uint32_t b) { return r.state[a].key > r.state[b].key || (r.state[a].key == r.state[b].key && a < b); });
+    candidates.resize(count);
+    return candidates;
+}
+
+/// New nodes spaced at least `min_distance` apart (and from their tet's corners), with their source tets.
+struct NewNodes {
+    std::vector<Vec3> points;
+    std::vector<std::uint32_t> sources;
+};
+
+NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batch, double min_distance)
+{
+    NewNodes nodes;
+    std::unordered_map<Tet, std::vector<std::uint32_t>, TetKeyHash> grid;  // cell (x, y, z, 0) -> node numbers
+    auto cell = [&](const Vec3& p, int dx, int dy, int dz) {
+        return Tet{static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[0] / min_distance)) + dx),
+                   static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[1] / min_distance)) + dy),
+                   static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[2] / min_distance)) + dz), 0};
+    };
+    for (const std::uint32_t t : batch) {
+        std::array<Vec3, 4> corners;
+        for (int c = 0; c < 4; ++c) corners[c] = r.mesh.vertices[r.mesh.tets[t][c]];
+        const Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
+        bool free = std::all_of(corners.begin(), corners.end(), [&](const Vec3& c) { return distance(c, p) >= min_distance; });
+        for (int d = 0; d < 27 && free; ++d) {
+            const auto found = grid.find(cell(p, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1));
+            if (found == grid.end()) continue;
+            for (const std::uint32_t other : found->second) free = free && distance(nodes.points[other], p) >= min_distance;
+        }
+        if (!free) continue;
+        grid[cell(p, 0, 0, 0)].push_back(static_cast<std::uint32_t>(nodes.points.size()));
+        nodes.points.push_back(p);
+        nodes.sources.push_back(t);
+    }
+    return nodes;
+}
+
+/// The Delaunay mesh of a lattice over the image's world box (corners included), tissues by majority.
+void start_delaunay(Refinement& r)
+{
+    const auto [low, high] = r.image.world_bounds_mm();
+    const double extent = std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2]});
+    const double spacing = r.options.initial_spacing_mm > 0 ? r.options.initial_spacing_mm : extent / 4;
+    std::array<int, 3> steps;
+    for (int a = 0; a < 3; ++a) steps[a] = std::max(1, static_cast<int>(std::ceil((high[a] - low[a]) / spacing - 1e-9)));
+    for (int k = 0; k <= steps[2]; ++k)
+        for (int j = 0; j <= steps[1]; ++j)
+            for (int i = 0; i <= steps[0]; ++i) {
+                const std::array<int, 3> n{i, j, k};
+                Vec3 p;
+                for (int a = 0; a < 3; ++a) p[a] = low[a] + (high[a] - low[a]) * n[a] / steps[a];
+                r.mesh.vertices.push_back(p);
+            }
+    r.mesh.names = r.image.names();
+    r.mesh.tets = detail::delaunay_tets(r.mesh.vertices);
+    r.mesh.tet_labels.assign(r.mesh.tets.size(), r.options.assess.background);
+}
+
+void validate(const LabelImage& image, const TetMesh* constrained, const RefineOptions& o)
+{
+    if (image.empty()) throw InputError("label image is empty; give the image to refine against");
+    if (!(o.batch_fraction >= 0 && o.batch_fraction <= 1))
+        throw InputError(concat("batch fraction ", o.batch_fraction, " is outside 0..1; 0.05 refines the worst 5% per round"));
+    for (const double value : {o.target_error_mm3, o.target_error_percent, o.initial_spacing_mm, o.min_node_distance_mm})
+        if (!(value >= 0) || !std::isfinite(value))
+            throw InputError(concat("refinement option value ", value, " is not a finite number >= 0"));
+    if (constrained != nullptr) {
+        validate_indices(*constrained, "mesh");
+        if (constrained->tets.empty()) throw InputError("mesh has no tetrahedra; give a mesh from tm-tetra");
+    }
+}
+
+std::string stop_reason(const Refinement& r, const RefineIteration& it, double mesh_volume, bool* target_reached)
+{
+    const RefineOptions& o = r.options;
+    *target_reached = (o.target_error_mm3 > 0 && it.total_error_volume_mm3 <= o.target_error_mm3) ||
+                      (o.target_error_percent > 0 && it.total_error_volume_mm3 <= o.target_error_percent / 100 * mesh_volume);
+    if (*target_reached) return "target reached";
+    if (it.iteration >= o.max_iterations) return "iteration cap";
+    if (o.max_nodes > 0 && it.nodes >= o.max_nodes) return "node budget";
+    return "";
+}
+
+/// One round: place nodes in the batch, rebuild, reassess. Returns false when no node could be placed.
+bool refine_round(Refinement& r, std::size_t budget, double min_distance, RefineIteration& it)
+{
+    const NewNodes nodes = place_batch(r, select_batch(r, budget), min_distance);
+    if (nodes.points.empty()) return false;
+    TetMesh old = r.mesh;
+    const std::vector<TetState> old_state = r.state;
+    if (r.constrained) {
+        r.mesh = detail::insert_constrained(old, nodes.points, nodes.sources);
+    } else {
+        r.mesh.vertices.insert(r.mesh.vertices.end(), nodes.points.begin(), nodes.points.end());
+        r.mesh.tets = detail::delaunay_tets(r.mesh.vertices);
+        r.mesh.tet_labels.assign(r.mesh.tets.size(), r.options.assess.background);
+    }
+    const std::size_t reassessed = reassess(r, old, old_state);
+    it = summarize(r, it.iteration + 1);
+    it.added_nodes = nodes.points.size(), it.reassessed_tets = reassessed;
+    return true;
+}
+
+} // namespace
+
+TetMesh refine(const LabelImage& image, const TetMesh* constrained, const RefineOptions& options, const Progress& progress,
+               RefineReport* report)
+{
+    const auto start = std::chrono::steady_clock::now();
+    validate(image, constrained, options);
+    Refinement r{image, options, constrained != nullptr, constrained ? *constrained : TetMesh{}, {}};
+    if (!r.constrained) start_delaunay(r);
+    r.state.assign(r.mesh.tets.size(), {});
+    std::vector<std::uint32_t> all(r.mesh.tets.size());
+    std::iota(all.begin(), all.end(), 0u);
+    assess_tets(r, all);
+    RefineReport local;
+    RefineReport& rep = report != nullptr ? *report : local;
+    rep = {};
+    for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) rep.mesh_volume_mm3 += signed_volume(r.mesh, t);
+    const Vec3& spacing = image.spacing_mm();
+    const double min_distance = options.min_node_distance_mm > 0 ? options.min_node_distance_mm
+                                                                 : 0.5 * std::min({spacing[0], spacing[1], spacing[2]});
+    RefineIteration it = summarize(r, 0);
+    it.reassessed_tets = r.mesh.tets.size();
+    for (;;) {
+        it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        rep.iterations.push_back(it);
+        progress.info("refine", concat("round ", it.iteration, ": ", it.nodes, " nodes, ", it.tets, " tets, error volume ",
+                                       format_mm(it.total_error_volume_mm3, 1), " mm^3, worst key ", format_mm(it.worst_quality_key, 2)));
+        rep.stop_reason = stop_reason(r, it, rep.mesh_volume_mm3, &rep.target_reached);
+        if (!rep.stop_reason.empty()) break;
+        const std::size_t budget = options.max_nodes > 0 ? options.max_nodes - it.nodes : r.mesh.tets.size();
+        if (!r.constrained && it.total_error_volume_mm3 == 0 &&
+            std::none_of(r.state.begin(), r.state.end(), [](const TetState& s) { return s.error_mm3 > 0; })) {
+            rep.stop_reason = "no error left";
+            break;
+        }
+        if (!refine_round(r, budget, min_distance, it)) {
+            rep.stop_reason = "no node could be placed";
+            break;
+        }
+    }
+    detail::drop_unused_nodes(r.mesh);
+    if (!r.constrained) mark_interfaces(r.mesh, options.assess.background);
+    return std::move(r.mesh);
+}
+
+std::string placement_name(Placement placement)
+{
+    switch (placement) {
+    case Placement::centroid: return "centroid";
+    case Placement::incentre: return "incentre";
+    case Placement::longest_edge: return "longest-edge";
+    case Placement::material_half_edges: return "material-half-edges";
+    case Placement::material_centroid: return "material-centroid";
+    }
+    return "centroid";
+}
+
+Placement parse_placement(const std::string& name)
+{
+    for (const Placement p : {Placement::centroid, Placement::incentre, Placement::longest_edge, Placement::material_half_edges,
+                              Placement::material_centroid})
+        if (placement_name(p) == name) return p;
+    throw InputError(concat("unknown placement \"", name, "\"; use centroid, incentre, longest-edge, material-half-edges or "
+                            "material-centroid"));
+}
+
+} // namespace tissuemesh::volume

@@ -1,0 +1,89 @@
+// Adaptive refinement (Mueller & Sachse): new nodes in the worst-assessed tets until the mesh matches the voxels.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/label_image.h"
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+#include "volume/assess.h"
+
+namespace tissuemesh::volume {
+
+/// Where a new node goes in a selected tet.
+enum class Placement {
+    centroid,              ///< the tet's centroid
+    incentre,              ///< the centre of its inscribed sphere
+    longest_edge,          ///< the midpoint of its longest edge
+    material_half_edges,   ///< first tissue change walking from each edge midpoint towards both vertices
+    material_centroid,     ///< first tissue change walking from the centroid towards each vertex
+};
+
+/// Options for refine(). Lengths in mm, volumes in mm^3.
+struct RefineOptions {
+    Placement placement = Placement::material_half_edges;
+    double batch_fraction = 0.05;      ///< share of the tets refined per round, worst quality keys first
+    std::size_t min_batch = 16;        ///< at least this many tets per round (when that many qualify)
+    double target_error_mm3 = 0;       ///< stop when the total error volume is at or below this (0: unused)
+    double target_error_percent = 0;   ///< ... or below this % of the mesh volume (0: unused)
+    std::size_t max_nodes = 0;         ///< node budget (0: none); the last batch is cut to fit it
+    std::size_t max_iterations = 50;   ///< rounds at most
+    double initial_spacing_mm = 0;     ///< Delaunay-only: lattice spacing of the start mesh (0: box size / 4)
+    double min_node_distance_mm = 0;   ///< no new node closer than this to another node (0: half the
+                                       ///< smallest voxel spacing)
+    AssessOptions assess;              ///< priority weights and quality key weights
+};
+
+/// One round: the mesh after it (iteration 0 is the start mesh).
+struct RefineIteration {
+    std::size_t iteration = 0;
+    std::size_t nodes = 0;
+    std::size_t tets = 0;
+    std::size_t added_nodes = 0;           ///< nodes placed in this round
+    std::size_t reassessed_tets = 0;       ///< tets that were new and so assessed in this round
+    double total_error_volume_mm3 = 0;     ///< voxel centres not of their tet's tissue x voxel volume
+    double worst_quality_key = 0;          ///< largest quality key (larger = worse)
+    double seconds = 0;                    ///< since refine() started
+};
+
+/// What refine() did.
+struct RefineReport {
+    std::vector<RefineIteration> iterations;
+    std::string stop_reason;               ///< "target reached", "node budget", "iteration cap", "no error left",
+                                           ///< "no node could be placed"
+    bool target_reached = false;           ///< a target was given and met
+    double mesh_volume_mm3 = 0;
+};
+
+/// Refines a tet mesh against `image` by the paper's loop: assess every tet, place one node in each of the
+/// worst ones (a batch per round, ordered by quality key), rebuild the (constrained) Delaunay mesh with
+/// TetGen, and assess only the tets that are new (unchanged tets keep their assessment, which is exactly
+/// what a full assessment would give them: the rasterization's tie rule depends on each face alone).
+///
+/// Two modes:
+///  - Delaunay-only (`constrained == nullptr`): the start mesh is the Delaunay mesh of a lattice over the
+///    image's world bounding box (corners included); every tet takes its majority tissue. Only tets with a
+///    positive error volume are refined; the result's interface faces are rebuilt from the labels.
+///  - constrained (`constrained` is a mesh from tetrahedralize()): its interface and boundary faces are kept
+///    exactly (TetGen -pY on them), new nodes go strictly inside tets, and a new tet takes the tissue of the
+///    region it lies in, so labels never cross an interface and the total error volume stays what the
+///    interfaces give (nodes improve shape and resolution, not the voxel match). The worst keys of all tets
+///    are refined.
+/// Material-change placement samples the image (nearest voxel, outside: background) along the rays in
+/// world mm every quarter voxel, bisects the first change to 1/64 voxel, and of the changes found takes the
+/// one farthest from the tet's vertices; with none it falls back to the centroid.
+/// A valid mesh is always returned: the last complete round's.
+/// @pre  image not empty; `constrained` (when given) passes check_mesh()
+/// @throws InputError when an option is out of range or the image is empty
+/// @throws AlgorithmError when TetGen fails
+TetMesh refine(const LabelImage& image, const TetMesh* constrained, const RefineOptions& options = {},
+               const Progress& progress = {}, RefineReport* report = nullptr);
+
+/// The placement's name as tm-refine spells it ("material-half-edges"), and back.
+std::string placement_name(Placement placement);
+/// @throws InputError for an unknown name, listing the known ones
+Placement parse_placement(const std::string& name);
+
+} // namespace tissuemesh::volume
