@@ -133,14 +133,19 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
     for (const std::uint32_t t : batch) {
         std::array<Vec3, 4> corners;
         for (int c = 0; c < 4; ++c) corners[c] = r.mesh.vertices[r.mesh.tets[t][c]];
-        const Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
-        bool free = std::all_of(corners.begin(), corners.end(), [&](const Vec3& c) { return distance(c, p) >= min_distance; });
-        for (int d = 0; d < 27 && free; ++d) {
-            const auto found = grid.find(cell(p, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1));
-            if (found == grid.end()) continue;
-            for (const std::uint32_t other : found->second) free = free && distance(nodes.points[other], p) >= min_distance;
-        }
-        if (!free) continue;
+        auto is_free = [&](const Vec3& p) {
+            bool free = std::all_of(corners.begin(), corners.end(), [&](const Vec3& c) { return distance(c, p) >= min_distance; });
+            for (int d = 0; d < 27 && free; ++d) {
+                const auto found = grid.find(cell(p, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1));
+                if (found == grid.end()) continue;
+                for (const std::uint32_t other : found->second) free = free && distance(nodes.points[other], p) >= min_distance;
+            }
+            return free;
+        };
+        Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
+        // A tissue change too close to a node: the centroid instead, so that such tets still get refined.
+        if (!is_free(p)) p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
+        if (!is_free(p)) continue;
         grid[cell(p, 0, 0, 0)].push_back(static_cast<std::uint32_t>(nodes.points.size()));
         nodes.points.push_back(p);
         nodes.sources.push_back(t);

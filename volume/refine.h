@@ -23,7 +23,7 @@ enum class Placement {
 
 /// Options for refine(). Lengths in mm, volumes in mm^3.
 struct RefineOptions {
-    Placement placement = Placement::material_half_edges;
+    Placement placement = Placement::material_centroid;
     double batch_fraction = 0.05;      ///< share of the tets refined per round, worst quality keys first
     std::size_t min_batch = 16;        ///< at least this many tets per round (when that many qualify)
     double target_error_mm3 = 0;       ///< stop when the total error volume is at or below this (0: unused)
@@ -73,7 +73,8 @@ struct RefineReport {
 ///    are refined.
 /// Material-change placement samples the image (nearest voxel, outside: background) along the rays in
 /// world mm every quarter voxel, bisects the first change to 1/64 voxel, and of the changes found takes the
-/// one farthest from the tet's vertices; with none it falls back to the centroid.
+/// one farthest from the tet's vertices; with none it falls back to the centroid. A node closer than
+/// min_node_distance_mm to another is replaced by the tet's centroid, or dropped when that is too close too.
 /// A valid mesh is always returned: the last complete round's.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
