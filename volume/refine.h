@@ -64,8 +64,9 @@ struct RefineReport {
 ///
 /// Two modes:
 ///  - Delaunay-only (`constrained == nullptr`): the start mesh is the Delaunay mesh of a lattice over the
-///    image's world bounding box (corners included); every tet takes its majority tissue. Only tets with a
-///    positive error volume are refined; the result's interface faces are rebuilt from the labels.
+///    image's world bounding box (corners included); every tet takes its majority tissue, so the mesh fills
+///    the box and background tets carry options.assess.background. Only tets with a positive error volume
+///    are refined; the result's interface faces are rebuilt from the labels (mark_interfaces).
 ///  - constrained (`constrained` is a mesh from tetrahedralize()): its interface and boundary faces are kept
 ///    exactly (TetGen -pY on them), new nodes go strictly inside tets, and a new tet takes the tissue of the
 ///    region it lies in, so labels never cross an interface and the total error volume stays what the
