@@ -188,14 +188,20 @@ void validate(const LabelImage& image, const TetMesh* constrained, const RefineO
     }
 }
 
-std::string stop_reason(const Refinement& r, const RefineIteration& it, double mesh_volume, bool* target_reached)
+std::string stop_reason(const Refinement& r, const RefineReport& report, double mesh_volume, bool* target_reached)
 {
     const RefineOptions& o = r.options;
+    const RefineIteration& it = report.iterations.back();
     *target_reached = (o.target_error_mm3 > 0 && it.total_error_volume_mm3 <= o.target_error_mm3) ||
                       (o.target_error_percent > 0 && it.total_error_volume_mm3 <= o.target_error_percent / 100 * mesh_volume);
     if (*target_reached) return "target reached";
     if (it.iteration >= o.max_iterations) return "iteration cap";
     if (o.max_nodes > 0 && it.nodes >= o.max_nodes) return "node budget";
+    // Constrained: the error volume is fixed by the interfaces, so only Delaunay-only refinement can stall.
+    const std::size_t n = o.max_stalled_rounds;
+    if (!r.constrained && n > 0 && report.iterations.size() > n &&
+        it.total_error_volume_mm3 >= report.iterations[report.iterations.size() - 1 - n].total_error_volume_mm3)
+        return "stalled";
     return "";
 }
 
@@ -246,7 +252,7 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
         rep.iterations.push_back(it);
         progress.info("refine", concat("round ", it.iteration, ": ", it.nodes, " nodes, ", it.tets, " tets, error volume ",
                                        format_mm(it.total_error_volume_mm3, 1), " mm^3, worst key ", format_mm(it.worst_quality_key, 2)));
-        rep.stop_reason = stop_reason(r, it, rep.mesh_volume_mm3, &rep.target_reached);
+        rep.stop_reason = stop_reason(r, rep, rep.mesh_volume_mm3, &rep.target_reached);
         if (!rep.stop_reason.empty()) break;
         const std::size_t budget = options.max_nodes > 0 ? options.max_nodes - it.nodes : r.mesh.tets.size();
         if (!r.constrained && it.total_error_volume_mm3 == 0 &&

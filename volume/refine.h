@@ -30,6 +30,8 @@ struct RefineOptions {
     double target_error_percent = 0;   ///< ... or below this % of the mesh volume (0: unused)
     std::size_t max_nodes = 0;         ///< node budget (0: none); the last batch is cut to fit it
     std::size_t max_iterations = 50;   ///< rounds at most
+    std::size_t max_stalled_rounds = 3;  ///< Delaunay-only: stop when the error volume has not fallen over this
+                                         ///< many rounds (0: never)
     double initial_spacing_mm = 0;     ///< Delaunay-only: lattice spacing of the start mesh (0: box size / 4)
     double min_node_distance_mm = 0;   ///< no new node closer than this to another node (0: half the
                                        ///< smallest voxel spacing)
@@ -51,8 +53,8 @@ struct RefineIteration {
 /// What refine() did.
 struct RefineReport {
     std::vector<RefineIteration> iterations;
-    std::string stop_reason;               ///< "target reached", "node budget", "iteration cap", "no error left",
-                                           ///< "no node could be placed"
+    std::string stop_reason;               ///< "target reached", "node budget", "iteration cap", "stalled",
+                                           ///< "no error left", "no node could be placed"
     bool target_reached = false;           ///< a target was given and met
     double mesh_volume_mm3 = 0;
 };

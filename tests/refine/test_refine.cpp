@@ -71,5 +71,17 @@ TEST(RefineDelaunay, StopsAtTheNodeBudgetAndAtTheTarget)
     EXPECT_LE(target.iterations.back().total_error_volume_mm3, target_mm3);
 }
 
+TEST(RefineDelaunay, StopsWhenTheErrorVolumeStalls)
+{
+    RefineReport report;
+    refine(coarse_head(), nullptr, {.max_iterations = 200, .max_stalled_rounds = 1}, {}, &report);
+    ASSERT_EQ(report.stop_reason, "stalled");
+    const std::size_t n = report.iterations.size();
+    ASSERT_GE(n, 2u);
+    EXPECT_GE(report.iterations[n - 1].total_error_volume_mm3, report.iterations[n - 2].total_error_volume_mm3);
+    for (std::size_t i = 1; i + 1 < n; ++i)
+        EXPECT_LT(report.iterations[i].total_error_volume_mm3, report.iterations[i - 1].total_error_volume_mm3) << "round " << i;
+}
+
 } // namespace
 } // namespace tissuemesh::volume

@@ -63,8 +63,7 @@ TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
 }
 
 INSTANTIATE_TEST_SUITE_P(Placements, RefineConstrained,
-                         ::testing::Values(Placement::centroid, Placement::incentre, Placement::longest_edge,
-                                           Placement::material_half_edges, Placement::material_centroid),
+                         ::testing::Values(Placement::longest_edge, Placement::material_centroid),
                          [](const ::testing::TestParamInfo<Placement>& param) {
                              std::string name = placement_name(param.param);
                              std::erase(name, '-');
@@ -73,12 +72,13 @@ INSTANTIATE_TEST_SUITE_P(Placements, RefineConstrained,
 
 TEST(RefineInput, BadOptionsAndNamesAreInputErrors)
 {
+    const LabelImage image({4, 4, 4}, {1, 1, 1});
     EXPECT_THROW(refine(LabelImage{}, nullptr), InputError);
-    EXPECT_THROW(refine(junction().image, nullptr, {.batch_fraction = 2}), InputError);
+    EXPECT_THROW(refine(image, nullptr, {.batch_fraction = 2}), InputError);
     EXPECT_THROW(parse_placement("circumcentre"), InputError);
     EXPECT_EQ(parse_placement("material-centroid"), Placement::material_centroid);
     TetMesh empty;
-    EXPECT_THROW(refine(junction().image, &empty), InputError);
+    EXPECT_THROW(refine(image, &empty), InputError);
 }
 
 } // namespace
