@@ -121,7 +121,7 @@ struct NewNodes {
     std::vector<std::uint32_t> sources;
 };
 
-NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batch, double min_distance)
+NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batch, double min_distance, bool fallback)
 {
     NewNodes nodes;
     std::unordered_map<Tet, std::vector<std::uint32_t>, TetKeyHash> grid;  // cell (x, y, z, 0) -> node numbers
@@ -144,7 +144,7 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
         };
         Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
         // A tissue change too close to a node: the centroid instead, so that such tets still get refined.
-        if (!is_free(p)) p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
+        if (!is_free(p) && fallback) p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
         if (!is_free(p)) continue;
         grid[cell(p, 0, 0, 0)].push_back(static_cast<std::uint32_t>(nodes.points.size()));
         nodes.points.push_back(p);
@@ -208,7 +208,11 @@ std::string stop_reason(const Refinement& r, const RefineReport& report, double 
 /// One round: place nodes in the batch, rebuild, reassess. Returns false when no node could be placed.
 bool refine_round(Refinement& r, std::size_t budget, double min_distance, RefineIteration& it)
 {
-    const NewNodes nodes = place_batch(r, select_batch(r, budget), min_distance);
+    const std::vector<std::uint32_t> batch = select_batch(r, budget);
+    // Tissue changes first; only when fewer than a tenth of the batch found a free one, centroids for the rest
+    // (measured on spheres4: centroids mixed in from the start cost 10-20% more nodes for the same error).
+    NewNodes nodes = place_batch(r, batch, min_distance, false);
+    if (nodes.points.size() * 10 < batch.size()) nodes = place_batch(r, batch, min_distance, true);
     if (nodes.points.empty()) return false;
     TetMesh old = r.mesh;
     const std::vector<TetState> old_state = r.state;

@@ -77,7 +77,8 @@ struct RefineReport {
 /// Material-change placement samples the image (nearest voxel, outside: background) along the rays in
 /// world mm every quarter voxel, bisects the first change to 1/64 voxel, and of the changes found takes the
 /// one farthest from the tet's vertices; with none it falls back to the centroid. A node closer than
-/// min_node_distance_mm to another is replaced by the tet's centroid, or dropped when that is too close too.
+/// min_node_distance_mm to another is dropped; when fewer than a tenth of a batch's nodes remain, the batch
+/// is placed again with the tets' centroids in place of the dropped nodes (dropped again when too close).
 /// A valid mesh is always returned: the last complete round's.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
