@@ -15,6 +15,9 @@ double signed_volume(const TetMesh& mesh, std::size_t t)
 
 void validate_indices(const TetMesh& mesh, const std::string& what)
 {
+    if (mesh.tets.empty())
+        throw InputError(concat(what, ": holds no tetrahedra (", mesh.faces.size(), " triangles, ", mesh.vertices.size(),
+                                " nodes); give a volume mesh, e.g. from tm-tetra"));
     if (mesh.tet_labels.size() != mesh.tets.size())
         throw InputError(concat(what, ": ", mesh.tets.size(), " tetrahedra but ", mesh.tet_labels.size(),
                                 " tissue labels; every tetrahedron needs a tissue"));

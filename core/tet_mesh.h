@@ -33,7 +33,8 @@ struct TetMesh {
 /// Signed volume (mm^3) of tet `t`: positive when it is positively oriented.
 double signed_volume(const TetMesh& mesh, std::size_t t);
 
-/// Throws InputError when indices are out of range, sizes disagree, or a coordinate is not finite.
+/// Throws InputError when the mesh has no tet, indices are out of range, sizes disagree, or a coordinate is
+/// not finite.
 void validate_indices(const TetMesh& mesh, const std::string& what);
 
 } // namespace tissuemesh

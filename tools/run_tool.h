@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "core/progress.h"
 
 namespace tissuemesh::tools {
@@ -26,6 +27,18 @@ struct ToolContext {
     /// Prints "[tool] text" on stderr unless quiet.
     void log(std::string_view text) const;
 };
+
+/// Runs `step` on data read from `source` (a file name): an InputError it throws about the data gets the
+/// file's name in front, so the one error line says which file is at fault.
+template <typename Step>
+auto with_source(const std::string& source, Step&& step) -> decltype(step())
+{
+    try {
+        return step();
+    } catch (const InputError& error) {
+        throw InputError(concat(source, ": ", error.what()));
+    }
+}
 
 struct ToolSpec {
     std::string name;         ///< "tm-info"

@@ -121,7 +121,7 @@ int main(int argc, char** argv)
             app.add_option("-i,--input,surface", input, "Interface complex (.ply with label pairs)")
                 ->required()
                 ->type_name("SURFACE");
-            app.add_option("--max-report", max_report, "Print at most N defects")->capture_default_str();
+            app.add_option("--max-report", max_report, "Print at most N defects")->check(CLI::NonNegativeNumber)->capture_default_str();
             app.add_option("--needle-angle-deg", options.needle_angle_deg, "Warn about angles below this")
                 ->capture_default_str();
             app.add_flag("--skip-intersections", skip_intersections, "Skip the intersection test (faster)");

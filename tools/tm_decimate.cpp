@@ -30,7 +30,7 @@ int main(int argc, char** argv)
             app.add_option("--mode", mode, "What goes first: curvature (quadric error) or size (edge length)")
                 ->check(CLI::IsMember({"curvature", "size"}))
                 ->capture_default_str();
-            app.add_option("--target-triangles", options.target_triangles, "Stop at this many (0: only the limits)")
+            app.add_option("--target-triangles", options.target_triangles, "Stop at this many (0: only the limits)")->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
             app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
                 ->capture_default_str();

@@ -134,8 +134,8 @@ int main(int argc, char** argv)
             app.add_option("-i,--input", input, "Label image (.nii, .nii.gz, .nrrd, .mha, ...)")->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
             app.add_option("--tissues", options.tissues, "Keep only these labels (others become background)")
-                ->delimiter(',');
-            app.add_option("--background", options.background, "Background label (also outside the image)")
+                ->delimiter(',')->check(CLI::Range(0, 65535));
+            app.add_option("--background", options.background, "Background label (also outside the image)")->check(CLI::Range(0, 65535))
                 ->capture_default_str();
             app.add_option("--priority", priority,
                            "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
@@ -158,7 +158,8 @@ int main(int argc, char** argv)
             const double read_seconds = seconds_since(start);
             options.priority = parse_priority(priority, image);
             start = std::chrono::steady_clock::now();
-            const InterfaceComplex complex = surface::extract_interfaces(image, options, ctx.progress);
+            const InterfaceComplex complex =
+                tools::with_source(input, [&] { return surface::extract_interfaces(image, options, ctx.progress); });
             const double extract_seconds = seconds_since(start);
             const double extract_peak_mib = peak_memory_mib();
             ctx.log(concat(image.voxel_count(), " voxels -> ", complex.triangle_count(), " triangles, ",

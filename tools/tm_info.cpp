@@ -90,7 +90,7 @@ int main(int argc, char** argv)
         [&](CLI::App& app) {
             app.add_option("-i,--input,input", input, "Label image")->required()->type_name("IMAGE");
             app.add_option("--labels", names, "Tissue names JSON ({\"1\": \"scalp\", ...})")->type_name("FILE");
-            app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")
+            app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {

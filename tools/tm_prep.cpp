@@ -123,13 +123,13 @@ int main(int argc, char** argv)
             app.add_option("--keep-largest", keep_largest, "Keep only the largest piece of these labels (1,2)")
                 ->type_name("LABELS");
             app.add_option("--remove-islands", options.remove_islands_voxels,
-                           "Give pieces under N voxels to their surrounding tissue")->type_name("N");
+                           "Give pieces under N voxels to their surrounding tissue")->check(CLI::NonNegativeNumber)->type_name("N");
             app.add_flag("--fill-holes", options.fill_holes, "Fill background cavities enclosed in tissue");
             app.add_option("--fill-holes-in", fill_holes_in, "Fill only cavities enclosed by these labels")
                 ->type_name("LABELS");
-            crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")
+            crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")->check(CLI::NonNegativeNumber)
                 ->type_name("N");
-            app.add_option("--background", options.background, "The label outside the tissues")->capture_default_str();
+            app.add_option("--background", options.background, "The label outside the tissues")->check(CLI::Range(0, 65535))->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
             options = parse_options(relabel, merges, spacing, keep_largest, fill_holes_in, options);

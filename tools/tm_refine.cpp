@@ -61,10 +61,10 @@ int main(int argc, char** argv)
             app.add_option("--batch", options.batch_fraction, "Share of tets refined per round, worst first")->capture_default_str();
             app.add_option("--target-error-mm3", options.target_error_mm3, "Stop at this total error volume (mm^3)");
             app.add_option("--target-error-percent", options.target_error_percent, "Stop at this % of the mesh volume");
-            app.add_option("--max-nodes", options.max_nodes, "Node budget");
-            app.add_option("--iterations", options.max_iterations, "Rounds at most")->capture_default_str();
+            app.add_option("--max-nodes", options.max_nodes, "Node budget")->check(CLI::NonNegativeNumber);
+            app.add_option("--iterations", options.max_iterations, "Rounds at most")->check(CLI::NonNegativeNumber)->capture_default_str();
             app.add_option("--stalled-rounds", options.max_stalled_rounds, "Delaunay-only: stop when the error volume has not "
-                                                                           "fallen over this many rounds (0: never)")->capture_default_str();
+                                                                           "fallen over this many rounds (0: never)")->check(CLI::NonNegativeNumber)->capture_default_str();
             app.add_option("--initial-spacing-mm", options.initial_spacing_mm, "Delaunay-only start lattice spacing (default: box / 4)");
             app.add_option("--min-node-distance-mm", options.min_node_distance_mm, "Closest new node to another (default: half a voxel)");
             app.add_option("--error-weight", options.assess.error_weight, "Quality key weight of misclassified voxels")->capture_default_str();

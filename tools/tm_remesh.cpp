@@ -71,7 +71,7 @@ int main(int argc, char** argv)
             app.add_option("--edge-mm", options.target_edge_mm, "Target edge length")->capture_default_str();
             app.add_option("--edge-mm-pair", pair_lengths, "Target edge length per tissue pair, TISSUE:TISSUE=MM")
                 ->delimiter(',');
-            app.add_option("--iterations", options.iterations, "Rounds of split/collapse/flip/relax")
+            app.add_option("--iterations", options.iterations, "Rounds of split/collapse/flip/relax")->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle an edit may create")
                 ->capture_default_str();

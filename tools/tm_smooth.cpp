@@ -28,7 +28,7 @@ int main(int argc, char** argv)
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("--image", image_path, "The label image the complex was extracted from")->required();
             app.add_option("-o,--output", output, "Smoothed interface complex (.ply or .vtp)")->required();
-            app.add_option("--iterations", options.iterations, "Taubin step pairs")->capture_default_str();
+            app.add_option("--iterations", options.iterations, "Taubin step pairs")->check(CLI::NonNegativeNumber)->capture_default_str();
             app.add_option("--max-depth-voxels", options.max_depth_voxels,
                            "How far (voxels) a vertex may sit from the voxels of each of its tissues")
                 ->capture_default_str();

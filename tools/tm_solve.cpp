@@ -49,6 +49,8 @@ fem::ConductivityTable read_conductivity_table(const std::string& path)
     for (const auto& [key, value] : json.items()) {
         const nlohmann::json flat = value.is_array() ? value.flatten() : value;
         if (value.is_number()) {
+            if (!(value.get<double>() > 0))
+                throw InputError(concat(path, ": \"", key, "\" is ", value.dump(), " S/m; conductivities are positive numbers"));
             table[key] = fem::isotropic(value.get<double>());
         } else if (value.is_array() && flat.size() == 9) {
             Mat3 tensor{};
@@ -133,6 +135,19 @@ double min_dihedral_deg(const TetMesh& mesh)
     return smallest;
 }
 
+/// The conductivities of the mesh's tissues from the table at `path` (empty: the head defaults); errors about
+/// the table's contents name the file.
+fem::Conductivities resolve_from_file(const TetMesh& mesh, const std::string& path)
+{
+    if (path.empty()) return fem::resolve_conductivities(mesh, {});
+    const fem::ConductivityTable table = read_conductivity_table(path);
+    try {
+        return fem::resolve_conductivities(mesh, table);
+    } catch (const InputError& error) {
+        throw InputError(concat(path, ": ", error.what()));
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -165,7 +180,7 @@ int main(int argc, char** argv)
             if (sensors_path.empty() != sensor_output.empty())
                 throw InputError("--sensors and --sensor-potentials go together; give both or neither");
             const TetMesh mesh = io::read_tet_mesh(input);
-            const fem::Conductivities sigma = fem::resolve_conductivities(mesh, conductivity.empty() ? fem::ConductivityTable{} : read_conductivity_table(conductivity));
+            const fem::Conductivities sigma = resolve_from_file(mesh, conductivity);
             fem::PotentialProblem problem;
             for (const std::string& text : dipoles) {
                 const auto v = parse_numbers(text, 6, "--dipole", "X,Y,Z,PX,PY,PZ (mm, A*m)");
@@ -175,6 +190,9 @@ int main(int argc, char** argv)
                 const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
                 problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4]});
             }
+            if (problem.dipoles.empty() && problem.electrodes.empty())
+                throw InputError("no source: without --dipole or --electrode no current flows and the potential is zero "
+                                 "everywhere; give at least one");
             const std::vector<Vec3> sensors = sensors_path.empty() ? std::vector<Vec3>{} : read_sensors(sensors_path);
             fem::PotentialReport report;
             const std::vector<double> phi = fem::solve_potential(

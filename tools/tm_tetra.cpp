@@ -76,7 +76,8 @@ int main(int argc, char** argv)
             if (!max_volume.empty()) parse_sizes(max_volume, complex, false, options);
             if (!max_edge.empty()) parse_sizes(max_edge, complex, true, options);
             volume::TetrahedralizeReport report;
-            const TetMesh mesh = volume::tetrahedralize(complex, options, context.progress, &report);
+            const TetMesh mesh =
+                tools::with_source(input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
             io::write_tet_mesh(mesh, output);
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
                                report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",

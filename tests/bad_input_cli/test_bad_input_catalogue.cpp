@@ -1,0 +1,173 @@
+// The catalogue of bad inputs, through the programs a user runs: each case is one defect, and the program
+// must exit with the documented code (2 bad input, 1 a checker found the input unfit), say what is wrong in
+// one line that names the file, and leave no output behind. None may crash or hang (ctest's timeout).
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/bad_input_cli/bad_input_files.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh::testing {
+namespace {
+
+struct BadCase {
+    std::string name;                  ///< test name
+    std::string tool;                  ///< tm-<verb>
+    std::vector<std::string> args;     ///< "@x" stands for the file x in the case folder
+    int exit_code;                     ///< 2: bad input or usage; 1: a checker found defects; 0: accepted
+    std::vector<std::string> message;  ///< parts the report must contain (stderr, or stdout for checkers)
+    std::string output = "out";        ///< a file the program must not leave behind on failure ("" none)
+};
+
+std::ostream& operator<<(std::ostream& out, const BadCase& c) { return out << c.name; }
+
+std::vector<std::string> expand(const std::vector<std::string>& args, const TempDir& dir)
+{
+    std::vector<std::string> result;
+    for (const std::string& arg : args) result.push_back(arg.starts_with('@') ? (dir / arg.substr(1)).string() : arg);
+    return result;
+}
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ExitsWithTheCodeAndOneLineAndLeavesNothing)
+{
+    const BadCase& c = GetParam();
+    TempDir dir;
+    write_bad_input_files(dir.path());
+    const CliResult result = run_cli(c.tool, expand(c.args, dir));
+    ASSERT_EQ(result.exit_code, c.exit_code) << result.err << result.out;
+    const std::string report = result.err + result.out;
+    for (const std::string& part : c.message) EXPECT_NE(report.find(part), std::string::npos) << report;
+    if (c.exit_code == 2) {
+        // One line: "tm-x: error: <file>: <problem>; <what to do>".
+        std::istringstream lines(result.err);
+        std::size_t error_lines = 0;
+        for (std::string line; std::getline(lines, line);) error_lines += line.find("error:") != std::string::npos;
+        EXPECT_EQ(error_lines, 1u) << result.err;
+    }
+    if (c.exit_code != 0 && !c.output.empty()) {
+        for (const std::string& name : dir.files())
+            EXPECT_FALSE(name.starts_with(c.output)) << name << " left behind";
+    }
+}
+
+// Images: readers of every format, and tissue contents that a step cannot use.
+const std::vector<BadCase> image_cases{
+    {"NiftiComplexVoxels", "tm-extract", {"-i", "@complex.nii", "-o", "@out.ply"}, 2, {"complex.nii", "datatype"}},
+    {"NiftiInfiniteSpacing", "tm-extract", {"-i", "@inf.nii", "-o", "@out.ply"}, 2, {"inf.nii", "spacing along axis 2"}},
+    {"NrrdWrongMagic", "tm-info", {"-i", "@magic.nrrd"}, 2, {"magic.nrrd"}},
+    {"NrrdTruncated", "tm-extract", {"-i", "@short.nrrd", "-o", "@out.ply"}, 2, {"short.nrrd"}},
+    {"MetaImageMissingData", "tm-info", {"-i", "@nofile.mhd"}, 2, {"nofile.mhd"}},
+    {"MetaImageTruncated", "tm-extract", {"-i", "@short.mha", "-o", "@out.ply"}, 2, {"short.mha"}},
+    {"OnlyBackground", "tm-extract", {"-i", "@one-label.nii", "-o", "@out.ply"}, 2, {"one-label.nii", "background"}},
+    {"UnknownTissueToKeep", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--tissues", "9"}, 2, {"9"}},
+    {"PriorityOfAbsentTissue", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--priority", "9=1"}, 2, {"9"}},
+    {"BrokenNameTable", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--labels", "@names-broken.json"}, 2,
+     {"names-broken.json"}},
+    {"OutputInMissingFolder", "tm-extract", {"-i", "@ok.nii", "-o", "@missing/out.ply"}, 2, {"missing"}},
+    {"OutputIsAFolder", "tm-extract", {"-i", "@ok.nii", "-o", "@"}, 2, {}, ""},
+    {"UnknownOutputFormat", "tm-extract", {"-i", "@ok.nii", "-o", "@out.xyz"}, 2, {".xyz"}},
+    {"UnknownPhantom", "tm-phantom", {"sphere9", "-o", "@out.nii.gz"}, 2, {"sphere9", "spheres4"}},
+    {"PhantomVoxelZero", "tm-phantom", {"spheres4", "--voxel-mm", "0", "-o", "@out.nii.gz"}, 2, {"0"}},
+    {"PrepNegativeIslandSize", "tm-prep", {"-i", "@ok.nii", "-o", "@out.nii", "--remove-islands", "-3"}, 2, {"-3"}},
+    {"PrepNegativePad", "tm-prep", {"-i", "@ok.nii", "-o", "@out.nii", "--crop-pad", "-1"}, 2, {"-1"}},
+    {"SmoothNegativeIterations", "tm-smooth", {"-i", "@ok.ply", "--image", "@ok.nii", "-o", "@out.ply", "--iterations", "-2"},
+     2, {"-2"}},
+    {"RefineNegativeNodeBudget", "tm-refine", {"--image", "@ok.nii", "-o", "@out.msh", "--max-nodes", "-1"}, 2, {"-1"}},
+    {"DecimateNegativeTarget", "tm-decimate", {"-i", "@ok.ply", "-o", "@out.ply", "--target-triangles", "-5"}, 2, {"-5"}},
+    {"ExtractBackgroundOutOfRange", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--background", "70000"}, 2,
+     {"70000"}},
+};
+
+// Images that are odd but valid: the step works and says what is unusual.
+const std::vector<BadCase> odd_image_cases{
+    {"OneVoxelImageGivesAClosedCube", "tm-extract", {"-i", "@one-voxel.nii", "-o", "@cube.ply", "-q"}, 0, {}},
+    {"TissueOnTheBorderIsReported", "tm-info", {"-i", "@border.nii"}, 0, {"border"}},
+};
+
+// Surfaces: readers, then the checker (exit 1 with the defect) and the mesher (exit 2, nothing written).
+const std::vector<BadCase> surface_cases{
+    {"PlyEmpty", "tm-check-surface", {"@empty.ply"}, 2, {"empty.ply"}},
+    {"PlyWrongMagic", "tm-check-surface", {"@magic.ply"}, 2, {"magic.ply", "not a PLY file"}},
+    {"PlyTruncated", "tm-check-surface", {"@truncated.ply"}, 2, {"truncated.ply", "truncated"}},
+    {"PlyDanglingIndex", "tm-tetra", {"-i", "@dangling.ply", "-o", "@out.msh"}, 2, {"dangling.ply", "refers to vertex 7"}},
+    {"PlyNanCoordinate", "tm-tetra", {"-i", "@nan.ply", "-o", "@out.msh"}, 2, {"nan.ply"}},
+    {"OffCountsExceedData", "tm-check-surface", {"@counts.off"}, 2, {"counts.off"}},
+    {"StlTruncated", "tm-check-surface", {"@truncated.stl"}, 2, {"truncated.stl"}},
+    {"HoleIsReported", "tm-check-surface", {"@hole.ply"}, 1, {"brain"}},
+    {"HoleStopsTheMesher", "tm-tetra", {"-i", "@hole.ply", "-o", "@out.msh"}, 2, {"hole.ply"}},
+    {"FlippedTriangleIsReported", "tm-check-surface", {"@flipped.ply"}, 1, {"brain"}},
+    {"DuplicateTriangleIsReported", "tm-check-surface", {"@duplicate.ply"}, 1, {"duplicate"}},
+    {"TwinVerticesAreReported", "tm-check-surface", {"@twin-vertices.ply"}, 1, {"brain"}},
+    {"CrossingTissuesAreReported", "tm-check-surface", {"@crossing.ply"}, 1, {"skull"}},
+    {"CrossingTissuesStopTheMesher", "tm-tetra", {"-i", "@crossing.ply", "-o", "@out.msh"}, 2, {"skull", "brain"}},
+    {"SmoothNeedsAFitInput", "tm-smooth", {"-i", "@hole.ply", "--image", "@ok.nii", "-o", "@out.ply"}, 2, {"hole.ply"}},
+    {"DecimateNeedsAFitInput", "tm-decimate", {"-i", "@crossing.ply", "-o", "@out.ply"}, 2, {"crossing.ply"}},
+    {"RemeshNeedsAFitInput", "tm-remesh", {"-i", "@flipped.ply", "-o", "@out.ply"}, 2, {"flipped.ply"}},
+    {"TetraNegativeVolume", "tm-tetra", {"-i", "@ok.ply", "-o", "@out.msh", "--max-volume", "-1"}, 2, {"-1"}},
+    {"TetraUnknownTissueSize", "tm-tetra", {"-i", "@ok.ply", "-o", "@out.msh", "--max-volume", "liver=2"}, 2,
+     {"liver"}},
+};
+
+// Tet meshes and the solver's tables.
+const std::vector<BadCase> mesh_cases{
+    {"MshInvertedTetIsReported", "tm-check-mesh", {"@inverted.msh"}, 1, {"inverted"}},
+    {"MshDanglingNode", "tm-check-mesh", {"@dangling.msh"}, 2, {"dangling.msh"}},
+    {"MshNanCoordinate", "tm-solve", {"-i", "@nan.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2, {"nan.msh"}},
+    {"MshTruncated", "tm-assess", {"-i", "@truncated.msh", "--image", "@ok.nii", "-o", "@out.vtu"}, 2, {"truncated.msh"}},
+    {"MshWithoutTets", "tm-solve", {"-i", "@no-tets.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2,
+     {"no-tets.msh", "no tetrahedra"}},
+    {"MeditTruncated", "tm-check-mesh", {"@bad.mesh"}, 2, {"bad.mesh"}},
+    {"ConductivityUnknownName", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-unknown.json"}, 2,
+     {"liver"}},
+    {"ConductivityUnknownLabel", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-label.json"}, 2,
+     {"7"}},
+    {"ConductivityNegative", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-negative.json"}, 2,
+     {"cond-negative.json", "positive"}},
+    {"ConductivityNotANumber", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-text.json"}, 2,
+     {"cond-text.json"}},
+    {"ConductivityBrokenJson", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-broken.json"}, 2,
+     {"cond-broken.json"}},
+    {"ConductivityTensorOfThree", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-tensor.json"}, 2,
+     {"cond-tensor.json"}},
+    {"ElectrodeOffTheScalp", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--electrode", "100,100,100,2,1e-3", "--electrode", "0,0,0,2,-1e-3"}, 2,
+     {"100"}},
+    {"ElectrodeNegativeRadius", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--electrode", "0,0,0,-2,1e-3", "--electrode", "20,0,0,2,-1e-3"}, 2,
+     {"-2"}},
+    {"DipoleNotFinite", "tm-solve", {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,nan,0,0,1e-8"}, 2, {"nan"}},
+    {"NoSource", "tm-solve", {"-i", "@ok.msh", "-o", "@out.vtu"}, 2, {"no source"}},
+    {"SensorsWrongHeader", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--sensors", "@sensors-header.csv",
+      "--sensor-potentials", "@out.csv"},
+     2, {"sensors-header.csv"}},
+    {"SensorsNotANumber", "tm-solve",
+     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--sensors", "@sensors-number.csv",
+      "--sensor-potentials", "@out.csv"},
+     2, {"sensors-number.csv"}},
+    {"RefineUnknownPlacement", "tm-refine", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@out.msh", "--placement", "random"},
+     2, {"random"}},
+    {"AssessOutputInMissingFolder", "tm-assess", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@missing/out.vtu"}, 2,
+     {"missing"}},
+};
+
+std::string case_name(const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(Images, BadInput, ::testing::ValuesIn(image_cases), case_name);
+INSTANTIATE_TEST_SUITE_P(OddImages, BadInput, ::testing::ValuesIn(odd_image_cases), case_name);
+INSTANTIATE_TEST_SUITE_P(Surfaces, BadInput, ::testing::ValuesIn(surface_cases), case_name);
+INSTANTIATE_TEST_SUITE_P(Meshes, BadInput, ::testing::ValuesIn(mesh_cases), case_name);
+
+} // namespace
+} // namespace tissuemesh::testing
