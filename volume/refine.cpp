@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "surface/detail/triangle_grid.h"
 #include "volume/detail/refine_mesh.h"
 #include "volume/detail/refine_placement.h"
 #include "volume/mark_interfaces.h"
@@ -43,6 +44,49 @@ struct Refinement {
     bool constrained;
     TetMesh mesh;
     std::vector<TetState> state;  ///< #T, like mesh.tets
+};
+
+/// Constrained mode: the interface faces (they never change, nor do their nodes), to keep new nodes off them.
+/// A node placed closer to an interface than the node spacing adds nothing the interface does not already
+/// give, makes slivers against the face, and can make TetGen's -Y boundary recovery fail: on the demo's
+/// sphere head, nodes within 1e-3 mm of faces crashed TetGen 1.5 (suppresssteinerpoints) in the third round.
+class InterfaceClearance {
+public:
+    InterfaceClearance(const TetMesh& mesh, double clearance_mm) : mesh_(mesh), clearance_mm_(clearance_mm)
+    {
+        if (mesh.faces.empty() || clearance_mm <= 0) return;
+        surface::detail::Box3 bounds{mesh.vertices[mesh.faces[0][0]], mesh.vertices[mesh.faces[0][0]]};
+        for (const Triangle& face : mesh.faces) {
+            const surface::detail::Box3 box = surface::detail::bounding_box(corners(face));
+            for (int a = 0; a < 3; ++a)
+                bounds.low[a] = std::min(bounds.low[a], box.low[a]), bounds.high[a] = std::max(bounds.high[a], box.high[a]);
+        }
+        grid_ = surface::detail::TriangleGrid(bounds, 2 * clearance_mm, mesh.faces.size());
+        for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+            grid_.insert(static_cast<std::uint32_t>(f), surface::detail::bounding_box(corners(mesh.faces[f])));
+    }
+
+    /// True when `p` is at least the clearance away from every interface face.
+    bool clear(const Vec3& p)
+    {
+        if (mesh_.faces.empty() || clearance_mm_ <= 0) return true;
+        const Vec3 margin{clearance_mm_, clearance_mm_, clearance_mm_};
+        grid_.query({p - margin, p + margin}, found_);
+        return std::all_of(found_.begin(), found_.end(), [&](std::uint32_t f) {
+            return distance(p, surface::detail::closest_point_on_triangle(p, corners(mesh_.faces[f]))) >= clearance_mm_;
+        });
+    }
+
+private:
+    surface::detail::TriangleCorners corners(const Triangle& face) const
+    {
+        return {mesh_.vertices[face[0]], mesh_.vertices[face[1]], mesh_.vertices[face[2]]};
+    }
+
+    const TetMesh& mesh_;
+    double clearance_mm_;
+    surface::detail::TriangleGrid grid_;
+    std::vector<std::uint32_t> found_;
 };
 
 /// Assesses the tets listed in `which` (all nodes kept, so rasterization's tie rule sees the same faces as
@@ -121,7 +165,8 @@ struct NewNodes {
     std::vector<std::uint32_t> sources;
 };
 
-NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batch, double min_distance, bool fallback)
+NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batch, double min_distance, bool fallback,
+                     InterfaceClearance* clearance)
 {
     NewNodes nodes;
     std::unordered_map<Tet, std::vector<std::uint32_t>, TetKeyHash> grid;  // cell (x, y, z, 0) -> node numbers
@@ -140,7 +185,7 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
                 if (found == grid.end()) continue;
                 for (const std::uint32_t other : found->second) free = free && distance(nodes.points[other], p) >= min_distance;
             }
-            return free;
+            return free && (clearance == nullptr || clearance->clear(p));
         };
         Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
         // A tissue change too close to a node: the centroid instead, so that such tets still get refined.
@@ -206,13 +251,13 @@ std::string stop_reason(const Refinement& r, const RefineReport& report, double 
 }
 
 /// One round: place nodes in the batch, rebuild, reassess. Returns false when no node could be placed.
-bool refine_round(Refinement& r, std::size_t budget, double min_distance, RefineIteration& it)
+bool refine_round(Refinement& r, std::size_t budget, double min_distance, InterfaceClearance* clearance, RefineIteration& it)
 {
     const std::vector<std::uint32_t> batch = select_batch(r, budget);
     // Tissue changes first; only when fewer than a tenth of the batch found a free one, centroids for the rest
     // (measured on spheres4: centroids mixed in from the start cost 10-20% more nodes for the same error).
-    NewNodes nodes = place_batch(r, batch, min_distance, false);
-    if (nodes.points.size() * 10 < batch.size()) nodes = place_batch(r, batch, min_distance, true);
+    NewNodes nodes = place_batch(r, batch, min_distance, false, clearance);
+    if (nodes.points.size() * 10 < batch.size()) nodes = place_batch(r, batch, min_distance, true, clearance);
     if (nodes.points.empty()) return false;
     TetMesh old = r.mesh;
     const std::vector<TetState> old_state = r.state;
@@ -249,6 +294,9 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     const Vec3& spacing = image.spacing_mm();
     const double min_distance = options.min_node_distance_mm > 0 ? options.min_node_distance_mm
                                                                  : 0.5 * std::min({spacing[0], spacing[1], spacing[2]});
+    // The interface faces and their nodes are the same in every round (insert_constrained keeps both).
+    const TetMesh interfaces{.vertices = r.mesh.vertices, .faces = r.constrained ? r.mesh.faces : std::vector<Triangle>{}};
+    InterfaceClearance clearance(interfaces, r.constrained ? min_distance : 0);
     RefineIteration it = summarize(r, 0);
     it.reassessed_tets = r.mesh.tets.size();
     for (;;) {
@@ -264,7 +312,7 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
             rep.stop_reason = "no error left";
             break;
         }
-        if (!refine_round(r, budget, min_distance, it)) {
+        if (!refine_round(r, budget, min_distance, &clearance, it)) {
             rep.stop_reason = "no node could be placed";
             break;
         }

@@ -33,8 +33,8 @@ struct RefineOptions {
     std::size_t max_stalled_rounds = 3;  ///< Delaunay-only: stop when the error volume has not fallen over this
                                          ///< many rounds (0: never)
     double initial_spacing_mm = 0;     ///< Delaunay-only: lattice spacing of the start mesh (0: box size / 4)
-    double min_node_distance_mm = 0;   ///< no new node closer than this to another node (0: half the
-                                       ///< smallest voxel spacing)
+    double min_node_distance_mm = 0;   ///< no new node closer than this to another node, nor (constrained)
+                                       ///< to an interface face (0: half the smallest voxel spacing)
     AssessOptions assess;              ///< priority weights and quality key weights
 };
 
@@ -77,7 +77,8 @@ struct RefineReport {
 /// Material-change placement samples the image (nearest voxel, outside: background) along the rays in
 /// world mm every quarter voxel, bisects the first change to 1/64 voxel, and of the changes found takes the
 /// one farthest from the tet's vertices; with none it falls back to the centroid. A node closer than
-/// min_node_distance_mm to another is dropped; when fewer than a tenth of a batch's nodes remain, the batch
+/// min_node_distance_mm to another (constrained mode: or to an interface or boundary face) is dropped; when
+/// fewer than a tenth of a batch's nodes remain, the batch
 /// is placed again with the tets' centroids in place of the dropped nodes (dropped again when too close).
 /// A valid mesh is always returned: the last complete round's.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
