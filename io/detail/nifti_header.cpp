@@ -1,5 +1,6 @@
 #include "io/detail/nifti_header.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -72,6 +73,10 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
         f.vox_offset = std::isfinite(offset) && offset >= 0 && offset < 1e15f ? static_cast<std::int64_t>(offset) : -1;
         f.scl_slope = field<float>(header, 112, swap);
         f.scl_inter = field<float>(header, 116, swap);
+        f.qform_code = field<std::int16_t>(header, 252, swap);
+        f.sform_code = field<std::int16_t>(header, 254, swap);
+        for (std::size_t n = 0; n < 6; ++n) f.quatern[n] = field<float>(header, 256 + 4 * n, swap);
+        for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<float>(header, 280 + 4 * n, swap);
     } else {
         f.version = 2;
         if (got < nifti2_size) throw IoError(concat(name, ": truncated NIfTI-2 header (", got,
@@ -153,6 +158,15 @@ NiftiHeader check_nifti_header(const fs::path& path)
                                     " mm (pixdim[", axis, "]); it must be a positive finite number. Fix "
                                     "the header or the writer that produced it"));
     }
+    // ITK aborts the process (vnl's assert_finite) on a non-finite orientation: checked before it sees one.
+    // 1e9 mm bounds coordinates far beyond any scanner, so that products stay finite too.
+    const auto sane = [](double value) { return std::isfinite(value) && std::abs(value) <= 1e9; };
+    if (f.qform_code > 0 && !std::all_of(f.quatern.begin(), f.quatern.end(), sane))
+        throw InputError(concat(name, ": the qform (quatern_b/c/d, qoffset_x/y/z) holds a non-finite or absurd value; "
+                                "the header is corrupt. Fix the writer, or set qform_code to 0"));
+    if (f.sform_code > 0 && !std::all_of(f.srow.begin(), f.srow.end(), sane))
+        throw InputError(concat(name, ": the sform (srow_x/y/z) holds a non-finite or absurd value; the header is "
+                                "corrupt. Fix the writer, or set sform_code to 0"));
     if (f.vox_offset < (f.version == 1 ? 348 : 540))
         throw IoError(concat(name, ": corrupt NIfTI header, vox_offset is ", f.vox_offset,
                              ", inside the header; the file is damaged"));

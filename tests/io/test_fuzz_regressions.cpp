@@ -1,0 +1,32 @@
+// Inputs the fuzzers (scripts/fuzz) found crashing a reader, kept in tests/fuzz/regressions/ under the bug's
+// name: each must now give our typed error, naming the file and the defect.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/error.h"
+#include "io/read_label_image.h"
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+std::filesystem::path regression(const std::string& name)
+{
+    return std::filesystem::path(TM_DATA_DIR).parent_path() / "tests" / "fuzz" / "regressions" / name;
+}
+
+// fuzz_nifti: sform_code 1 with a NaN in srow_z made ITK's vnl_svd abort the whole process.
+TEST(FuzzRegressions, NiftiNanSform)
+{
+    try {
+        (void)io::read_label_image(regression("nifti-nan-sform.nii"));
+        FAIL() << "read a header with a NaN sform";
+    } catch (const InputError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("nifti-nan-sform.nii: the sform"), std::string::npos) << message;
+    }
+}
+
+} // namespace
+} // namespace tissuemesh
