@@ -77,6 +77,21 @@ SnakeReport evolve_snakes(InterfaceComplex& complex, const std::vector<SnakeTarg
 /// @throws InputError when a radius or the edge length is not positive
 InterfaceComplex ellipsoid_surface(const Vec3& centre_mm, const Vec3& radii_mm, double edge_mm, LabelPair pair);
 
+/// Targets for nested tissues of a label image, outermost first: snake k seeks the boundary of tissue k
+/// and everything it encloses (enclosed_region()), with the pair {tissues[k], tissues[k-1]} (the first
+/// against the image's background, label 0). The fields are the regions' indicators smoothed by a
+/// Gaussian of `sigma_mm` (label_potential()).
+/// @throws InputError when a tissue is missing from the image, listed twice, or is the background
+std::vector<SnakeTarget> nested_label_targets(const LabelImage& image, const std::vector<Label>& tissues_outer_first,
+                                              double sigma_mm);
+
+/// Start surfaces for `targets`: per target an axis-aligned ellipsoid around the centre of the bounding box of
+/// its field's positive region, semi-axes `scale` times the box's half extents (plus half a voxel), edges of
+/// about `edge_mm`, labelled with the target's pair. Nested regions give nested ellipsoids when their boxes
+/// are nested (evolve_snakes() checks that they do not meet).
+/// @throws InputError when a field has no positive voxel or scale is not positive
+InterfaceComplex bounding_ellipsoids(const std::vector<SnakeTarget>& targets, double scale, double edge_mm);
+
 /// Appends `part`'s vertices and triangles to `complex` (indices shifted).
 void append_complex(InterfaceComplex& complex, const InterfaceComplex& part);
 

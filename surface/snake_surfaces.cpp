@@ -69,6 +69,43 @@ InterfaceComplex ellipsoid_surface(const Vec3& centre_mm, const Vec3& radii_mm, 
     return complex;
 }
 
+std::vector<SnakeTarget> nested_label_targets(const LabelImage& image, const std::vector<Label>& tissues_outer_first,
+                                              double sigma_mm)
+{
+    std::vector<SnakeTarget> targets;
+    for (std::size_t k = 0; k < tissues_outer_first.size(); ++k) {
+        const Label tissue = tissues_outer_first[k];
+        if (tissue == 0)
+            throw InputError("snake: the background (label 0) cannot be a snake's tissue; list the tissues inside it");
+        for (std::size_t j = 0; j < k; ++j)
+            if (tissues_outer_first[j] == tissue)
+                throw InputError(concat("snake: tissue ", image.name_of(tissue), " is listed twice; list each once, "
+                                        "outermost first"));
+        const Label outside = k == 0 ? Label{0} : tissues_outer_first[k - 1];
+        targets.push_back({{tissue, outside}, label_potential(image, enclosed_region(image, tissue), sigma_mm)});
+    }
+    return targets;
+}
+
+InterfaceComplex bounding_ellipsoids(const std::vector<SnakeTarget>& targets, double scale, double edge_mm)
+{
+    if (!(scale > 0) || !std::isfinite(scale))
+        throw InputError(concat("snake: start scale ", scale, " must be a positive number; try 1.15"));
+    InterfaceComplex complex;
+    for (const SnakeTarget& target : targets) {
+        const auto bounds = target.field.positive_bounds_mm();
+        if (!bounds)
+            throw InputError(concat("snake: the field of snake ", target.pair.from, "|", target.pair.to,
+                                    " is nowhere positive: nothing to surround; check the tissue or the iso value"));
+        const Vec3 centre = 0.5 * ((*bounds)[0] + (*bounds)[1]);
+        const double half_voxel = 0.5 * target.field.smallest_spacing_mm();
+        Vec3 radii{0, 0, 0};
+        for (std::size_t a = 0; a < 3; ++a) radii[a] = scale * 0.5 * ((*bounds)[1][a] - (*bounds)[0][a]) + half_voxel;
+        append_complex(complex, ellipsoid_surface(centre, radii, edge_mm, target.pair));
+    }
+    return complex;
+}
+
 void append_complex(InterfaceComplex& complex, const InterfaceComplex& part)
 {
     const auto offset = static_cast<std::uint32_t>(complex.vertices.size());
