@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/interface_complex.h"
@@ -91,6 +92,12 @@ std::vector<SnakeTarget> nested_label_targets(const LabelImage& image, const std
 /// are nested (evolve_snakes() checks that they do not meet).
 /// @throws InputError when a field has no positive voxel or scale is not positive
 InterfaceComplex bounding_ellipsoids(const std::vector<SnakeTarget>& targets, double scale, double edge_mm);
+
+/// Fits a start surface read from a file to `targets`: left as it is when every triangle's pair is a target's
+/// pair (either orientation); with one target and one pair in the file, every triangle takes the target's pair
+/// (the file's `from` side becoming the target's `from`).
+/// @throws InputError naming `what` otherwise
+void label_start_surface(InterfaceComplex& complex, const std::vector<SnakeTarget>& targets, const std::string& what);
 
 /// Appends `part`'s vertices and triangles to `complex` (indices shifted).
 void append_complex(InterfaceComplex& complex, const InterfaceComplex& part);

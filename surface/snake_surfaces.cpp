@@ -1,4 +1,5 @@
 // Initial surfaces for snakes (declared in surface/snake.h).
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -104,6 +105,25 @@ InterfaceComplex bounding_ellipsoids(const std::vector<SnakeTarget>& targets, do
         append_complex(complex, ellipsoid_surface(centre, radii, edge_mm, target.pair));
     }
     return complex;
+}
+
+void label_start_surface(InterfaceComplex& complex, const std::vector<SnakeTarget>& targets, const std::string& what)
+{
+    const auto matches = [&](const LabelPair& side) {
+        for (const SnakeTarget& t : targets)
+            if (side == t.pair || (side.from == t.pair.to && side.to == t.pair.from)) return true;
+        return false;
+    };
+    if (std::all_of(complex.sides.begin(), complex.sides.end(), matches)) return;
+    const bool one_pair = !complex.sides.empty() &&
+                          std::all_of(complex.sides.begin(), complex.sides.end(),
+                                      [&](const LabelPair& side) { return side == complex.sides.front(); });
+    if (targets.size() == 1 && one_pair) {
+        for (LabelPair& side : complex.sides) side = targets.front().pair;
+        return;
+    }
+    throw InputError(concat(what, ": the start surface's tissue pairs do not match the snakes (one pair per "
+                                  "snake, outermost against the background); label it as tm-snake writes them"));
 }
 
 void append_complex(InterfaceComplex& complex, const InterfaceComplex& part)
