@@ -83,6 +83,8 @@ public:
         refresh();
         const std::size_t n = editor_.vertex_slots();
         const double max_step = options_.max_step_voxels * voxel_mm_;
+        last_shift_.resize(n, Vec3{0, 0, 0});
+        damping_.resize(n, 1.0);
         std::vector<Vec3> shift(n, Vec3{0, 0, 0});
         for (std::uint32_t v = 0; v < n; ++v) {
             if (!editor_.vertex_alive(v)) continue;
@@ -95,8 +97,14 @@ public:
                      options_.tension * laplacian_[v] - options_.rigidity * ring_l2;
             const double length = norm(s);
             if (length > max_step) s = (max_step / length) * s;
-            shift[v] = s;
+            // A vertex that reverses its motion is overshooting (across a thin ridge of the field, or where
+            // explicit steps of the internal forces are too long): its own step is halved, and grows back while
+            // it keeps its direction.
+            if (dot(s, last_shift_[v]) < 0) damping_[v] *= 0.5;
+            else damping_[v] = std::min(1.0, 1.25 * damping_[v]);
+            shift[v] = damping_[v] * s;
         }
+        last_shift_ = shift;
         double largest = 0;
         const double negligible = 0.1 * options_.tolerance_voxels * voxel_mm_;
         for (std::uint32_t v = 0; v < n; ++v) {
@@ -112,7 +120,11 @@ public:
                 continue;
             }
             ++report.moves;
-            largest = std::max(largest, std::abs(dot(editor_.position(v) - start, normal_[v])));
+            const double across = std::abs(dot(editor_.position(v) - start, normal_[v]));
+            if (across > largest) {
+                largest = across;
+                largest_at_ = start;
+            }
         }
         return largest;
     }
@@ -189,6 +201,12 @@ private:
     const SnakeOptions& options_;
     double voxel_mm_;
     std::vector<Vec3> normal_, laplacian_;
+public:
+    Vec3 largest_at_{0, 0, 0};      ///< where the largest motion of the last iteration started
+
+private:
+    std::vector<Vec3> last_shift_;  ///< per vertex slot: its shift of the previous iteration
+    std::vector<double> damping_;   ///< per vertex slot: factor of its step, halved on each reversal
     std::vector<double> curvature_;
     std::vector<std::size_t> snake_;
 };
@@ -229,6 +247,10 @@ SnakeReport evolve_snakes(InterfaceComplex& complex, const std::vector<SnakeTarg
     for (std::size_t i = 0; i < options.max_iterations; ++i) {
         report.last_max_motion_mm = stepper.iterate(report);
         ++report.iterations;
+        const Vec3& at = stepper.largest_at_;
+        progress.debug("snake", concat("iteration ", i + 1, ": largest motion ", format_mm(report.last_max_motion_mm, 4),
+                                       " mm near (", format_mm(at[0], 1), ", ", format_mm(at[1], 1), ", ",
+                                       format_mm(at[2], 1), ") mm"));
         progress.update("snake", static_cast<double>(i + 1) / static_cast<double>(options.max_iterations));
         if (report.last_max_motion_mm < tolerance_mm && !edited) {
             report.converged = true;

@@ -72,6 +72,12 @@ Vec3 PotentialField::world_to_index(const Vec3& world_mm) const
     return {local[0] / spacing_mm_[0], local[1] / spacing_mm_[1], local[2] / spacing_mm_[2]};
 }
 
+Vec3 PotentialField::index_to_world(const Vec3& index) const
+{
+    return origin_mm_ +
+           multiply(direction_, Vec3{index[0] * spacing_mm_[0], index[1] * spacing_mm_[1], index[2] * spacing_mm_[2]});
+}
+
 double PotentialField::at(std::int64_t i, std::int64_t j, std::int64_t k) const
 {
     const auto clamp = [](std::int64_t v, std::size_t n) {
@@ -146,9 +152,7 @@ std::optional<std::array<Vec3, 2>> PotentialField::positive_bounds_mm() const
         for (std::size_t j = 0; j < dims_[1]; ++j)
             for (std::size_t i = 0; i < dims_[0]; ++i) {
                 if (!(values_[i + dims_[0] * (j + dims_[1] * k)] > 0)) continue;
-                const Vec3 local{static_cast<double>(i) * spacing_mm_[0], static_cast<double>(j) * spacing_mm_[1],
-                                 static_cast<double>(k) * spacing_mm_[2]};
-                const Vec3 p = origin_mm_ + multiply(direction_, local);
+                const Vec3 p = index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)});
                 for (std::size_t a = 0; a < 3; ++a) {
                     low[a] = std::min(low[a], p[a]);
                     high[a] = std::max(high[a], p[a]);

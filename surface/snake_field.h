@@ -26,6 +26,8 @@ public:
     Vec3 gradient(const Vec3& world_mm) const;
     /// Continuous voxel index of a world point.
     Vec3 world_to_index(const Vec3& world_mm) const;
+    /// World point (mm) of a continuous voxel index; the inverse of world_to_index().
+    Vec3 index_to_world(const Vec3& index) const;
     /// Axis-aligned world box {min, max} of the voxel centres where the field is positive (the region);
     /// nothing when no voxel is.
     std::optional<std::array<Vec3, 2>> positive_bounds_mm() const;
