@@ -127,19 +127,25 @@ TEST(SnakePhantoms, NestedSpheres4At2mmMakeOneComplexTetGenAccepts)
 
 /// Rotated nested ellipsoids on an anisotropic grid with a rotated direction and an origin: world mm
 /// handled throughout. The limit: mean distance under 0.4 voxel.
-TEST(SnakePhantoms, EllipsoidsAt2mmNested)
+void ellipsoids_nested(double voxel_mm)
 {
-    const image::Phantom phantom = image::make_phantom("ellipsoids", {.voxel_mm = 2.0});
-    const std::vector<surface::SnakeTarget> targets = surface::nested_label_targets(phantom.image, {1, 2}, 2.0);
+    const image::Phantom phantom = image::make_phantom("ellipsoids", {.voxel_mm = voxel_mm});
+    const std::vector<surface::SnakeTarget> targets = surface::nested_label_targets(phantom.image, {1, 2}, voxel_mm);
     SnakeRun run;
-    run.complex = surface::bounding_ellipsoids(targets, 1.15, 4.0);
+    run.complex = surface::bounding_ellipsoids(targets, 1.15, 2 * voxel_mm);
+    const auto start = std::chrono::steady_clock::now();
     run.report = surface::evolve_snakes(run.complex, targets);
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     run.figures = testing::phantom_distances(phantom, run.complex);
-    print("ellipsoids 2 mm (z 3 mm), nested", run);
+    print(concat("ellipsoids ", voxel_mm, " mm (z ", 1.5 * voxel_mm, " mm), nested"), run);
     EXPECT_TRUE(run.report.converged);
     EXPECT_LT(run.figures.mean_voxels, 0.4);
     expect_valid(run.complex);
 }
+
+TEST(SnakePhantoms, EllipsoidsAt2mmNested) { ellipsoids_nested(2.0); }
+
+TEST(SnakePhantoms, LongEllipsoidsAt1mmNested) { ellipsoids_nested(1.0); }
 
 } // namespace
 } // namespace tissuemesh
