@@ -78,7 +78,7 @@ int main(int argc, char** argv)
          "is one interface complex fit for tm-tetra.",
          "Examples:\n  tm-snake -i head.nii.gz --labels head.json --tissue brain -o brain.ply\n"
          "  tm-snake -i head.nii.gz --nested scalp,skull,csf,brain -o head.ply --json snake.json\n"
-         "  tm-snake -i skull_2.9.inr --grey --iso 2.9 -o skull.ply\n"
+         "  tm-snake -i skull_2.9.inr --grey --iso 2.9 --tension 0.5 --rigidity 0.2 --max-step-voxels 0.25 -o skull.ply\n"
          "  tm-snake -i head.nii.gz --tissue 4 --init sphere --centre 0,0,10 --radius 60 -o brain.vtp\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Label image, or grey image (.inr, .inr.gz) with --grey")->required();

@@ -49,7 +49,7 @@ TEST(SnakeGrey, SkullAtIso29IsClosedAndOnTheIsoSurface)
     // Tension and rigidity high and steps small, so that the snake bridges the holes of the thin skull (orbits,
     // foramina) rather than leaking through them.
     const surface::SnakeReport report = surface::evolve_snakes(
-        complex, targets, {.tension = 0.5, .rigidity = 0.2, .max_step_voxels = 0.25, .max_iterations = 400});
+        complex, targets, {.tension = 0.5, .rigidity = 0.2, .max_step_voxels = 0.25, .max_iterations = 250});
     const IsoDistances d = iso_distances(complex, targets[0].field);
     std::cout << "[ figures  ] skull_2.9.inr at 2.9: " << report.iterations << " iterations ("
               << (report.converged ? "converged" : "cap") << "), " << report.triangles << " triangles, "

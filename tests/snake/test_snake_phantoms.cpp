@@ -98,7 +98,7 @@ TEST(SnakePhantoms, LongSpheres4At1mmFrom15mmOff) { spheres4_from_15mm_off(1.0, 
 
 /// The four nested snakes of spheres4 at once, from bounding ellipsoids: one complex, each interface on its
 /// exact sphere, fit for tetrahedralization, and TetGen accepts it.
-TEST(SnakePhantoms, NestedSpheres4At2mmMakeOneComplexTetGenAccepts)
+TEST(SnakePhantoms, LongNestedSpheres4At2mmMakeOneComplexTetGenAccepts)
 {
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
     const std::vector<surface::SnakeTarget> targets = surface::nested_label_targets(phantom.image, {1, 2, 3, 4}, 2.0);
