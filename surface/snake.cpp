@@ -185,6 +185,9 @@ public:
         return phi > 0 ? 1e300 : phi < 0 ? -1e300 : 0;
     }
 
+    /// Where the largest motion of the last iteration started (mm), for the log.
+    const Vec3& largest_at() const { return largest_at_; }
+
     TargetOf target_of(const LabelPair& side) const
     {
         for (std::size_t k = 0; k < targets_.size(); ++k) {
@@ -201,10 +204,7 @@ private:
     const SnakeOptions& options_;
     double voxel_mm_;
     std::vector<Vec3> normal_, laplacian_;
-public:
     Vec3 largest_at_{0, 0, 0};      ///< where the largest motion of the last iteration started
-
-private:
     std::vector<Vec3> last_shift_;  ///< per vertex slot: its shift of the previous iteration
     std::vector<double> damping_;   ///< per vertex slot: factor of its step, halved on each reversal
     std::vector<double> curvature_;
@@ -247,7 +247,7 @@ SnakeReport evolve_snakes(InterfaceComplex& complex, const std::vector<SnakeTarg
     for (std::size_t i = 0; i < options.max_iterations; ++i) {
         report.last_max_motion_mm = stepper.iterate(report);
         ++report.iterations;
-        const Vec3& at = stepper.largest_at_;
+        const Vec3& at = stepper.largest_at();
         progress.debug("snake", concat("iteration ", i + 1, ": largest motion ", format_mm(report.last_max_motion_mm, 4),
                                        " mm near (", format_mm(at[0], 1), ", ", format_mm(at[1], 1), ", ",
                                        format_mm(at[2], 1), ") mm"));

@@ -74,6 +74,14 @@ TEST(SnakeCli, SphereStartAndIterationCapAreReported)
     EXPECT_GT(c.at("last_max_motion_mm").get<double>(), c.at("tolerance_mm").get<double>());
     EXPECT_NE(capped.err.find("stopped at the cap"), std::string::npos) << capped.err;
     EXPECT_TRUE(surface::check_complex(io::read_surface((dir / "c.vtp").string())).ok());
+    // The capped surface, read back as the start, settles on the scalp sphere.
+    const auto resumed = run_cli("tm-snake", {"-i", image, "--tissue", "1", "--init", (dir / "c.vtp").string(), "-o",
+                                              (dir / "r.ply").string(), "--json", (dir / "r.json").string()});
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    EXPECT_TRUE(testing::read_json(dir / "r.json").at("converged").get<bool>());
+    InterfaceComplex settled = io::read_surface((dir / "r.ply").string());
+    const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 4.0});
+    EXPECT_LT(testing::phantom_distances(phantom, settled).mean_voxels, 0.3);
 }
 
 TEST(SnakeCli, RefusalsNameTheProblemAndLeaveNothing)
