@@ -113,30 +113,39 @@ bool big_endian_cpu(const std::string& name, const InrHeader& header)
 
 } // namespace
 
-LabelImage read_inrimage(const fs::path& path)
+InrimageLayout read_inrimage_layout(const fs::path& path)
 {
     const std::string name = path.string();
     const InrHeader header = read_header(path);
-    const Dims dims{dimension_field(name, header, "XDIM", 0), dimension_field(name, header, "YDIM", 1),
-                    dimension_field(name, header, "ZDIM", 2)};
+    InrimageLayout layout;
+    layout.dims = {dimension_field(name, header, "XDIM", 0), dimension_field(name, header, "YDIM", 1),
+                   dimension_field(name, header, "ZDIM", 2)};
     const double values = number_field(name, header, "VDIM", 1);
     if (values != 1)
         throw InputError(concat(name, ": ", values, " values per voxel (VDIM); a label map holds one value per "
                                 "voxel. Extract one component"));
-    const VoxelType type = voxel_type(name, header);
-    const bool big_endian = big_endian_cpu(name, header);
-    const Vec3 spacing{number_field(name, header, "VX", 1), number_field(name, header, "VY", 1),
-                       number_field(name, header, "VZ", 1)};
-    const Vec3 origin{number_field(name, header, "TX", number_field(name, header, "XO", 0)),
-                      number_field(name, header, "TY", number_field(name, header, "YO", 0)),
-                      number_field(name, header, "TZ", number_field(name, header, "ZO", 0))};
-    validate_geometry(name, dims, spacing, identity_matrix());
-    const std::uint64_t needed = checked_voxel_bytes(name, dims, voxel_type_size(type));
+    layout.type = voxel_type(name, header);
+    layout.big_endian = big_endian_cpu(name, header);
+    layout.spacing_mm = {number_field(name, header, "VX", 1), number_field(name, header, "VY", 1),
+                         number_field(name, header, "VZ", 1)};
+    layout.origin_mm = {number_field(name, header, "TX", number_field(name, header, "XO", 0)),
+                        number_field(name, header, "TY", number_field(name, header, "YO", 0)),
+                        number_field(name, header, "TZ", number_field(name, header, "ZO", 0))};
+    layout.header_bytes = header.bytes;
+    validate_geometry(name, layout.dims, layout.spacing_mm, identity_matrix());
+    return layout;
+}
+
+LabelImage read_inrimage(const fs::path& path)
+{
+    const std::string name = path.string();
+    const InrimageLayout layout = read_inrimage_layout(path);
+    const std::uint64_t needed = checked_voxel_bytes(name, layout.dims, voxel_type_size(layout.type));
     const std::uint64_t size = uncompressed_size(path);
-    require_payload(name, needed, size > header.bytes ? size - header.bytes : 0);
-    const std::vector<unsigned char> bytes = read_payload(path, header.bytes, needed);
-    LabelImage image(dims, spacing, origin);
-    decode_labels(name, bytes.data(), type, big_endian, image);
+    require_payload(name, needed, size > layout.header_bytes ? size - layout.header_bytes : 0);
+    const std::vector<unsigned char> bytes = read_payload(path, layout.header_bytes, needed);
+    LabelImage image(layout.dims, layout.spacing_mm, layout.origin_mm);
+    decode_labels(name, bytes.data(), layout.type, layout.big_endian, image);
     return image;
 }
 

@@ -16,8 +16,23 @@
 #include <string>
 
 #include "core/label_image.h"
+#include "io/detail/voxel_decode.h"
 
 namespace tissuemesh::io::detail {
+
+/// What an Inrimage header says about the voxels that follow it.
+struct InrimageLayout {
+    Dims dims{0, 0, 0};
+    Vec3 spacing_mm{1, 1, 1};
+    Vec3 origin_mm{0, 0, 0};
+    VoxelType type = VoxelType::u8;
+    bool big_endian = false;
+    std::size_t header_bytes = 0;  ///< the voxel data starts here (a multiple of 256)
+};
+
+/// Reads and checks the header of a .inr or .inr.gz file (one value per voxel, valid geometry).
+/// @throws IoError on a wrong magic or an unreadable header; InputError on invalid content
+InrimageLayout read_inrimage_layout(const std::filesystem::path& path);
 
 /// Reads a .inr or .inr.gz file (gzip detected by content).
 /// @throws IoError on a wrong magic, an unreadable header or truncated data; InputError on invalid

@@ -1,0 +1,24 @@
+// Reading grey-level images (CT, MRI intensities) as floats, for active contours on grey values.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "core/label_image.h"
+
+namespace tissuemesh::io {
+
+/// A float per voxel on a grid placed in world mm. `grid` carries the geometry only (dims, spacing,
+/// origin, direction and index <-> world as in core/label_image.h); its labels are all 0.
+struct GreyImage {
+    LabelImage grid;
+    std::vector<float> values;  ///< grid.voxel_count() values, x fastest
+};
+
+/// Reads a grey-level image. Formats: Inrimage (`.inr`, `.inr.gz`) of any voxel type (integers are
+/// converted to float); identity direction, origin from TX/TY/TZ. Other formats are not read yet.
+/// @throws IoError when the file is missing, truncated, of an unknown extension or a wrong magic
+/// @throws InputError on invalid geometry or several values per voxel, or a value that is not finite
+GreyImage read_grey_image(const std::filesystem::path& path);
+
+} // namespace tissuemesh::io
