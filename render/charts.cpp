@@ -1,0 +1,144 @@
+#include "render/charts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace tissuemesh::render {
+namespace {
+
+constexpr Rgb black{0, 0, 0}, grid{220, 220, 220};
+constexpr long margin_left = 70, margin_right = 16, margin_top = 30, margin_bottom = 44;
+
+/// A round step (1, 2 or 5 x 10^k) giving about `ticks` intervals over `range`.
+double nice_step(double range, int ticks)
+{
+    const double raw = range / ticks, power = std::pow(10.0, std::floor(std::log10(raw)));
+    for (const double m : {1.0, 2.0, 5.0})
+        if (m * power >= raw) return m * power;
+    return 10 * power;
+}
+
+Panel plot_area(const Panel& panel)
+{
+    return {panel.x + margin_left, panel.y + margin_top, panel.width - margin_left - margin_right, panel.height - margin_top - margin_bottom};
+}
+
+void draw_frame(Canvas& canvas, const Panel& panel, const Panel& area, const std::string& title, const std::string& x_label)
+{
+    canvas.draw_text(panel.x + margin_left, panel.y + 8, title, black);
+    canvas.draw_text(area.x + (area.width - Canvas::text_width(x_label)) / 2, area.y + area.height + 26, x_label, black);
+    const double x0 = static_cast<double>(area.x), y1 = static_cast<double>(area.y + area.height);
+    canvas.draw_line(x0, static_cast<double>(area.y), x0, y1, black);
+    canvas.draw_line(x0, y1, static_cast<double>(area.x + area.width), y1, black);
+}
+
+/// A horizontal grid line with its label at height fraction f of the plot area.
+void y_tick(Canvas& canvas, const Panel& area, double f, const std::string& label)
+{
+    const double y = static_cast<double>(area.y + area.height) - f * static_cast<double>(area.height);
+    canvas.draw_line(static_cast<double>(area.x + 1), y, static_cast<double>(area.x + area.width), y, grid);
+    canvas.draw_text(area.x - 6 - Canvas::text_width(label), std::lround(y) - 7, label, black);
+}
+
+} // namespace
+
+std::string short_number(double value)
+{
+    char text[32];
+    const double magnitude = std::abs(value);
+    if (magnitude >= 1e6) std::snprintf(text, sizeof text, "%.3gM", value / 1e6);
+    else if (magnitude >= 1e4) std::snprintf(text, sizeof text, "%.3gk", value / 1e3);
+    else std::snprintf(text, sizeof text, "%.4g", value);
+    return text;
+}
+
+void draw_bar_chart(Canvas& canvas, const Panel& panel, const BarChart& chart)
+{
+    if (chart.counts.size() != chart.bin_labels.size())
+        throw InputError(concat("bar chart \"", chart.title, "\": ", chart.counts.size(), " bins but ", chart.bin_labels.size(), " labels"));
+    for (const auto& bin : chart.counts)
+        if (bin.size() != chart.stack_colours.size())
+            throw InputError(concat("bar chart \"", chart.title, "\": a bin has ", bin.size(), " stacks for ", chart.stack_colours.size(), " colours"));
+    const Panel area = plot_area(panel);
+    double max_total = 0;
+    for (const auto& bin : chart.counts) {
+        double total = 0;
+        for (const double c : bin) total += c;
+        max_total = std::max(max_total, total);
+    }
+    auto height_of = [&](double total) {
+        if (max_total <= 0) return 0.0;
+        return chart.log_scale ? std::log10(1 + total) / std::log10(1 + max_total) : total / max_total;
+    };
+    if (chart.log_scale)
+        for (double tick = 1; tick <= max_total; tick *= 10) y_tick(canvas, area, height_of(tick), short_number(tick));
+    else if (max_total > 0)
+        for (double step = nice_step(max_total, 4), tick = 0; tick <= max_total; tick += step) y_tick(canvas, area, height_of(tick), short_number(tick));
+    const std::size_t bins = chart.counts.size();
+    const double slot = static_cast<double>(area.width) / static_cast<double>(std::max<std::size_t>(bins, 1));
+    const std::size_t label_every = static_cast<std::size_t>(std::ceil(static_cast<double>(Canvas::text_width("00000") + 8) / slot));
+    const double bottom = static_cast<double>(area.y + area.height);
+    for (std::size_t b = 0; b < bins; ++b) {
+        double total = 0;
+        for (const double c : chart.counts[b]) total += c;
+        const double bar_height = height_of(total) * static_cast<double>(area.height);
+        const long x0 = area.x + std::lround(slot * static_cast<double>(b) + 0.1 * slot), x1 = area.x + std::lround(slot * static_cast<double>(b + 1) - 0.1 * slot);
+        double stacked = 0;
+        for (std::size_t s = 0; s < chart.stack_colours.size(); ++s) {
+            if (chart.counts[b][s] <= 0) continue;
+            const double top = stacked + bar_height * chart.counts[b][s] / total;
+            canvas.fill_rect(x0, std::lround(bottom - top), x1, std::lround(bottom - stacked), chart.stack_colours[s]);
+            stacked = top;
+        }
+        if (b % std::max<std::size_t>(label_every, 1) == 0)
+            canvas.draw_text(area.x + std::lround(slot * static_cast<double>(b)), area.y + area.height + 6, chart.bin_labels[b], black);
+    }
+    draw_frame(canvas, panel, area, chart.title, chart.x_label);
+}
+
+void draw_line_chart(Canvas& canvas, const Panel& panel, const LineChart& chart)
+{
+    const Panel area = plot_area(panel);
+    double x_max = 0, y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+    auto y_of = [&](double y) { return chart.log_y ? std::log10(y) : y; };
+    for (const LineSeries& s : chart.series)
+        for (const auto& [x, y] : s.points) {
+            if (chart.log_y && !(y > 0)) continue;
+            x_max = std::max(x_max, x), y_min = std::min(y_min, y_of(y)), y_max = std::max(y_max, y_of(y));
+        }
+    if (!(y_min <= y_max)) y_min = 0, y_max = 1;
+    if (!chart.log_y) y_min = std::min(y_min, 0.0);
+    if (chart.log_y) y_min = std::floor(y_min), y_max = std::ceil(y_max);
+    if (y_max <= y_min) y_max = y_min + 1;
+    if (x_max <= 0) x_max = 1;
+    auto screen = [&](double x, double y) {
+        return std::array<double, 2>{static_cast<double>(area.x) + static_cast<double>(area.width) * x / x_max,
+                                     static_cast<double>(area.y + area.height) - static_cast<double>(area.height) * (y_of(y) - y_min) / (y_max - y_min)};
+    };
+    if (chart.log_y)
+        for (double e = y_min; e <= y_max; ++e) y_tick(canvas, area, (e - y_min) / (y_max - y_min), short_number(std::pow(10.0, e)));
+    else
+        for (double step = nice_step(y_max - y_min, 4), tick = std::ceil(y_min / step) * step; tick <= y_max; tick += step)
+            y_tick(canvas, area, (tick - y_min) / (y_max - y_min), short_number(tick));
+    for (double step = nice_step(x_max, 4), tick = 0; tick <= x_max * 1.0001; tick += step) {
+        const double x = screen(tick, chart.log_y ? std::pow(10.0, y_min) : y_min)[0];
+        canvas.draw_line(x, static_cast<double>(area.y + area.height), x, static_cast<double>(area.y + area.height + 4), black);
+        const std::string label = short_number(tick);
+        canvas.draw_text(std::lround(x) - Canvas::text_width(label) / 2, area.y + area.height + 8, label, black);
+    }
+    for (const LineSeries& s : chart.series) {
+        std::vector<std::array<double, 2>> points;
+        for (const auto& [x, y] : s.points)
+            if (!chart.log_y || y > 0) points.push_back(screen(x, y));
+        for (std::size_t i = 0; i + 1 < points.size(); ++i)
+            canvas.draw_line(points[i][0], points[i][1], points[i + 1][0], points[i + 1][1], s.colour, 2);
+        for (const auto& p : points) canvas.fill_rect(std::lround(p[0]) - 3, std::lround(p[1]) - 3, std::lround(p[0]) + 3, std::lround(p[1]) + 3, s.colour);
+    }
+    draw_frame(canvas, panel, area, chart.title, chart.x_label);
+    if (!chart.y_label.empty()) canvas.draw_text(area.x + 8, area.y + 4, chart.y_label, {90, 90, 90});
+}
+
+} // namespace tissuemesh::render

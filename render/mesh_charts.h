@@ -1,0 +1,45 @@
+// The quality histograms of a tet mesh and the convergence plot of tm-refine, as pictures.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/tet_mesh.h"
+#include "render/canvas.h"
+
+namespace tissuemesh::render {
+
+/// Tets per quality bin and tissue, the data behind render_quality_histograms().
+struct QualityHistograms {
+    std::vector<Label> tissues;                            ///< ascending: the stacks of each bar
+    std::vector<std::vector<double>> min_dihedral;         ///< 18 bins of 5 deg (0-5, ..., 85-90) x tissues
+    std::vector<std::vector<double>> radius_edge;          ///< radius_edge_edges.size() bins x tissues
+    static const std::vector<double>& radius_edge_edges(); ///< lower bin edges 0.6, 0.8, 1, 1.25, 1.5, 2, 3, 5, 10 (last: and above)
+};
+
+/// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (volume::tet_shape).
+QualityHistograms quality_histograms(const TetMesh& mesh);
+
+/// Two stacked bar charts side by side (smallest dihedral angle; radius-edge ratio), bars split by tissue
+/// in the tissue colours, counts on a log axis, with a legend. Default size 1200 x 480 px.
+Canvas render_quality_histograms(const TetMesh& mesh, std::size_t width_px = 1200, std::size_t height_px = 480,
+                                 const std::string& title = "");
+
+/// One row of tm-refine's CSV log (volume/refine_log.h).
+struct RefineLogRow {
+    double iteration = 0, nodes = 0, tets = 0, total_error_volume_mm3 = 0, worst_quality_key = 0, seconds = 0;
+};
+
+/// Parses the CSV tm-refine --log writes (columns found by their header names).
+/// @throws IoError when the file cannot be read; InputError when a needed column is missing, a value is
+///         not a number, or there is no row
+std::vector<RefineLogRow> read_refine_log(const std::filesystem::path& path);
+
+/// Error volume (mm^3) and worst quality key against nodes, two panels one above the other, log y axes.
+/// Default size 900 x 640 px.
+Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t width_px = 900, std::size_t height_px = 640,
+                          const std::string& title = "");
+
+} // namespace tissuemesh::render
