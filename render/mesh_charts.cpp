@@ -27,6 +27,9 @@ QualityHistograms quality_histograms(const TetMesh& mesh)
     const auto& edges = QualityHistograms::radius_edge_edges();
     h.min_dihedral.assign(18, std::vector<double>(h.tissues.size(), 0));
     h.radius_edge.assign(edges.size(), std::vector<double>(h.tissues.size(), 0));
+    h.tets.assign(h.tissues.size(), 0);
+    h.min_dihedral_deg.assign(h.tissues.size(), 180);
+    h.max_radius_edge_ratio.assign(h.tissues.size(), 0);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const volume::TetShape shape = volume::tet_shape(mesh, t);
         const std::size_t s = stack.at(mesh.tet_labels[t]);
@@ -36,13 +39,16 @@ QualityHistograms quality_histograms(const TetMesh& mesh)
         const auto upper = std::upper_bound(edges.begin(), edges.end(), shape.radius_edge_ratio);
         const std::size_t ratio_bin = upper == edges.begin() ? 0 : static_cast<std::size_t>(upper - edges.begin()) - 1;
         h.radius_edge[ratio_bin][s] += 1;
+        ++h.tets[s];
+        h.min_dihedral_deg[s] = std::min(h.min_dihedral_deg[s], shape.min_dihedral_deg);
+        h.max_radius_edge_ratio[s] = std::max(h.max_radius_edge_ratio[s], shape.radius_edge_ratio);
     }
     return h;
 }
 
-Canvas render_quality_histograms(const TetMesh& mesh, std::size_t width_px, std::size_t height_px, const std::string& title)
+Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& h, std::size_t width_px, std::size_t height_px,
+                                 const std::string& title)
 {
-    const QualityHistograms h = quality_histograms(mesh);
     std::vector<Rgb> colours;
     for (const Label label : h.tissues) colours.push_back(tissue_colour(label));
     BarChart dihedral{"tets by smallest dihedral angle", "degrees", {}, h.min_dihedral, colours, true};

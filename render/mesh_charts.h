@@ -16,16 +16,20 @@ struct QualityHistograms {
     std::vector<Label> tissues;                            ///< ascending: the stacks of each bar
     std::vector<std::vector<double>> min_dihedral;         ///< 18 bins of 5 deg (0-5, ..., 85-90) x tissues
     std::vector<std::vector<double>> radius_edge;          ///< radius_edge_edges.size() bins x tissues
+    std::vector<std::size_t> tets;                         ///< per tissue
+    std::vector<double> min_dihedral_deg;                  ///< per tissue: smallest over its tets
+    std::vector<double> max_radius_edge_ratio;             ///< per tissue: largest over its tets
     static const std::vector<double>& radius_edge_edges(); ///< lower bin edges 0.6, 0.8, 1, 1.25, 1.5, 2, 3, 5, 10 (last: and above)
 };
 
 /// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (volume::tet_shape).
 QualityHistograms quality_histograms(const TetMesh& mesh);
 
-/// Two stacked bar charts side by side (smallest dihedral angle; radius-edge ratio), bars split by tissue
-/// in the tissue colours, counts on a log axis, with a legend. Default size 1200 x 480 px.
-Canvas render_quality_histograms(const TetMesh& mesh, std::size_t width_px = 1200, std::size_t height_px = 480,
-                                 const std::string& title = "");
+/// Two stacked bar charts side by side of `histograms` (from quality_histograms(mesh)): smallest dihedral
+/// angle and radius-edge ratio, bars split by tissue in the tissue colours, counts on a log axis, with a
+/// legend (names from the mesh). Default size 1200 x 480 px.
+Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& histograms, std::size_t width_px = 1200,
+                                 std::size_t height_px = 480, const std::string& title = "");
 
 /// One row of tm-refine's CSV log (volume/refine_log.h).
 struct RefineLogRow {

@@ -104,7 +104,7 @@ int main(int argc, char** argv)
                 std::set<Label> tissues;
                 for (const LabelPair& pair : complex.sides)
                     for (const Label label : {pair.from, pair.to}) if (label != complex.background) tissues.insert(label);
-                summary.update({{"tissues", labels_json(tissues)}, {"triangles_drawn", report.triangles_drawn},
+                summary.update({{"tissues_shown", labels_json(tissues)}, {"triangles_drawn", report.triangles_drawn},
                                 {"triangles_cut", report.triangles_cut}, {"pixels_covered", report.pixels_covered}});
             } else if (view == "section") {
                 const TetMesh mesh = io::read_tet_mesh(input);
@@ -126,8 +126,16 @@ int main(int argc, char** argv)
                 if (assessment) summary["total_error_volume_mm3"] = assessment->total_error_volume_mm3;
             } else if (view == "quality") {
                 const TetMesh mesh = io::read_tet_mesh(input);
-                picture = render::render_quality_histograms(mesh, width ? width : 1200, height ? height : 480, title);
-                summary["tissues"] = labels_json({mesh.tet_labels.begin(), mesh.tet_labels.end()});
+                const render::QualityHistograms histograms = render::quality_histograms(mesh);
+                picture = render::render_quality_histograms(mesh, histograms, width ? width : 1200, height ? height : 480, title);
+                nlohmann::json tissues = nlohmann::json::object();
+                for (std::size_t s = 0; s < histograms.tissues.size(); ++s) {
+                    const Label label = histograms.tissues[s];
+                    tissues[std::to_string(label)] = {{"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
+                                                      {"tets", histograms.tets[s]}, {"min_dihedral_deg", histograms.min_dihedral_deg[s]},
+                                                      {"max_radius_edge_ratio", histograms.max_radius_edge_ratio[s]}};
+                }
+                summary["tissues"] = tissues;
                 summary["tets"] = mesh.tets.size();
             } else {
                 const std::vector<render::RefineLogRow> rows = render::read_refine_log(input);
