@@ -102,20 +102,25 @@ void draw_bar_chart(Canvas& canvas, const Panel& panel, const BarChart& chart)
 void draw_line_chart(Canvas& canvas, const Panel& panel, const LineChart& chart)
 {
     const Panel area = plot_area(panel);
-    double x_max = 0, y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
+    double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min, y_min = x_min, y_max = -x_min;
     auto y_of = [&](double y) { return chart.log_y ? std::log10(y) : y; };
     for (const LineSeries& s : chart.series)
         for (const auto& [x, y] : s.points) {
+            x_min = std::min(x_min, x), x_max = std::max(x_max, x);
             if (chart.log_y && !(y > 0)) continue;
-            x_max = std::max(x_max, x), y_min = std::min(y_min, y_of(y)), y_max = std::max(y_max, y_of(y));
+            y_min = std::min(y_min, y_of(y)), y_max = std::max(y_max, y_of(y));
         }
     if (!(y_min <= y_max)) y_min = 0, y_max = 1;
     if (!chart.log_y) y_min = std::min(y_min, 0.0);
     if (chart.log_y) y_min = std::floor(y_min), y_max = std::ceil(y_max);
     if (y_max <= y_min) y_max = y_min + 1;
-    if (x_max <= 0) x_max = 1;
+    if (!(x_min <= x_max)) x_min = 0, x_max = 1;
+    // x from a round number at or below the smallest value (nodes start high after a tm-tetra mesh).
+    const double x_step = nice_step(std::max(x_max - x_min, 1e-9 + 1e-6 * std::abs(x_max)), 4);
+    x_min = std::floor(x_min / x_step) * x_step;
+    if (x_max <= x_min) x_max = x_min + x_step;
     auto screen = [&](double x, double y) {
-        return std::array<double, 2>{static_cast<double>(area.x) + static_cast<double>(area.width) * x / x_max,
+        return std::array<double, 2>{static_cast<double>(area.x) + static_cast<double>(area.width) * (x - x_min) / (x_max - x_min),
                                      static_cast<double>(area.y + area.height) - static_cast<double>(area.height) * (y_of(y) - y_min) / (y_max - y_min)};
     };
     if (chart.log_y)
@@ -123,21 +128,28 @@ void draw_line_chart(Canvas& canvas, const Panel& panel, const LineChart& chart)
     else
         for (double step = nice_step(y_max - y_min, 4), tick = std::ceil(y_min / step) * step; tick <= y_max; tick += step)
             y_tick(canvas, area, (tick - y_min) / (y_max - y_min), short_number(tick));
-    for (double step = nice_step(x_max, 4), tick = 0; tick <= x_max * 1.0001; tick += step) {
+    for (double tick = x_min; tick <= x_max + 1e-9 * std::abs(x_max) + 1e-12; tick += x_step) {
         const double x = screen(tick, chart.log_y ? std::pow(10.0, y_min) : y_min)[0];
         canvas.draw_line(x, static_cast<double>(area.y + area.height), x, static_cast<double>(area.y + area.height + 4), black);
         const std::string label = short_number(tick);
         canvas.draw_text(std::lround(x) - Canvas::text_width(label) / 2, area.y + area.height + 8, label, black);
     }
+    bool zeros_on_axis = false;
     for (const LineSeries& s : chart.series) {
         std::vector<std::array<double, 2>> points;
-        for (const auto& [x, y] : s.points)
-            if (!chart.log_y || y > 0) points.push_back(screen(x, y));
+        for (const auto& [x, y] : s.points) {
+            // A log axis has no 0: such points sit on the bottom axis line, and a note says so.
+            const bool on_axis = chart.log_y && !(y > 0);
+            zeros_on_axis = zeros_on_axis || on_axis;
+            points.push_back(screen(x, on_axis ? std::pow(10.0, y_min) : y));
+        }
         for (std::size_t i = 0; i + 1 < points.size(); ++i)
             canvas.draw_line(points[i][0], points[i][1], points[i + 1][0], points[i + 1][1], s.colour, 2);
         for (const auto& p : points) canvas.fill_rect(std::lround(p[0]) - 3, std::lround(p[1]) - 3, std::lround(p[0]) + 3, std::lround(p[1]) + 3, s.colour);
     }
     draw_frame(canvas, panel, area, chart.title, chart.x_label);
+    if (zeros_on_axis) canvas.draw_text(area.x + area.width - Canvas::text_width("values <= 0 drawn on the axis"), panel.y + 8,
+                                        "values <= 0 drawn on the axis", {90, 90, 90});
     if (!chart.y_label.empty()) canvas.draw_text(area.x + 8, area.y + 4, chart.y_label, {90, 90, 90});
 }
 

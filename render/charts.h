@@ -36,10 +36,10 @@ struct LineSeries {
 struct LineChart {
     std::string title, x_label, y_label;
     std::vector<LineSeries> series;
-    bool log_y = false;  ///< y on a log10 axis (values <= 0 are left out)
+    bool log_y = false;  ///< y on a log10 axis (values <= 0 drawn on the bottom axis line, with a note)
 };
 
-/// Draws `chart` in `panel`, axes fitted to the data (x from 0).
+/// Draws `chart` in `panel`, axes fitted to the data (x from a round number at or below its smallest value).
 void draw_line_chart(Canvas& canvas, const Panel& panel, const LineChart& chart);
 
 /// A short number for tick labels: "0.5", "12", "3.4k", "1.2M".
