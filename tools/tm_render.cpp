@@ -45,6 +45,56 @@ nlohmann::json labels_json(const std::set<Label>& labels)
     return list;
 }
 
+render::Canvas surface_view(const std::string& input, const render::SurfaceViewOptions& options, nlohmann::json& summary)
+{
+    const InterfaceComplex complex = io::read_surface(input);
+    render::SurfaceViewReport report;
+    render::Canvas picture = render::render_surface(complex, options, &report);
+    std::set<Label> tissues;
+    for (const LabelPair& pair : complex.sides)
+        for (const Label label : {pair.from, pair.to})
+            if (label != complex.background) tissues.insert(label);
+    summary.update({{"tissues_shown", labels_json(tissues)}, {"triangles_drawn", report.triangles_drawn},
+                    {"triangles_cut", report.triangles_cut}, {"pixels_covered", report.pixels_covered}});
+    return picture;
+}
+
+/// With an image: its slice under the mesh, and every tet's error volume from assess_elements().
+render::Canvas section_view(const std::string& input, const std::string& image_path, const render::SectionViewOptions& options,
+                            const Progress& progress, nlohmann::json& summary)
+{
+    const TetMesh mesh = io::read_tet_mesh(input);
+    std::optional<LabelImage> image;
+    std::optional<volume::Assessment> assessment;
+    if (!image_path.empty()) {
+        image = io::read_label_image(image_path);
+        assessment = volume::assess_elements(mesh, *image, {}, progress);
+        summary["total_error_volume_mm3"] = assessment->total_error_volume_mm3;
+    }
+    render::SectionViewReport report;
+    render::Canvas picture = render::render_section(mesh, image ? &*image : nullptr, assessment ? &assessment->error_volume_mm3 : nullptr,
+                                                    options, &report);
+    summary.update({{"position_mm", report.position_mm}, {"tets_cut", report.tets_cut}, {"tets_highlighted", report.tets_highlighted}});
+    return picture;
+}
+
+/// The histograms, and per tissue the tets, smallest dihedral and largest radius-edge ratio (for tm-report).
+render::Canvas quality_view(const std::string& input, std::size_t width, std::size_t height, const std::string& title, nlohmann::json& summary)
+{
+    const TetMesh mesh = io::read_tet_mesh(input);
+    const render::QualityHistograms histograms = render::quality_histograms(mesh);
+    nlohmann::json tissues = nlohmann::json::object();
+    for (std::size_t s = 0; s < histograms.tissues.size(); ++s) {
+        const Label label = histograms.tissues[s];
+        tissues[std::to_string(label)] = {{"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
+                                          {"tets", histograms.tets[s]}, {"min_dihedral_deg", histograms.min_dihedral_deg[s]},
+                                          {"max_radius_edge_ratio", histograms.max_radius_edge_ratio[s]}};
+    }
+    summary["tissues"] = tissues;
+    summary["tets"] = mesh.tets.size();
+    return render::render_quality_histograms(mesh, histograms, width, height, title);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -94,49 +144,20 @@ int main(int argc, char** argv)
             std::optional<render::Canvas> picture;
             nlohmann::json summary = {{"view", view}, {"input", input}, {"output", output}};
             if (view == "surface") {
-                const InterfaceComplex complex = io::read_surface(input);
                 surface.width_px = width ? width : 800, surface.height_px = height ? height : 800;
                 surface.cut = render::parse_cut_away(cut);
                 if (!cut_point.empty()) surface.cut_at_centre = false, surface.cut_point_mm = parse_point(cut_point);
                 surface.legend = !no_legend, surface.title = title;
-                render::SurfaceViewReport report;
-                picture = render::render_surface(complex, surface, &report);
-                std::set<Label> tissues;
-                for (const LabelPair& pair : complex.sides)
-                    for (const Label label : {pair.from, pair.to}) if (label != complex.background) tissues.insert(label);
-                summary.update({{"tissues_shown", labels_json(tissues)}, {"triangles_drawn", report.triangles_drawn},
-                                {"triangles_cut", report.triangles_cut}, {"pixels_covered", report.pixels_covered}});
+                picture = surface_view(input, surface, summary);
             } else if (view == "section") {
-                const TetMesh mesh = io::read_tet_mesh(input);
                 section.width_px = width ? width : 800, section.height_px = height ? height : 800;
                 section.axis = parse_axis(axis);
                 section.at_centre = position_option->count() == 0;
                 section.position_mm = position_mm, section.legend = !no_legend, section.title = title;
-                std::optional<LabelImage> image;
-                std::optional<volume::Assessment> assessment;
-                if (!image_path.empty()) {
-                    image = io::read_label_image(image_path);
-                    assessment = volume::assess_elements(mesh, *image, {}, context.progress);
-                }
-                render::SectionViewReport report;
-                picture = render::render_section(mesh, image ? &*image : nullptr, assessment ? &assessment->error_volume_mm3 : nullptr,
-                                                 section, &report);
-                summary.update({{"axis", axis}, {"position_mm", report.position_mm}, {"tets_cut", report.tets_cut},
-                                {"tets_highlighted", report.tets_highlighted}});
-                if (assessment) summary["total_error_volume_mm3"] = assessment->total_error_volume_mm3;
+                picture = section_view(input, image_path, section, context.progress, summary);
+                summary["axis"] = axis;
             } else if (view == "quality") {
-                const TetMesh mesh = io::read_tet_mesh(input);
-                const render::QualityHistograms histograms = render::quality_histograms(mesh);
-                picture = render::render_quality_histograms(mesh, histograms, width ? width : 1200, height ? height : 480, title);
-                nlohmann::json tissues = nlohmann::json::object();
-                for (std::size_t s = 0; s < histograms.tissues.size(); ++s) {
-                    const Label label = histograms.tissues[s];
-                    tissues[std::to_string(label)] = {{"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
-                                                      {"tets", histograms.tets[s]}, {"min_dihedral_deg", histograms.min_dihedral_deg[s]},
-                                                      {"max_radius_edge_ratio", histograms.max_radius_edge_ratio[s]}};
-                }
-                summary["tissues"] = tissues;
-                summary["tets"] = mesh.tets.size();
+                picture = quality_view(input, width ? width : 1200, height ? height : 480, title, summary);
             } else {
                 const std::vector<render::RefineLogRow> rows = render::read_refine_log(input);
                 picture = render::render_convergence(rows, width ? width : 900, height ? height : 640, title);
