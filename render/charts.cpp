@@ -63,35 +63,44 @@ void draw_bar_chart(Canvas& canvas, const Panel& panel, const BarChart& chart)
         if (bin.size() != chart.stack_colours.size())
             throw InputError(concat("bar chart \"", chart.title, "\": a bin has ", bin.size(), " stacks for ", chart.stack_colours.size(), " colours"));
     const Panel area = plot_area(panel);
-    double max_total = 0;
+    const std::size_t stacks = chart.stack_colours.size();
+    // Side by side on a log axis, every bar reads true; a stack on a log axis would not (only its top would).
+    const bool grouped = chart.log_scale && stacks <= 8;
+    double max_value = 0;
     for (const auto& bin : chart.counts) {
         double total = 0;
-        for (const double c : bin) total += c;
-        max_total = std::max(max_total, total);
+        for (const double c : bin) total += c, max_value = std::max(max_value, grouped ? c : 0.0);
+        if (!grouped) max_value = std::max(max_value, total);
     }
-    auto height_of = [&](double total) {
-        if (max_total <= 0) return 0.0;
-        return chart.log_scale ? std::log10(1 + total) / std::log10(1 + max_total) : total / max_total;
+    auto height_of = [&](double value) {
+        if (max_value <= 0) return 0.0;
+        return grouped ? std::log10(1 + value) / std::log10(1 + max_value) : value / max_value;
     };
-    if (chart.log_scale)
-        for (double tick = 1; tick <= max_total; tick *= 10) y_tick(canvas, area, height_of(tick), short_number(tick));
-    else if (max_total > 0)
-        for (double step = nice_step(max_total, 4), tick = 0; tick <= max_total; tick += step) y_tick(canvas, area, height_of(tick), short_number(tick));
+    if (grouped)
+        for (double tick = 1; tick <= max_value; tick *= 10) y_tick(canvas, area, height_of(tick), short_number(tick));
+    else if (max_value > 0)
+        for (double step = nice_step(max_value, 4), tick = 0; tick <= max_value; tick += step) y_tick(canvas, area, height_of(tick), short_number(tick));
     const std::size_t bins = chart.counts.size();
     const double slot = static_cast<double>(area.width) / static_cast<double>(std::max<std::size_t>(bins, 1));
     const std::size_t label_every = static_cast<std::size_t>(std::ceil(static_cast<double>(Canvas::text_width("00000") + 8) / slot));
-    const double bottom = static_cast<double>(area.y + area.height);
+    const double bottom = static_cast<double>(area.y + area.height), h = static_cast<double>(area.height);
     for (std::size_t b = 0; b < bins; ++b) {
-        double total = 0;
-        for (const double c : chart.counts[b]) total += c;
-        const double bar_height = height_of(total) * static_cast<double>(area.height);
-        const long x0 = area.x + std::lround(slot * static_cast<double>(b) + 0.1 * slot), x1 = area.x + std::lround(slot * static_cast<double>(b + 1) - 0.1 * slot);
+        const double left = static_cast<double>(area.x) + slot * static_cast<double>(b) + 0.1 * slot, width = 0.8 * slot;
         double stacked = 0;
-        for (std::size_t s = 0; s < chart.stack_colours.size(); ++s) {
-            if (chart.counts[b][s] <= 0) continue;
-            const double top = stacked + bar_height * chart.counts[b][s] / total;
-            canvas.fill_rect(x0, std::lround(bottom - top), x1, std::lround(bottom - stacked), chart.stack_colours[s]);
-            stacked = top;
+        for (std::size_t s = 0; s < stacks; ++s) {
+            const double count = chart.counts[b][s];
+            if (count <= 0) continue;
+            if (grouped) {
+                const double x0 = left + width * static_cast<double>(s) / static_cast<double>(stacks);
+                canvas.fill_rect(std::lround(x0), std::lround(bottom - height_of(count) * h),
+                                 std::max(std::lround(x0) + 1, std::lround(x0 + width / static_cast<double>(stacks))), std::lround(bottom),
+                                 chart.stack_colours[s]);
+            } else {
+                const double top = stacked + height_of(count) * h;
+                canvas.fill_rect(std::lround(left), std::lround(bottom - top), std::lround(left + width), std::lround(bottom - stacked),
+                                 chart.stack_colours[s]);
+                stacked = top;
+            }
         }
         if (b % std::max<std::size_t>(label_every, 1) == 0)
             canvas.draw_text(area.x + std::lround(slot * static_cast<double>(b)), area.y + area.height + 6, chart.bin_labels[b], black);

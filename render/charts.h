@@ -14,13 +14,15 @@ struct Panel {
     long x = 0, y = 0, width = 0, height = 0;
 };
 
-/// Stacked bars: bin b's bar is made of counts[b][s] for every stack s, bottom first, in stack_colours[s].
+/// Bars of several series per bin: counts[b][s] of series s in bin b, drawn in stack_colours[s].
 struct BarChart {
     std::string title, x_label;
     std::vector<std::string> bin_labels;           ///< #bins, under each bar (every other one when crowded)
     std::vector<std::vector<double>> counts;       ///< #bins x #stacks
     std::vector<Rgb> stack_colours;                ///< #stacks
-    bool log_scale = true;  ///< bar height log10(1 + total), segments split in proportion to their counts
+    /// true: the series side by side in each bin on a log10(1 + count) axis (every bar reads true against
+    /// it); false, or more than 8 series: stacked, bottom first, on a linear axis.
+    bool log_scale = true;
 };
 
 /// Draws `chart` in `panel`.

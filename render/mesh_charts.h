@@ -25,9 +25,9 @@ struct QualityHistograms {
 /// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (volume::tet_shape).
 QualityHistograms quality_histograms(const TetMesh& mesh);
 
-/// Two stacked bar charts side by side of `histograms` (from quality_histograms(mesh)): smallest dihedral
-/// angle and radius-edge ratio, bars split by tissue in the tissue colours, counts on a log axis, with a
-/// legend (names from the mesh). Default size 1200 x 480 px.
+/// Two bar charts side by side of `histograms` (from quality_histograms(mesh)): smallest dihedral angle and
+/// radius-edge ratio, a bar per tissue in its colour, counts on a log axis (stacked on a linear axis for
+/// more than 8 tissues, see BarChart), with a legend (names from the mesh). Default size 1200 x 480 px.
 Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& histograms, std::size_t width_px = 1200,
                                  std::size_t height_px = 480, const std::string& title = "");
 
