@@ -119,5 +119,23 @@ TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
     EXPECT_NE(missing.err.find("IMAGE is not set"), std::string::npos) << missing.err;
 }
 
+TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
+{
+    // scripts/demo's target: about 7 min on 2 shared cores (smoothing 800 k triangles dominates).
+    TempDir dir;
+    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "sphere-head", "OUT=" + (dir / "head").string(),
+                                             "BIN=" TM_TOOLS_DIR});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    const fs::path out = dir / "head";
+    EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
+    EXPECT_EQ(testing::read_json(out / "solve.json")["status"], "ok");
+    for (const char* tissue : {"1", "2", "3", "4"}) EXPECT_GT(testing::read_json(out / "check-mesh.json")["tissues"][tissue]["dice"].get<double>(), 0.9);
+    const std::string html = read_text(out / "report.html");
+    for (const char* tissue : {"scalp", "skull", "csf", "brain"}) EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos);
+    for (const char* picture : {"surface", "section", "quality", "convergence"})
+        EXPECT_NE(html.find(std::string("<figcaption>") + picture + "</figcaption>"), std::string::npos) << picture;
+    EXPECT_NE(html.find("<td>tm-solve</td>"), std::string::npos);
+}
+
 } // namespace
 } // namespace tissuemesh
