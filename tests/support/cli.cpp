@@ -51,10 +51,14 @@ std::string slurp(const fs::path& path)
 
 CliResult run_cli(const std::string& tool, const std::vector<std::string>& args)
 {
+    return run_program(std::string(TM_TOOLS_DIR) + "/" + tool, args);
+}
+
+CliResult run_program(const std::string& program, const std::vector<std::string>& args)
+{
     TempDir capture;
     const fs::path out_path = capture / "stdout";
     const fs::path err_path = capture / "stderr";
-    const std::string program = std::string(TM_TOOLS_DIR) + "/" + tool;
 
     const pid_t pid = ::fork();
     if (pid == 0) {
@@ -68,7 +72,7 @@ CliResult run_cli(const std::string& tool, const std::vector<std::string>& args)
         argv.push_back(const_cast<char*>(program.c_str()));
         for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
         argv.push_back(nullptr);
-        ::execv(program.c_str(), argv.data());
+        ::execvp(program.c_str(), argv.data());
         ::_exit(127);
     }
     CliResult result;

@@ -1,0 +1,141 @@
+// data/workflows/Makefile on the boxes phantom at 4 mm: the whole chain to report.html, nothing redone by a
+// second make, only the dependent steps redone when one parameter changes, and a cohort in parallel.
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <map>
+
+#include "tests/support/cli.h"
+
+namespace tissuemesh {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_cli;
+using testing::run_program;
+using testing::TempDir;
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Modification times of the step summaries (each step's make target) in `out`.
+std::map<std::string, fs::file_time_type> summary_times(const fs::path& out)
+{
+    std::map<std::string, fs::file_time_type> times;
+    for (const auto& entry : fs::directory_iterator(out))
+        if (entry.path().extension() == ".json" && entry.path().filename() != "clean.labels.json")
+            times[entry.path().stem().string()] = entry.last_write_time();
+    return times;
+}
+
+/// The steps whose summary changed between two snapshots.
+std::vector<std::string> changed(const std::map<std::string, fs::file_time_type>& before, const std::map<std::string, fs::file_time_type>& after)
+{
+    std::vector<std::string> names;
+    for (const auto& [name, time] : after)
+        if (!before.count(name) || before.at(name) != time) names.push_back(name);
+    return names;
+}
+
+class WorkflowCli : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        const auto result = run_cli("tm-phantom", {"boxes", "--voxel-mm", "4", "-o", (dir / "boxes.nii.gz").string(), "-q"});
+        ASSERT_EQ(result.exit_code, 0) << result.err;
+    }
+    /// make -C data/workflows with the small-phantom parameters and `extra` variables.
+    testing::CliResult make(const std::vector<std::string>& extra, const std::string& out = "out")
+    {
+        std::vector<std::string> args{"-C", testing::data_path("workflows").string(), "IMAGE=" + (dir / "boxes.nii.gz").string(),
+                                      "LABELS=" + (dir / "boxes.labels.json").string(), "OUT=" + (dir / out).string(),
+                                      "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6", "REFINE_ARGS=--iterations 2"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return run_program("make", args);
+    }
+    TempDir dir;
+};
+
+TEST_F(WorkflowCli, ChainsEveryStepAndRerunsOnlyWhatAParameterChanges)
+{
+    auto result = make({"-j2"});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    const fs::path out = dir / "out";
+    const auto first = summary_times(out);
+    for (const char* step : {"prep", "extract", "smooth", "decimate", "remesh", "tetra", "assess", "refine", "check-mesh",
+                             "render-surface", "render-section", "render-quality", "render-convergence", "report"}) {
+        ASSERT_TRUE(first.count(step)) << step;
+        EXPECT_EQ(testing::read_json(out / (std::string(step) + ".json"))["status"], "ok") << step;
+    }
+    EXPECT_EQ(testing::read_json(out / "refine.json")["mode"], "constrained");
+    EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 3u);  // round 0 and 2 rounds
+    const std::string html = read_text(out / "report.html");
+    for (const char* tissue : {"cube", "box_a", "box_b"}) EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos) << tissue;
+    for (const char* picture : {"surface", "section", "quality", "convergence"})
+        EXPECT_NE(html.find(std::string("<figcaption>") + picture + "</figcaption>"), std::string::npos) << picture;
+
+    // A second make does nothing.
+    result = make({});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find("Nothing to be done"), std::string::npos) << result.out;
+    EXPECT_TRUE(changed(first, summary_times(out)).empty());
+
+    // A picture parameter: that picture and the report.
+    result = make({"RENDER_SECTION_ARGS=--axis x"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const auto second = summary_times(out);
+    EXPECT_EQ(changed(first, second), (std::vector<std::string>{"render-section", "report"}));
+    EXPECT_EQ(testing::read_json(out / "render-section.json")["axis"], "x");
+
+    // A refinement parameter: refinement and everything after it, nothing before it.
+    result = make({"RENDER_SECTION_ARGS=--axis x", "REFINE_ARGS=--iterations 1"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(changed(second, summary_times(out)),
+              (std::vector<std::string>{"check-mesh", "refine", "render-convergence", "render-quality", "render-section", "report"}));
+    EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 2u);
+}
+
+TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
+{
+    const fs::path subjects = dir / "subjects";
+    fs::create_directory(subjects);
+    fs::copy_file(dir / "boxes.nii.gz", subjects / "s01.nii.gz");
+    fs::copy_file(dir / "boxes.nii.gz", subjects / "s02.nii.gz");
+    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "cohort", "-j2", "COHORT=" + subjects.string(),
+                                             "COHORT_OUT=" + (dir / "cohort").string(), "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6",
+                                             "REFINE_ARGS=--iterations 1"});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    EXPECT_NE(result.out.find("cohort: 2 subjects"), std::string::npos) << result.out;
+    for (const char* subject : {"s01", "s02"}) {
+        EXPECT_TRUE(fs::exists(dir / "cohort" / subject / "report.html")) << subject;
+        EXPECT_EQ(testing::read_json(dir / "cohort" / subject / "check-mesh.json")["status"], "ok") << subject;
+    }
+
+    const auto missing = run_program("make", {"-C", testing::data_path("workflows").string(), "OUT=" + (dir / "x").string()});
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("IMAGE is not set"), std::string::npos) << missing.err;
+}
+
+TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
+{
+    // scripts/demo's target: about 7 min on 2 shared cores (smoothing 800 k triangles dominates).
+    TempDir dir;
+    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "sphere-head", "OUT=" + (dir / "head").string(),
+                                             "BIN=" TM_TOOLS_DIR});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    const fs::path out = dir / "head";
+    EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
+    EXPECT_EQ(testing::read_json(out / "solve.json")["status"], "ok");
+    for (const char* tissue : {"1", "2", "3", "4"}) EXPECT_GT(testing::read_json(out / "check-mesh.json")["tissues"][tissue]["dice"].get<double>(), 0.9);
+    const std::string html = read_text(out / "report.html");
+    for (const char* tissue : {"scalp", "skull", "csf", "brain"}) EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos);
+    for (const char* picture : {"surface", "section", "quality", "convergence"})
+        EXPECT_NE(html.find(std::string("<figcaption>") + picture + "</figcaption>"), std::string::npos) << picture;
+    EXPECT_NE(html.find("<td>tm-solve</td>"), std::string::npos);
+}
+
+} // namespace
+} // namespace tissuemesh
