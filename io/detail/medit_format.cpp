@@ -69,7 +69,7 @@ TetMesh parse_medit(const std::string& text, const std::string& what)
                             }));
                 } else {
                     mesh.faces.push_back({v[0], v[1], v[2]});
-                    mesh.face_sides.push_back(face_pair(static_cast<int>(reference), static_cast<int>(reference)));
+                    mesh.face_sides.push_back(single_tag_pair(reference));
                 }
             }
         } else if (const auto found = skipped.find(keyword); found != skipped.end()) {

@@ -11,9 +11,19 @@ namespace tissuemesh::io::detail {
 
 LabelPair face_pair(int physical, int elementary)
 {
-    if (elementary >= 1000 && elementary / 1000 <= 65535)
-        return {static_cast<Label>(elementary / 1000), static_cast<Label>(elementary % 1000)};
-    return {static_cast<Label>(std::max(physical, 0) % 1000), 0};
+    if (physical >= 1000 && physical - 1000 <= 65535) {
+        const int from = physical - 1000;
+        const long long to = static_cast<long long>(elementary) - 1000LL * from;
+        return {static_cast<Label>(from), static_cast<Label>(to >= 0 && to <= 65535 ? to : 0)};
+    }
+    if (elementary >= 1000) return single_tag_pair(elementary);
+    return {static_cast<Label>(std::clamp(physical, 0, 65535)), 0};
+}
+
+LabelPair single_tag_pair(long long tag)
+{
+    if (tag < 0 || tag / 1000 > 65535) return {0, 0};
+    return {static_cast<Label>(tag / 1000), static_cast<Label>(tag % 1000)};
 }
 
 std::string format_physical_names(const TetMesh& mesh)

@@ -16,8 +16,11 @@ namespace tissuemesh::io::detail {
 /// Elementary tag of a face: 1000 * from + to. Its physical tag is 1000 + from.
 inline int face_tag(const LabelPair& pair) { return 1000 * pair.from + pair.to; }
 inline int face_physical(const LabelPair& pair) { return 1000 + pair.from; }
-/// The side pair of a face from its physical and elementary tags (foreign files: {physical % 1000, 0}).
+/// The side pair of a face from its physical and elementary tags: ours (physical 1000 + from), else an
+/// elementary tag of 1000 * from + to, else (foreign files) {physical, 0}.
 LabelPair face_pair(int physical, int elementary);
+/// The side pair of a face from a lone tag 1000 * from + to (Medit reference, TetGen marker).
+LabelPair single_tag_pair(long long tag);
 
 /// The $PhysicalNames section (names of tissues and of their boundary faces).
 std::string format_physical_names(const TetMesh& mesh);

@@ -103,7 +103,7 @@ TetMesh parse_tetgen(const TetgenFiles& files, const std::string& what)
         for (std::uint32_t& vertex : tri) vertex = node_of(in, base, mesh.vertices.size());
         const long long marker = markers > 0 ? in.integer("a boundary marker") : 0;
         mesh.faces.push_back(tri);
-        mesh.face_sides.push_back(face_pair(static_cast<int>(marker), static_cast<int>(marker)));
+        mesh.face_sides.push_back(single_tag_pair(marker));
         in.skip_line();
     }
     return mesh;
