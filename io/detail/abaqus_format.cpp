@@ -53,14 +53,15 @@ std::string parameter(const std::vector<std::string>& keyword, const std::string
     return "";
 }
 
-/// An element set name Abaqus accepts: letters, digits and '_', starting with a letter.
+/// An element set name Abaqus accepts (letters, digits and '_', starting with a letter) that ends with the
+/// label, so that any reader can tell the tissue: "grey_matter_4", "tissue_4".
 std::string set_name(const TetMesh& mesh, Label label)
 {
     const auto found = mesh.names.find(label);
-    std::string name = found != mesh.names.end() ? found->second : "";
+    std::string name = found != mesh.names.end() ? found->second.substr(0, 50) : "";
     for (char& c : name) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) name = concat("tissue_", label, name.empty() ? "" : "_", name);
-    return name.substr(0, 60);
+    if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) name = "tissue" + (name.empty() ? "" : "_" + name);
+    return concat(name, "_", label);
 }
 
 long long number(const std::string& field, const ByteReader& in, const char* expected)

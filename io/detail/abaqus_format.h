@@ -1,5 +1,6 @@
-// Abaqus .inp: nodes and C3D4 tets, one element set per tissue (named after it). Interface faces are not
-// written (an .inp surface would need element-face pairs); they follow from the tet labels.
+// Abaqus .inp: nodes and C3D4 tets, one element set per tissue (named after it, ending with its label:
+// "scalp_1"). Interface faces are not written (an .inp surface would need element-face pairs); they
+// follow from the tet labels.
 #pragma once
 
 #include <string>
