@@ -47,7 +47,7 @@ private:
 /// second-order kinds), or -1 for types we do not know.
 int gmsh_element_nodes(int type);
 
-/// Adds a tet (made positively oriented) or a face to `mesh`.
+/// Appends a tet of `label` to `mesh`, made positively oriented (swapping its last two vertices).
 void add_tet(TetMesh& mesh, const std::array<std::uint32_t, 4>& v, Label label);
 
 template <typename T>

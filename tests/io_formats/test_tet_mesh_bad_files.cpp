@@ -120,3 +120,36 @@ TEST(TetMeshBadFiles, UnsupportedVariantsAndUnknownFilesSayWhatToDo)
 
 } // namespace
 } // namespace tissuemesh::io
+
+namespace tissuemesh::io {
+namespace {
+
+TEST(TetMeshBadFiles, CorruptedBytesGiveAnErrorOrAValidMeshNeverACrash)
+{
+    testing::TempDir dir;
+    const std::vector<std::pair<std::string, TetMeshWriteOptions>> variants{
+        {"a.msh", {}}, {"b.msh", {MshVersion::v2_2, true}}, {"c.msh", {MshVersion::v4_1, false}},
+        {"d.msh", {MshVersion::v4_1, true}}, {"e.mesh", {}}, {"f.inp", {}}};
+    std::uint32_t state = 12345;  // a fixed LCG: the same corruptions on every run
+    auto next = [&] { return state = state * 1664525u + 1013904223u; };
+    for (const auto& [name, options] : variants) {
+        write_tet_mesh(sample(), dir / name, options);
+        const std::string bytes = slurp(dir / name);
+        int refused = 0;
+        for (int trial = 0; trial < 100; ++trial) {
+            std::string corrupt = bytes;
+            for (int k = 0; k < 4; ++k) corrupt[next() % corrupt.size()] = static_cast<char>(next() >> 24);
+            put(dir / name, corrupt);
+            try {
+                const TetMesh mesh = read_tet_mesh(dir / name);
+                validate_indices(mesh, name);  // whatever was accepted is a consistent mesh
+            } catch (const Error&) {
+                ++refused;
+            }
+        }
+        EXPECT_GT(refused, 0) << name << ": some corruption must be noticed";
+    }
+}
+
+} // namespace
+} // namespace tissuemesh::io
