@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/detail/obj_format.h"
 #include "io/detail/off_format.h"
 #include "io/detail/ply_format.h"
 #include "io/detail/stl_format.h"
@@ -13,12 +14,13 @@
 namespace tissuemesh::io {
 namespace {
 
-const char* const known_extensions = ".ply, .vtp, .off, .stl";
+const char* const known_extensions = ".ply, .vtp, .off, .stl, .obj";
 
 std::string extension_of(const std::filesystem::path& path)
 {
     const std::string extension = full_extension(path);
-    if (extension != ".ply" && extension != ".vtp" && extension != ".off" && extension != ".stl")
+    if (extension != ".ply" && extension != ".vtp" && extension != ".off" && extension != ".stl" &&
+        extension != ".obj")
         throw IoError(concat(path.string(), ": unknown surface extension '", extension, "'; use one of ",
                              known_extensions));
     return extension;
@@ -34,6 +36,7 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
     if (extension == ".vtp") bytes = detail::format_vtp(complex);
     if (extension == ".off") bytes = detail::format_off(complex);
     if (extension == ".stl") bytes = detail::format_stl(complex);
+    if (extension == ".obj") bytes = detail::format_obj(complex);
     write_atomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
@@ -59,6 +62,7 @@ InterfaceComplex read_surface(const std::filesystem::path& path)
     if (extension == ".vtp") complex = detail::parse_vtp(bytes, what);
     if (extension == ".off") complex = detail::parse_off(bytes, what);
     if (extension == ".stl") complex = detail::parse_stl(bytes, what);
+    if (extension == ".obj") complex = detail::parse_obj(bytes, what);
     validate_indices(complex, what);
     return complex;
 }

@@ -9,12 +9,13 @@ namespace tissuemesh::io {
 
 /// Writes `complex` atomically. By extension: `.ply` (binary little-endian, per-face `label_a label_b`
 /// as uchar/ushort properties, tissue names as comments), `.vtp` (ParaView, cell data label_a, label_b),
-/// `.off` and `.stl` (geometry only).
+/// `.obj` (label pairs as groups `g tissues_<from>_<to>`), `.off` and `.stl` (binary; geometry only).
 /// @throws IoError when the file cannot be written or the extension is unknown
 void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path);
 
-/// Reads a complex written by write_surface() (`.ply` with label pairs; `.off`/`.stl`/`.ply` without
-/// labels give every triangle the pair {1, 0}: one tissue against background).
+/// Reads a complex written by write_surface() (`.ply`, `.vtp` and `.obj` with label pairs; `.off`, `.stl`
+/// (binary or ASCII) and files without labels give every triangle the pair {1, 0}: one tissue against
+/// background).
 /// @throws IoError on unreadable or malformed files, InputError on dangling indices or NaN coordinates
 InterfaceComplex read_surface(const std::filesystem::path& path);
 

@@ -1,8 +1,13 @@
 #include "io/write_vtu.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <type_traits>
 #include <fstream>
-#include <iomanip>
+#include <zlib.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -17,58 +22,133 @@ void check_size(const VtuArray& array, std::size_t entries, const char* what, co
                                 entries, " ", what, " x ", array.components, " components"));
 }
 
-void write_array(std::ostream& out, const VtuArray& array)
-{
-    out << "<DataArray type=\"" << (array.integer ? "Int64" : "Float64") << "\" Name=\"" << array.name
-        << "\" NumberOfComponents=\"" << array.components << "\" format=\"ascii\">\n";
-    for (std::size_t i = 0; i < array.values.size(); ++i) {
-        const double value = array.values[i];
-        if (array.integer) out << static_cast<long long>(value);
-        else out << (std::isfinite(value) ? value : (value > 0 ? 1e30 : -1e30));
-        out << ((i + 1) % static_cast<std::size_t>(array.components) == 0 ? '\n' : ' ');
+double finite(double value) { return std::isfinite(value) ? value : (value > 0 ? 1e30 : -1e30); }
+
+/// Writes DataArrays as ASCII inside the XML, or as compressed blocks into the appended data.
+class ArrayWriter {
+public:
+    ArrayWriter(std::string& xml, VtuEncoding encoding) : xml_(xml), encoding_(encoding) {}
+
+    /// One DataArray of `values` (numbers of type T), `per_line` values to an ASCII line.
+    template <typename T>
+    void add(const char* type, const std::string& name, int components, const std::vector<T>& values)
+    {
+        xml_ += concat("<DataArray type=\"", type, "\"", name.empty() ? "" : concat(" Name=\"", name, "\""),
+                       components > 1 ? concat(" NumberOfComponents=\"", components, "\"") : "");
+        if (encoding_ == VtuEncoding::compressed) {
+            xml_ += concat(" format=\"appended\" offset=\"", appended_.size(), "\"/>\n");
+            append_compressed(values.data(), values.size() * sizeof(T));
+            return;
+        }
+        xml_ += " format=\"ascii\">\n";
+        const auto per_line = static_cast<std::size_t>(std::max(components, 1));
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            if constexpr (std::is_floating_point_v<T>) {
+                char buffer[32];
+                std::snprintf(buffer, sizeof(buffer), "%.17g", values[i]);
+                xml_ += buffer;
+            } else {
+                xml_ += std::to_string(values[i]);
+            }
+            xml_ += (i + 1) % per_line == 0 ? '\n' : ' ';
+        }
+        xml_ += "</DataArray>\n";
     }
-    out << "</DataArray>\n";
+
+    /// "<AppendedData ...>_<bytes>\n</AppendedData>\n" after the XML body (empty for ASCII).
+    std::string appended() const
+    {
+        return encoding_ == VtuEncoding::compressed ? "<AppendedData encoding=\"raw\">\n_" + appended_ + "\n</AppendedData>\n" : "";
+    }
+
+private:
+    /// VTK's compressed layout: UInt64 header [#blocks, block size, last block size, compressed sizes...],
+    /// then the zlib streams of the blocks.
+    void append_compressed(const void* data, std::size_t bytes)
+    {
+        constexpr std::size_t block = 1 << 20;  // fastest zlib level: 25x faster than 6 here, 8% larger
+        const std::size_t blocks = bytes == 0 ? 0 : (bytes + block - 1) / block;
+        std::vector<std::uint64_t> header{blocks, block, blocks == 0 ? 0 : bytes - (blocks - 1) * block};
+        std::string streams;
+        const auto* source = static_cast<const Bytef*>(data);
+        for (std::size_t b = 0; b < blocks; ++b) {
+            const std::size_t size = std::min(block, bytes - b * block);
+            uLongf packed = compressBound(static_cast<uLong>(size));
+            std::string out(packed, '\0');
+            if (compress2(reinterpret_cast<Bytef*>(out.data()), &packed, source + b * block, static_cast<uLong>(size), Z_BEST_SPEED) != Z_OK)
+                throw IoError("zlib could not compress a .vtu array (out of memory?)");
+            streams.append(out.data(), packed);
+            header.push_back(packed);
+        }
+        appended_.append(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
+        appended_ += streams;
+    }
+
+    std::string& xml_;
+    VtuEncoding encoding_;
+    std::string appended_;
+};
+
+void add_array(ArrayWriter& writer, const VtuArray& array)
+{
+    if (array.integer) {
+        std::vector<std::int64_t> values(array.values.size());
+        std::transform(array.values.begin(), array.values.end(), values.begin(), [](double v) { return static_cast<std::int64_t>(v); });
+        writer.add("Int64", array.name, array.components, values);
+    } else {
+        std::vector<double> values(array.values.size());
+        std::transform(array.values.begin(), array.values.end(), values.begin(), finite);
+        writer.add("Float64", array.name, array.components, values);
+    }
 }
 
-void write_grid(std::ostream& out, const TetMesh& mesh, const std::vector<VtuArray>& point_arrays,
-                const std::vector<VtuArray>& cell_arrays)
+std::string format_grid(const TetMesh& mesh, const std::vector<VtuArray>& point_arrays, const std::vector<VtuArray>& cell_arrays,
+                        VtuEncoding encoding)
 {
-    out << std::setprecision(17)
-        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-        << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << mesh.vertices.size() << "\" NumberOfCells=\""
-        << mesh.tets.size() << "\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (const Vec3& v : mesh.vertices) out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
-    out << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (const Tet& tet : mesh.tets) out << tet[0] << ' ' << tet[1] << ' ' << tet[2] << ' ' << tet[3] << '\n';
-    out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (std::size_t t = 1; t <= mesh.tets.size(); ++t) out << 4 * t << '\n';
-    out << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) out << "10\n";  // VTK_TETRA
-    out << "</DataArray>\n</Cells>\n";
+    std::string xml = concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                             "header_type=\"UInt64\"",
+                             encoding == VtuEncoding::compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", ">\n",
+                             "<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(), "\" NumberOfCells=\"",
+                             mesh.tets.size(), "\">\n<Points>\n");
+    ArrayWriter writer(xml, encoding);
+    std::vector<double> points;
+    points.reserve(3 * mesh.vertices.size());
+    for (const Vec3& v : mesh.vertices) points.insert(points.end(), v.begin(), v.end());
+    writer.add("Float64", "", 3, points);
+    xml += "</Points>\n<Cells>\n";
+    std::vector<std::int64_t> connectivity, offsets;
+    connectivity.reserve(4 * mesh.tets.size());
+    for (const Tet& tet : mesh.tets) connectivity.insert(connectivity.end(), tet.begin(), tet.end());
+    for (std::size_t t = 1; t <= mesh.tets.size(); ++t) offsets.push_back(static_cast<std::int64_t>(4 * t));
+    writer.add("Int64", "connectivity", 4, connectivity);
+    writer.add("Int64", "offsets", 1, offsets);
+    writer.add("UInt8", "types", 1, std::vector<std::uint8_t>(mesh.tets.size(), 10));  // VTK_TETRA
+    xml += "</Cells>\n";
     if (!point_arrays.empty()) {
-        out << "<PointData Scalars=\"" << point_arrays.front().name << "\">\n";
-        for (const VtuArray& array : point_arrays) write_array(out, array);
-        out << "</PointData>\n";
+        xml += concat("<PointData Scalars=\"", point_arrays.front().name, "\">\n");
+        for (const VtuArray& array : point_arrays) add_array(writer, array);
+        xml += "</PointData>\n";
     }
-    out << "<CellData Scalars=\"tissue\">\n<DataArray type=\"UInt16\" Name=\"tissue\" format=\"ascii\">\n";
-    for (const Label label : mesh.tet_labels) out << label << '\n';
-    out << "</DataArray>\n";
-    for (const VtuArray& array : cell_arrays) write_array(out, array);
-    out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    xml += "<CellData Scalars=\"tissue\">\n";
+    writer.add("UInt16", "tissue", 1, mesh.tet_labels);
+    for (const VtuArray& array : cell_arrays) add_array(writer, array);
+    xml += "</CellData>\n</Piece>\n</UnstructuredGrid>\n";
+    return xml + writer.appended() + "</VTKFile>\n";
 }
 
 } // namespace
 
 void write_vtu(const TetMesh& mesh, const std::filesystem::path& path, const std::vector<VtuArray>& point_arrays,
-               const std::vector<VtuArray>& cell_arrays)
+               const std::vector<VtuArray>& cell_arrays, VtuEncoding encoding)
 {
     validate_indices(mesh, path.string());
     for (const VtuArray& array : point_arrays) check_size(array, mesh.vertices.size(), "points", path);
     for (const VtuArray& array : cell_arrays) check_size(array, mesh.tets.size(), "cells", path);
+    const std::string bytes = format_grid(mesh, point_arrays, cell_arrays, encoding);
     write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary);
+        std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the folder and permissions"));
-        write_grid(out, mesh, point_arrays, cell_arrays);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });

@@ -36,11 +36,15 @@ inline VtuArray make_vtu_vectors(std::string name, const std::vector<Vec3>& vect
     return array;
 }
 
-/// Writes `mesh` (points in mm) as an ASCII .vtu atomically: cell data "tissue" (the tet labels) followed
-/// by `cell_arrays`, point data `point_arrays`. Non-finite values are written as +-1e30 (ParaView reads
+/// How the arrays are stored: ASCII text, or zlib-compressed binary blocks in raw appended data (VTK's
+/// vtkZLibDataCompressor with UInt64 headers; ParaView, VTK and meshio read both).
+enum class VtuEncoding { ascii, compressed };
+
+/// Writes `mesh` (points in mm) as a .vtu atomically: cell data "tissue" (the tet labels) followed by
+/// `cell_arrays`, point data `point_arrays`. Non-finite values are written as +-1e30 (ParaView reads
 /// no "inf").
 /// @throws InputError when an array's size does not match the mesh; IoError when the file cannot be written
 void write_vtu(const TetMesh& mesh, const std::filesystem::path& path, const std::vector<VtuArray>& point_arrays = {},
-               const std::vector<VtuArray>& cell_arrays = {});
+               const std::vector<VtuArray>& cell_arrays = {}, VtuEncoding encoding = VtuEncoding::ascii);
 
 } // namespace tissuemesh::io

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "io/tet_mesh_io.h"
+#include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
 #include "volume/refine.h"
 #include "volume/refine_log.h"
@@ -34,6 +35,7 @@ nlohmann::json summarize(const volume::RefineReport& report, const volume::Refin
 
 int main(int argc, char** argv)
 {
+    tools::MeshFormatFlags format_flags;
     std::string input, image_path, output, log_path, plot_path, placement = "material-centroid";
     volume::RefineOptions options;
     return tools::run_tool(
@@ -54,7 +56,8 @@ int main(int argc, char** argv)
             app.add_option("-i,--input", input, "Tet mesh to refine inside its interfaces (.msh, .mesh); none: Delaunay-only")
                 ->check(CLI::ExistingFile);
             app.add_option("--image", image_path, "Label image the mesh must match")->required()->check(CLI::ExistingFile);
-            app.add_option("-o,--output", output, "Refined mesh: .msh, .mesh or .vtu")->required();
+            app.add_option("-o,--output", output, "Refined mesh: .msh, .mesh, .vtu, .node, .inp")->required();
+            format_flags.add_to(app);
             app.add_option("--log", log_path, "Convergence log (CSV: iteration, nodes, tets, error volume, worst key, ...)");
             app.add_option("--plot", plot_path, "Error volume and worst key against nodes as an SVG plot");
             app.add_option("--placement", placement, "Where new nodes go")->capture_default_str();
@@ -77,7 +80,7 @@ int main(int argc, char** argv)
             if (!input.empty()) start = io::read_tet_mesh(input);
             volume::RefineReport report;
             const TetMesh mesh = volume::refine(image, input.empty() ? nullptr : &start, options, context.progress, &report);
-            io::write_tet_mesh(mesh, output);
+            io::write_tet_mesh(mesh, output, format_flags.to_write_options());
             if (!log_path.empty()) write_text_atomically(log_path, volume::refine_log_csv(report));
             if (!plot_path.empty())
                 write_text_atomically(plot_path, volume::refine_plot_svg(report, concat("tm-refine ", volume::placement_name(options.placement),

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
+#include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
 #include "volume/tetrahedralize.h"
 
@@ -43,6 +44,7 @@ void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool 
 
 int main(int argc, char** argv)
 {
+    tools::MeshFormatFlags format_flags;
     std::string input, output, max_volume, max_edge;
     volume::TetrahedralizeOptions options;
     bool allow_steiner = false, no_quality = false, drop_cavities = false;
@@ -56,7 +58,8 @@ int main(int argc, char** argv)
          "  tm-tetra -i head.ply -o head.vtu --max-edge-mm scalp=4,brain=2 --radius-edge 1.5"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply from tm-extract)")->required()->check(CLI::ExistingFile);
-            app.add_option("-o,--output", output, "Tet mesh: .msh, .mesh or .vtu")->required();
+            app.add_option("-o,--output", output, "Tet mesh: .msh, .mesh, .vtu, .node, .inp")->required();
+            format_flags.add_to(app);
             app.add_option("--max-volume", max_volume, "Largest tet volume in mm^3: a number, or tissue=value,...");
             app.add_option("--max-edge-mm", max_edge, "Like --max-volume, as the edge length in mm of a regular tet");
             app.add_option("--radius-edge", options.max_radius_edge_ratio, "Bound on circumradius / shortest edge (>= 1)")
@@ -78,7 +81,7 @@ int main(int argc, char** argv)
             volume::TetrahedralizeReport report;
             const TetMesh mesh =
                 tools::with_source(input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
-            io::write_tet_mesh(mesh, output);
+            io::write_tet_mesh(mesh, output, format_flags.to_write_options());
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
                                report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",
                                format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ", format_mm(report.max_radius_edge_ratio, 2)));

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "io/detail/byte_reader.h"
 
 namespace tissuemesh::io::detail {
 namespace {
@@ -51,16 +52,46 @@ std::string format_stl(const InterfaceComplex& complex)
     return out;
 }
 
+/// ASCII STL: "solid", then "facet normal n n n / outer loop / vertex x y z (3x) / endloop / endfacet".
+InterfaceComplex parse_ascii_stl(const std::string& text, const std::string& what)
+{
+    ByteReader in(text, what);
+    in.expect("solid");
+    in.rest_of_line();
+    InterfaceComplex complex;
+    std::map<Vec3, std::uint32_t> index_of;
+    std::string_view word = in.word();
+    for (; word == "facet"; word = in.word()) {
+        in.expect("normal");
+        for (int c = 0; c < 3; ++c) in.real("a normal component");
+        in.expect("outer");
+        in.expect("loop");
+        Triangle triangle{};
+        for (std::uint32_t& corner : triangle) {
+            in.expect("vertex");
+            const Vec3 p{in.real("a coordinate"), in.real("a coordinate"), in.real("a coordinate")};
+            const auto [it, fresh] = index_of.try_emplace(p, static_cast<std::uint32_t>(complex.vertices.size()));
+            if (fresh) complex.vertices.push_back(p);
+            corner = it->second;
+        }
+        in.expect("endloop");
+        in.expect("endfacet");
+        complex.add_triangle(triangle, {1, 0});
+    }
+    if (word != "endsolid") in.fail(concat("expected facet or endsolid but found \"", word.substr(0, 40), "\""), "the STL file is corrupt");
+    return complex;
+}
+
 InterfaceComplex parse_stl(const std::string& bytes, const std::string& what)
 {
+    const bool binary_size = bytes.size() >= header_size && bytes.size() == header_size + record_size * read_at<std::uint32_t>(bytes, 80);
+    if (!binary_size && bytes.compare(0, 5, "solid") == 0) return parse_ascii_stl(bytes, what);
     if (bytes.size() < header_size)
         throw IoError(concat(what, ": ", bytes.size(), " bytes is too short for a binary STL file; it is truncated"));
     const std::size_t count = read_at<std::uint32_t>(bytes, 80);
     if (bytes.size() != header_size + record_size * count) {
-        const bool ascii = bytes.compare(0, 5, "solid") == 0;
-        throw IoError(concat(what, ": ", ascii ? "looks like ascii STL; only binary STL is read, convert it"
-                                               : "size does not match its triangle count; the file is truncated",
-                             " (", count, " triangles announced, ", bytes.size(), " bytes)"));
+        throw IoError(concat(what, ": size does not match its triangle count; the file is truncated (", count,
+                             " triangles announced, ", bytes.size(), " bytes)"));
     }
     InterfaceComplex complex;
     std::map<std::array<float, 3>, std::uint32_t> index_of;

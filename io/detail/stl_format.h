@@ -10,9 +10,9 @@ namespace tissuemesh::io::detail {
 /// The whole binary .stl file (normals from the vertex order, attribute 0).
 std::string format_stl(const InterfaceComplex& complex);
 
-/// Parses binary .stl bytes; corners with bit-identical float coordinates become one vertex, every
-/// triangle gets the pair {1, 0}.
-/// @throws IoError when the size does not match the triangle count (truncated, or ascii STL)
+/// Parses binary or ASCII .stl bytes (ASCII: starts with "solid" and its size is not that of a binary
+/// file); corners with bit-identical coordinates become one vertex, every triangle gets the pair {1, 0}.
+/// @throws IoError when a binary file's size does not match its triangle count, or ASCII is malformed
 InterfaceComplex parse_stl(const std::string& bytes, const std::string& what);
 
 } // namespace tissuemesh::io::detail

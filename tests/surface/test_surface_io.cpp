@@ -158,7 +158,7 @@ TEST(SurfaceIo, RejectsBrokenFilesWithOneLineMessages)
     expect_rejected<IoError>("quad.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n", "only triangles");
     expect_rejected<IoError>("empty.stl", "", "too short");
     EXPECT_THROW(io::read_surface(dir / "missing.ply"), IoError);
-    EXPECT_THROW(io::write_surface(sample_complex(), dir / "c.obj"), IoError);
+    EXPECT_THROW(io::write_surface(sample_complex(), dir / "c.xyz"), IoError);
     EXPECT_THROW(io::write_surface(sample_complex(), dir / "no-such-dir" / "c.ply"), IoError);
     EXPECT_EQ(dir.files(), (std::vector<std::string>{"good.ply", "good.stl", "good.vtp"})) << "nothing half-written";
 }

@@ -1,0 +1,183 @@
+#include "io/detail/msh2_format.h"
+
+#include <bit>
+#include <cstdint>
+
+#include "core/error.h"
+#include "io/detail/msh_common.h"
+
+namespace tissuemesh::io::detail {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "binary .msh code assumes a little-endian host");
+
+void append_elements_ascii(std::string& out, const TetMesh& mesh)
+{
+    std::size_t id = 1;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Triangle& tri = mesh.faces[f];
+        out += concat(id++, " 2 2 ", face_physical(mesh.face_sides[f]), ' ', face_tag(mesh.face_sides[f]), ' ', tri[0] + 1,
+                      ' ', tri[1] + 1, ' ', tri[2] + 1, '\n');
+    }
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& tet = mesh.tets[t];
+        out += concat(id++, " 4 2 ", mesh.tet_labels[t], ' ', mesh.tet_labels[t], ' ', tet[0] + 1, ' ', tet[1] + 1, ' ',
+                      tet[2] + 1, ' ', tet[3] + 1, '\n');
+    }
+}
+
+void append_elements_binary(std::string& out, const TetMesh& mesh)
+{
+    // Blocks of one type with the same number of tags: header (type, count, tags), then per element its
+    // number, tags and nodes, all int32.
+    int id = 1;
+    if (!mesh.faces.empty()) {
+        for (const int value : {2, static_cast<int>(mesh.faces.size()), 2}) append_binary<std::int32_t>(out, value);
+        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            for (const int value : {id++, face_physical(mesh.face_sides[f]), face_tag(mesh.face_sides[f])})
+                append_binary<std::int32_t>(out, value);
+            for (const std::uint32_t v : mesh.faces[f]) append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
+        }
+    }
+    if (!mesh.tets.empty()) {
+        for (const int value : {4, static_cast<int>(mesh.tets.size()), 2}) append_binary<std::int32_t>(out, value);
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+            for (const int value : {id++, int{mesh.tet_labels[t]}, int{mesh.tet_labels[t]}}) append_binary<std::int32_t>(out, value);
+            for (const std::uint32_t v : mesh.tets[t]) append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
+        }
+    }
+}
+
+/// One element's type, tags and node numbers -> a face or tet of `mesh` (others are dropped).
+void add_element(TetMesh& mesh, int type, const std::vector<int>& tags, const std::array<std::uint32_t, 4>& v)
+{
+    const int physical = tags.empty() ? 0 : tags[0];
+    if (type == 4) {
+        if (physical < 0 || physical > 65535) throw InputError(concat("tet physical tag ", physical, " is not a label"));
+        add_tet(mesh, v, static_cast<Label>(physical));
+    } else if (type == 2) {
+        mesh.faces.push_back({v[0], v[1], v[2]});
+        mesh.face_sides.push_back(face_pair(physical, tags.size() > 1 ? tags[1] : 0));
+    }
+}
+
+void parse_elements_ascii(ByteReader& in, TetMesh& mesh, const NodeIndex& nodes)
+{
+    const std::size_t count = in.count("elements", 8);
+    for (std::size_t e = 0; e < count; ++e) {
+        in.integer("an element number");
+        const auto type = static_cast<int>(in.integer("an element type"));
+        const int corners = gmsh_element_nodes(type);
+        if (corners < 0) in.fail(concat("element type ", type, " is not supported"), "save tets and triangles only");
+        const std::size_t tag_count = in.count("element tags", 2);
+        std::vector<int> tags(tag_count);
+        for (int& tag : tags) tag = static_cast<int>(in.integer("an element tag"));
+        std::array<std::uint32_t, 4> v{};
+        for (int c = 0; c < corners; ++c) {
+            const std::uint32_t vertex = nodes.at(in.integer("a node number"), in);
+            if (c < 4) v[static_cast<std::size_t>(c)] = vertex;
+        }
+        add_element(mesh, type, tags, v);
+    }
+}
+
+void parse_elements_binary(ByteReader& in, TetMesh& mesh, const NodeIndex& nodes)
+{
+    const std::size_t count = in.count("elements", 12);
+    in.skip_line();
+    for (std::size_t done = 0; done < count;) {
+        const auto type = in.binary<std::int32_t>("an element type");
+        const int corners = gmsh_element_nodes(type);
+        if (corners < 0) in.fail(concat("element type ", type, " is not supported"), "save tets and triangles only");
+        const std::size_t block = in.binary_count<std::int32_t>("elements in a block", 0);
+        const std::size_t tag_count = in.binary_count<std::int32_t>("element tags", 4);
+        const std::size_t element_bytes = 4 * (1 + tag_count + static_cast<std::size_t>(corners));
+        if (block == 0 || block > count - done || block > in.remaining() / element_bytes)
+            in.fail(concat(block, " elements announced in a block of ", count, " elements"),
+                    "the file is truncated or corrupt; write it again");
+        std::vector<int> tags(tag_count);
+        for (std::size_t e = 0; e < block; ++e) {
+            in.binary<std::int32_t>("an element number");
+            for (int& tag : tags) tag = in.binary<std::int32_t>("an element tag");
+            std::array<std::uint32_t, 4> v{};
+            for (int c = 0; c < corners; ++c) {
+                const std::uint32_t vertex = nodes.at(in.binary<std::int32_t>("a node number"), in);
+                if (c < 4) v[static_cast<std::size_t>(c)] = vertex;
+            }
+            add_element(mesh, type, tags, v);
+        }
+        done += block;
+    }
+}
+
+} // namespace
+
+std::string format_msh2(const TetMesh& mesh, bool binary)
+{
+    std::string out = binary ? "$MeshFormat\n2.2 1 8\n" : "$MeshFormat\n2.2 0 8\n";
+    if (binary) append_binary<std::int32_t>(out, 1), out += '\n';
+    out += "$EndMeshFormat\n" + format_physical_names(mesh) + concat("$Nodes\n", mesh.vertices.size(), "\n");
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+        if (binary) {
+            append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
+            for (const double c : mesh.vertices[v]) append_binary<double>(out, c);
+            continue;
+        }
+        out += concat(v + 1);
+        for (const double c : mesh.vertices[v]) out += ' ', append_real(out, c);
+        out += '\n';
+    }
+    out += binary ? "\n$EndNodes\n" : "$EndNodes\n";
+    out += concat("$Elements\n", mesh.faces.size() + mesh.tets.size(), "\n");
+    if (binary) append_elements_binary(out, mesh), out += '\n';
+    else append_elements_ascii(out, mesh);
+    return out + "$EndElements\n";
+}
+
+TetMesh parse_msh2(ByteReader& in)
+{
+    const long long file_type = in.integer("the file type");
+    const long long data_size = in.integer("the data size");
+    if (file_type != 0 && file_type != 1) in.fail(concat("file type ", file_type, " is neither 0 nor 1"), "the file is corrupt");
+    const bool binary = file_type == 1;
+    if (binary) {
+        if (data_size != 8) in.fail(concat("data size ", data_size, " is not 8"), "save with 8-byte doubles");
+        in.skip_line();
+        if (in.binary<std::int32_t>("the byte-order mark") != 1)
+            in.fail("the byte-order mark is not 1", "the file was written big-endian; convert it with gmsh");
+    }
+    in.expect("$EndMeshFormat");
+    TetMesh mesh;
+    NodeIndex nodes;
+    bool have_nodes = false;
+    for (std::string_view section = in.word(); !section.empty(); section = in.word()) {
+        if (section == "$Nodes") {
+            const std::size_t count = in.count("nodes", binary ? 28 : 8);
+            if (binary) in.skip_line();
+            mesh.vertices.resize(count);
+            nodes.reserve(count);
+            for (Vec3& vertex : mesh.vertices) {
+                nodes.add(binary ? in.binary<std::int32_t>("a node number") : in.integer("a node number"));
+                for (double& c : vertex) c = binary ? in.binary<double>("a coordinate") : in.real("a coordinate");
+            }
+            nodes.finish(in);
+            have_nodes = true;
+            in.expect("$EndNodes");
+        } else if (section == "$Elements") {
+            if (!have_nodes) in.fail("$Elements comes before $Nodes", "the file is corrupt; write it again");
+            if (binary) parse_elements_binary(in, mesh, nodes);
+            else parse_elements_ascii(in, mesh, nodes);
+            in.expect("$EndElements");
+        } else if (section == "$PhysicalNames") {
+            parse_physical_names(in, mesh.names);
+            in.expect("$EndPhysicalNames");
+        } else if (section.size() > 1 && section[0] == '$') {
+            in.skip_past(concat("$End", section.substr(1)));  // $NodeData, $Periodic, ...: not ours
+        } else {
+            in.fail(concat("unexpected \"", section.substr(0, 40), "\" between sections"), "the file is corrupt; write it again");
+        }
+    }
+    return mesh;
+}
+
+} // namespace tissuemesh::io::detail

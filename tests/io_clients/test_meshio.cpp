@@ -1,0 +1,105 @@
+// meshio (Debian's python3-meshio) opens every tet mesh format we write with the same counts, labels and
+// volumes, and we read what meshio writes.
+#include <fstream>
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+#include "io/tet_mesh_io.h"
+#include "io/write_vtu.h"
+#include "tests/io_clients/clients.h"
+#include "tests/support/cli.h"
+#include "tests/support/programs.h"
+
+namespace tissuemesh::io {
+namespace {
+
+const TetMesh& sample()
+{
+    static const TetMesh mesh = testing::nested_cubes_mesh();
+    return mesh;
+}
+
+std::map<Label, std::size_t> tets_per_label(const TetMesh& mesh)
+{
+    std::map<Label, std::size_t> counts;
+    for (const Label label : mesh.tet_labels) ++counts[label];
+    return counts;
+}
+
+void expect_same_volumes(const std::map<Label, double>& volumes, const std::map<Label, double>& expected)
+{
+    ASSERT_EQ(volumes.size(), expected.size());
+    for (const auto& [label, volume] : expected) EXPECT_NEAR(volumes.at(label), volume, 1e-9 * volume) << "tissue " << label;
+}
+
+TEST(MeshioOpensOurFiles, EveryTetMeshFormatAndEncoding)
+{
+    testing::TempDir dir;
+    struct Case {
+        std::string file;
+        TetMeshWriteOptions options;
+        bool triangles;  ///< meshio sees the interface faces
+    };
+    const std::vector<Case> cases{{"a.msh", {}, true},
+                                  {"b.msh", {MshVersion::v2_2, true}, true},
+                                  {"c.msh", {MshVersion::v4_1, false}, true},
+                                  {"d.msh", {MshVersion::v4_1, true}, true},
+                                  {"e.mesh", {}, true},
+                                  {"f.node", {}, false},
+                                  {"g.inp", {}, false},
+                                  {"h.vtu", {}, false},
+                                  {"i.vtu", {MshVersion::v2_2, false, false}, false}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.file);
+        write_tet_mesh(sample(), dir / c.file, c.options);
+        const std::string opened = c.file == "f.node" ? "f.ele" : c.file;  // meshio's TetGen reader takes the .ele
+        const testing::MeshioView view = testing::meshio_read(dir / opened);
+        if (!view.ok) continue;
+        EXPECT_EQ(view.points, sample().vertices.size());
+        EXPECT_EQ(view.cells.at("tetra"), sample().tets.size());
+        if (c.triangles) {
+            EXPECT_EQ(view.cells.count("triangle") ? view.cells.at("triangle") : 0, sample().faces.size());
+        }
+        EXPECT_EQ(view.tets_per_label, tets_per_label(sample()));
+        expect_same_volumes(view.volume_per_label, testing::tissue_volumes(sample()));
+    }
+}
+
+TEST(MeshioOpensOurFiles, CompressedVtuKeepsNamedCellArrays)
+{
+    testing::TempDir dir;
+    std::vector<double> index(sample().tets.size());
+    for (std::size_t t = 0; t < index.size(); ++t) index[t] = static_cast<double>(t);
+    write_vtu(sample(), dir / "a.vtu", {}, {make_vtu_array("tet_index", index, true)}, VtuEncoding::compressed);
+    const std::string script = "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
+                               "a = m.cell_data['tet_index'][0]\nprint(len(a), int(a.sum()), m.cells[0].type)\n";
+    std::ofstream(dir / "arrays.py") << script;
+    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(dir / "arrays.py").string(), (dir / "a.vtu").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const std::size_t n = index.size();
+    EXPECT_EQ(result.out, concat(n, " ", n * (n - 1) / 2, " tetra\n"));
+}
+
+TEST(WeReadMeshioFiles, EveryTetMeshFormatMeshioWrites)
+{
+    testing::TempDir dir;
+    struct Case {
+        std::string file, format;
+        bool binary;
+    };
+    for (const Case& c : std::vector<Case>{{"a.msh", "gmsh22", false}, {"b.msh", "gmsh22", true}, {"c.msh", "gmsh", false},
+                                           {"d.msh", "gmsh", true}, {"e.mesh", "medit", false}, {"f.node", "tetgen", false},
+                                           {"g.inp", "abaqus", false}}) {
+        SCOPED_TRACE(c.file + " by meshio as " + c.format + (c.binary ? " binary" : ""));
+        if (!testing::meshio_write_two_cubes(dir / c.file, c.format, c.binary)) continue;
+        const TetMesh mesh = read_tet_mesh(dir / c.file);
+        EXPECT_EQ(mesh.vertices.size(), 12u);
+        EXPECT_EQ(tets_per_label(mesh), (std::map<Label, std::size_t>{{1, 6}, {2, 6}}));
+        expect_same_volumes(testing::tissue_volumes(mesh), {{1, 1.0}, {2, 1.0}});
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t) EXPECT_GT(signed_volume(mesh, t), 0) << "tet " << t;
+    }
+}
+
+} // namespace
+} // namespace tissuemesh::io

@@ -1,0 +1,120 @@
+// Every tet mesh format we write reads back: same nodes (bit for bit), same labelled tets and faces,
+// same names, same volumes per tissue.
+#include <gtest/gtest.h>
+
+#include "io/tet_mesh_io.h"
+#include "tests/io_formats/mesh_compare.h"
+#include "tests/support/cli.h"
+#include "tests/support/programs.h"
+
+namespace tissuemesh::io {
+namespace {
+
+using testing::face_set;
+using testing::tet_set;
+
+const TetMesh& sample()
+{
+    static const TetMesh mesh = testing::nested_cubes_mesh();
+    return mesh;
+}
+
+struct Variant {
+    std::string file;
+    TetMeshWriteOptions options;
+    bool faces = true;  ///< the format keeps interface faces
+    bool names = true;  ///< the format keeps tissue names
+};
+
+std::vector<Variant> variants()
+{
+    return {{"a.msh", {}},
+            {"b.msh", {MshVersion::v2_2, true}},
+            {"c.msh", {MshVersion::v4_1, false}},
+            {"d.msh", {MshVersion::v4_1, true}},
+            {"e.mesh", {}},
+            {"f.node", {}},
+            {"g.inp", {}, false, true}};
+}
+
+TEST(TetMeshRoundTrip, TheSampleHasBothTissuesAndTheirExactVolumes)
+{
+    const auto volumes = testing::tissue_volumes(sample());
+    ASSERT_EQ(volumes.size(), 2u);
+    EXPECT_NEAR(volumes.at(1), 56.0, 1e-9);
+    EXPECT_NEAR(volumes.at(2), 8.0, 1e-9);
+    EXPECT_GT(sample().tets.size(), 100u);
+    EXPECT_EQ(sample().names.at(2), "inner");
+}
+
+TEST(TetMeshRoundTrip, EveryFormatAndEncodingReadsBackTheSameMesh)
+{
+    testing::TempDir dir;
+    for (const Variant& variant : variants()) {
+        SCOPED_TRACE(variant.file + (variant.options.binary ? " binary" : ""));
+        write_tet_mesh(sample(), dir / variant.file, variant.options);
+        const TetMesh back = read_tet_mesh(dir / variant.file);
+        EXPECT_EQ(back.vertices, sample().vertices) << "17 significant digits or raw doubles: exact";
+        EXPECT_EQ(tet_set(back), tet_set(sample()));
+        if (variant.faces) {
+            EXPECT_EQ(face_set(back), face_set(sample()));
+        } else {
+            EXPECT_TRUE(back.faces.empty());
+        }
+        if (variant.names) {
+            EXPECT_EQ(back.names, sample().names);
+        }
+        const auto volumes = testing::tissue_volumes(back);
+        EXPECT_NEAR(volumes.at(1), 56.0, 1e-9);
+        EXPECT_NEAR(volumes.at(2), 8.0, 1e-9);
+    }
+}
+
+TEST(TetMeshRoundTrip, MshTwoTwoKeepsElementOrderAndTheDefaultIsAsciiTwoTwo)
+{
+    testing::TempDir dir;
+    write_tet_mesh(sample(), dir / "a.msh");
+    const TetMesh back = read_tet_mesh(dir / "a.msh");
+    EXPECT_EQ(back.tets, sample().tets);
+    EXPECT_EQ(back.tet_labels, sample().tet_labels);
+    EXPECT_EQ(back.faces, sample().faces);
+    const std::string head = testing::run_program("head", {"-c", "32", (dir / "a.msh").string()}).out;
+    EXPECT_EQ(head.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u) << head;
+}
+
+TEST(TetMeshRoundTrip, TetgenWritesThreeFilesAndReadsFromEither)
+{
+    testing::TempDir dir;
+    write_tet_mesh(sample(), dir / "m.ele");
+    EXPECT_EQ(dir.files(), (std::vector<std::string>{"m.ele", "m.face", "m.node"}));
+    EXPECT_EQ(tet_set(read_tet_mesh(dir / "m.node")), tet_set(sample()));
+    std::filesystem::remove(dir / "m.face");
+    const TetMesh no_faces = read_tet_mesh(dir / "m.ele");
+    EXPECT_EQ(tet_set(no_faces), tet_set(sample()));
+    EXPECT_TRUE(no_faces.faces.empty());
+}
+
+TEST(TetMeshRoundTrip, ReadersOrientTetsPositively)
+{
+    testing::TempDir dir;
+    TetMesh flipped = sample();
+    for (Tet& tet : flipped.tets) std::swap(tet[0], tet[1]);
+    for (const char* name : {"a.msh", "b.mesh", "c.node", "d.inp"}) {
+        write_tet_mesh(flipped, dir / name, {MshVersion::v4_1, true});
+        const TetMesh back = read_tet_mesh(dir / name);
+        for (std::size_t t = 0; t < back.tets.size(); ++t) ASSERT_GT(signed_volume(back, t), 0) << name << " tet " << t;
+    }
+}
+
+TEST(TetMeshRoundTrip, EmptyMeshesRoundTrip)
+{
+    testing::TempDir dir;
+    for (const Variant& variant : variants()) {
+        write_tet_mesh(TetMesh{}, dir / variant.file, variant.options);
+        const TetMesh back = read_tet_mesh(dir / variant.file);
+        EXPECT_TRUE(back.vertices.empty() && back.tets.empty() && back.faces.empty()) << variant.file;
+    }
+}
+
+} // namespace
+} // namespace tissuemesh::io
