@@ -38,7 +38,7 @@ const std::vector<std::string> tet_nodes{"1 0 0 0", "2 20 0 0", "3 0 20 0", "4 0
 void write_meshes(const std::filesystem::path& dir)
 {
     write_text(dir / "ok.msh", msh(tet_nodes, {"1 4 2 1 1 1 2 3 4"}));
-    write_text(dir / "inverted.msh", msh(tet_nodes, {"1 4 2 1 1 1 3 2 4"}));
+    write_text(dir / "flat.msh", msh({"1 0 0 0", "2 20 0 0", "3 0 20 0", "4 10 10 0"}, {"1 4 2 1 1 1 2 3 4"}));
     write_text(dir / "dangling.msh", msh(tet_nodes, {"1 4 2 1 1 1 2 3 9"}));
     write_text(dir / "nan.msh", msh({"1 0 0 0", "2 nan 0 0", "3 0 20 0", "4 0 0 20"}, {"1 4 2 1 1 1 2 3 4"}));
     write_text(dir / "no-tets.msh", msh(tet_nodes, {"1 2 2 1001 1 1 2 3"}));

@@ -12,7 +12,7 @@ namespace tissuemesh::testing {
 ///  - surfaces: ok.ply (a closed box of tissue 1), hole.ply, flipped.ply, duplicate.ply,
 ///    twin-vertices.ply, crossing.ply, nan.ply, dangling.ply, truncated.ply, empty.ply, magic.ply,
 ///    counts.off, truncated.stl;
-///  - meshes: ok.msh (a cube of 6 tets, tissue 1 "brain"), inverted.msh, dangling.msh, nan.msh,
+///  - meshes: ok.msh (one tet, tissue 1 "brain"), flat.msh (a tet of zero volume), dangling.msh, nan.msh,
 ///    truncated.msh, no-tets.msh, bad.mesh;
 ///  - tables: conductivity, sensor and label files, valid and not.
 void write_bad_input_files(const std::filesystem::path& dir);

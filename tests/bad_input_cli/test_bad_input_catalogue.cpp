@@ -115,7 +115,7 @@ const std::vector<BadCase> surface_cases{
 
 // Tet meshes and the solver's tables.
 const std::vector<BadCase> mesh_cases{
-    {"MshInvertedTetIsReported", "tm-check-mesh", {"@inverted.msh"}, 1, {"inverted"}},
+    {"MshFlatTetIsReported", "tm-check-mesh", {"@flat.msh"}, 1, {"volume 0 mm^3", "NOT fit for FEM"}},
     {"MshDanglingNode", "tm-check-mesh", {"@dangling.msh"}, 2, {"dangling.msh"}},
     {"MshNanCoordinate", "tm-solve", {"-i", "@nan.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2, {"nan.msh"}},
     {"MshTruncated", "tm-assess", {"-i", "@truncated.msh", "--image", "@ok.nii", "-o", "@out.vtu"}, 2, {"truncated.msh"}},

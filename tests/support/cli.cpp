@@ -54,7 +54,7 @@ CliResult run_cli(const std::string& tool, const std::vector<std::string>& args)
     return run_program(std::string(TM_TOOLS_DIR) + "/" + tool, args);
 }
 
-CliResult run_program(const std::string& program, const std::vector<std::string>& args)
+CliResult run_program(const std::string& program, const std::vector<std::string>& args, const fs::path& working_dir)
 {
     TempDir capture;
     const fs::path out_path = capture / "stdout";
@@ -68,6 +68,7 @@ CliResult run_program(const std::string& program, const std::vector<std::string>
         ::dup2(out, 1);
         ::dup2(err, 2);
         ::dup2(in, 0);
+        if (!working_dir.empty() && ::chdir(working_dir.c_str()) != 0) ::_exit(126);
         std::vector<char*> argv;
         argv.push_back(const_cast<char*>(program.c_str()));
         for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));

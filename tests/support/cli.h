@@ -34,8 +34,10 @@ struct CliResult {
 /// interpretation) and returns its exit code and output.
 CliResult run_cli(const std::string& tool, const std::vector<std::string>& args);
 
-/// Runs any program (a path, or a name looked up in PATH, e.g. "make") with `args`, no shell.
-CliResult run_program(const std::string& program, const std::vector<std::string>& args);
+/// Runs any program (a path, or a name looked up in PATH, e.g. "make") with `args`, no shell, in
+/// `working_dir` when given (exit code 126 when it cannot go there).
+CliResult run_program(const std::string& program, const std::vector<std::string>& args,
+                      const std::filesystem::path& working_dir = {});
 
 /// Parses a JSON file (a --json summary); throws when it is missing or malformed.
 nlohmann::json read_json(const std::filesystem::path& path);
