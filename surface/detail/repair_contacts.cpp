@@ -258,7 +258,7 @@ private:
             region = std::move(grown);
         }
         for (const std::uint32_t v : region)
-            if (smooth.contains(v) || !pushes.contains(v) || !crossings) smooth_vertex(v);
+            if (smooth.contains(v) || !pushes.contains(v)) smooth_vertex(v);
     }
 
     void log_resolved(const std::vector<Contact>& first, const std::vector<Contact>& left, bool crossings)

@@ -16,6 +16,18 @@ bool shares_vertex(const Triangle& a, const Triangle& b)
     return false;
 }
 
+/// Triangles joined by an edge (a vertex of each) lie side by side where patches meet at a junction
+/// curve: close by construction, not a contact to push apart.
+bool joined_by_edge(const ComplexEditor& editor, const Triangle& a, const Triangle& b)
+{
+    for (const std::uint32_t v : a) {
+        const std::vector<std::uint32_t> ring = editor.neighbours(v);
+        for (const std::uint32_t w : b)
+            if (std::binary_search(ring.begin(), ring.end(), w)) return true;
+    }
+    return false;
+}
+
 /// Smallest vertex-to-face distance between two triangles (the closest approach of near-parallel layers).
 double vertex_face_distance(const TriangleCorners& a, const TriangleCorners& b)
 {
@@ -81,7 +93,8 @@ std::vector<Contact> find_contacts(const ComplexEditor& editor, double gap_mm)
                 continue;
             const TriangleCorners cu = editor.corners(u);
             if (!boxes_overlap(box, bounding_box(cu)) || crossing.contains({t, u})) continue;
-            if (vertex_face_distance(ct, cu) < gap_mm) contacts.push_back({t, u, false});
+            if (vertex_face_distance(ct, cu) < gap_mm && !joined_by_edge(editor, editor.triangle(t), editor.triangle(u)))
+                contacts.push_back({t, u, false});
         }
     }
     std::sort(contacts.begin(), contacts.end());

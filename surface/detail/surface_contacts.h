@@ -17,7 +17,8 @@ struct Contact {
 };
 
 /// The crossing pairs among the editor's alive, non-degenerate triangles (exact), and with gap_mm > 0 the
-/// pairs of different patches sharing no vertex whose vertex-to-face distance is below it; sorted.
+/// pairs of different patches sharing no vertex and joined by no edge whose vertex-to-face distance is below
+/// it; sorted.
 std::vector<Contact> find_contacts(const ComplexEditor& editor, double gap_mm);
 
 /// Whether two sides are the same patch (the same two tissues, in either order).
