@@ -243,7 +243,20 @@ void require_fit_for_tetrahedralization(const InterfaceComplex& complex, const s
     const Defect* first = report.first_error();
     throw InputError(concat(what, ": not fit for tetrahedralization: ", report.error_count(), " defect",
                             report.error_count() == 1 ? "" : "s", ", first: ", first ? first->description : "?",
-                            "; tm-check-surface lists them; re-extract it with tm-extract, whose output is always fit, and edit it only with tm-smooth and tm-decimate, which keep it fit"));
+                            "; tm-check-surface lists them; ", repair_hint(report)));
+}
+
+std::string repair_hint(const CheckReport& report)
+{
+    const std::string extract = "re-extract it with tm-extract, whose output is always fit, and edit it only with "
+                                "tm-smooth, tm-decimate and tm-remesh, which keep it fit";
+    // Doubled vertices and triangles open edges that merging them closes again: then the open edges say nothing.
+    const bool doubles = report.count(DefectKind::duplicate_vertex) + report.count(DefectKind::duplicate_triangle) > 0;
+    for (const DefectKind kind : {DefectKind::open_edge, DefectKind::non_manifold_edge, DefectKind::inverted_tissue})
+        if (report.count(kind) > 0 && !doubles)
+            return concat("tm-repair cannot fix ", to_string(kind), " defects (it changes no topology): ", extract);
+    return concat("tm-repair may fix it (it merges coincident vertices, drops repeated and zero-area triangles, turns "
+                  "flipped ones and moves crossing surfaces apart), or ", extract);
 }
 
 } // namespace tissuemesh::surface

@@ -96,9 +96,15 @@ struct CheckOptions {
 CheckReport check_complex(const InterfaceComplex& complex, const CheckOptions& options = {},
                           const Progress& progress = {});
 
+/// What a user can do about the errors in `report`, as one clause: tm-repair where every error is of a
+/// kind it may fix (coincident vertices, repeated, zero-area or flipped triangles, intersections; open
+/// edges too when doubled vertices or triangles may be their cause), else re-extraction with tm-extract
+/// (holes, a tissue touching itself, an inverted tissue).
+std::string repair_hint(const CheckReport& report);
+
 /// For steps that need a valid complex: runs check_complex() and throws when it is not fit.
-/// @throws InputError naming `what`, the number of errors and the first defect, with the hint
-///         "re-extract it with tm-extract"; also when the complex has no triangle.
+/// @throws InputError naming `what`, the number of errors and the first defect, with repair_hint()
+///         (which always ends "re-extract it with tm-extract ..."); also when the complex has no triangle.
 void require_fit_for_tetrahedralization(const InterfaceComplex& complex, const std::string& what);
 
 } // namespace tissuemesh::surface

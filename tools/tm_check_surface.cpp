@@ -137,7 +137,7 @@ int main(int argc, char** argv)
             if (!report.ok())
                 throw AlgorithmError(concat(input, ": not fit for tetrahedralization: ", error_summary(report),
                                             "; first: ", report.first_error()->description,
-                                            "; re-extract it with tm-extract, whose output is always fit, and edit it only with tm-smooth and tm-decimate, which keep it fit"));
+                                            "; ", surface::repair_hint(report)));
             ctx.log(concat(input, ": fit for tetrahedralization (", report.triangles, " triangles, ",
                            report.warning_count(), " warnings)"));
         });

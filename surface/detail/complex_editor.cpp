@@ -213,14 +213,20 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
             all.high[i] = std::max(all.high[i], boxes.back().high[i]);
         }
     }
+    // Outside repair the budget is 0: the first intersection refuses the edit.
+    std::size_t meetings = 0;
+    const auto meets = [&] {
+        if (++meetings <= intersection_budget_) return false;
+        ++counters_.intersection;
+        return true;
+    };
     for (std::size_t i = 0; i < changes.size(); ++i)
         for (std::size_t j = i + 1; j < changes.size(); ++j)
-            if (same_vertex_set(changes[i].triangle, changes[j].triangle) ||
-                (boxes_overlap(boxes[i], boxes[j]) &&
-                 triangles_intersect(positions_, changes[i].triangle, changes[j].triangle))) {
-                ++counters_.intersection;
+            if ((same_vertex_set(changes[i].triangle, changes[j].triangle) ||
+                 (boxes_overlap(boxes[i], boxes[j]) &&
+                  triangles_intersect(positions_, changes[i].triangle, changes[j].triangle))) &&
+                meets())
                 return false;
-            }
     grid_.query(all, nearby_);
     for (const std::uint32_t t : nearby_) {
         if (!alive_[t] || std::find(excluded.begin(), excluded.end(), t) != excluded.end()) continue;
@@ -230,10 +236,8 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         for (std::size_t i = 0; i < changes.size(); ++i) {
             if (!boxes_overlap(boxes[i], box)) continue;
             const Triangle& a = changes[i].triangle;
-            if (same_vertex_set(a, triangles_[t]) || triangles_intersect(positions_, a, triangles_[t])) {
-                ++counters_.intersection;
+            if ((same_vertex_set(a, triangles_[t]) || triangles_intersect(positions_, a, triangles_[t])) && meets())
                 return false;
-            }
             // The gap keeps layers apart: it applies between different patches only (within a patch, folds
             // are what the normal and intersection tests are for), and is measured between vertices and
             // faces (the closest approach of nearly parallel layers).
@@ -245,6 +249,30 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         }
     }
     return true;
+}
+
+std::size_t ComplexEditor::intersections_involving(const std::vector<std::uint32_t>& slots)
+{
+    std::size_t count = 0;
+    std::vector<std::uint32_t> sorted = slots;
+    std::sort(sorted.begin(), sorted.end());
+    for (const std::uint32_t s : slots) {
+        const Box3 box = bounding_box(corners(s));
+        grid_.query(box, nearby_);
+        for (const std::uint32_t t : nearby_) {
+            if (!alive_[t] || t == s) continue;
+            const bool among = std::binary_search(sorted.begin(), sorted.end(), t);
+            if ((among && t < s) || !boxes_overlap(box, bounding_box(corners(t)))) continue;
+            if (same_vertex_set(triangles_[s], triangles_[t]) || triangles_intersect(positions_, triangles_[s], triangles_[t]))
+                ++count;
+        }
+    }
+    return count;
+}
+
+void ComplexEditor::set_budget(const std::vector<std::uint32_t>& slots)
+{
+    intersection_budget_ = limits_.tolerate_existing_intersections ? intersections_involving(slots) : 0;
 }
 
 LabelPair ComplexEditor::side_of(const Change& change) const
@@ -293,6 +321,7 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
 bool ComplexEditor::try_move(std::uint32_t v, const Vec3& p)
 {
     if (!vertex_alive(v)) return false;
+    set_budget(stars_[v]);
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) changes.push_back({t, triangles_[t], corners(t)});
     const Vec3 old = positions_[v];
@@ -302,6 +331,29 @@ bool ComplexEditor::try_move(std::uint32_t v, const Vec3& p)
         return false;
     }
     // apply() re-files each triangle in the grid: erase by the old box, insert by the new one.
+    apply(changes, {});
+    return true;
+}
+
+bool ComplexEditor::try_move_group(const std::vector<std::uint32_t>& vertices, const std::vector<Vec3>& positions)
+{
+    std::vector<std::uint32_t> slots;
+    for (const std::uint32_t v : vertices) slots.insert(slots.end(), stars_[v].begin(), stars_[v].end());
+    std::sort(slots.begin(), slots.end());
+    slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+    if (slots.empty()) return false;
+    set_budget(slots);
+    std::vector<Change> changes;
+    for (const std::uint32_t t : slots) changes.push_back({t, triangles_[t], corners(t)});
+    std::vector<Vec3> old;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        old.push_back(positions_[vertices[i]]);
+        positions_[vertices[i]] = positions[i];
+    }
+    if (!acceptable(changes, {})) {
+        for (std::size_t i = vertices.size(); i-- > 0;) positions_[vertices[i]] = old[i];
+        return false;
+    }
     apply(changes, {});
     return true;
 }
@@ -346,6 +398,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
         ++counters_.topology;
         return false;
     }
+    set_budget(stars_[v]);
     std::vector<std::uint32_t> removed;
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) {
@@ -377,6 +430,7 @@ std::optional<std::uint32_t> ComplexEditor::try_split(std::uint32_t v, std::uint
     for (const std::uint32_t t : stars_[v])
         if (contains(triangles_[t], w)) on_edge.push_back(t);
     if (on_edge.empty()) return std::nullopt;
+    set_budget(on_edge);
     const std::uint32_t m = add_vertex(p);
     std::vector<Change> changes;
     auto next_slot = static_cast<std::uint32_t>(triangles_.size());
@@ -435,6 +489,7 @@ bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
         ++counters_.topology;
         return false;
     }
+    set_budget(on_edge);
     const TriangleCorners before1 = corners(t1), before2 = corners(t2);
     std::vector<Change> changes{{t1, {v, b, a}, before1}, {t2, {w, a, b}, before2}};
     // Each new triangle must not tilt much from either old one (no flipping across a crease).

@@ -34,6 +34,9 @@ struct EditLimits {
     double min_angle_deg = 2.0;            ///< new triangles' smallest angle (unless not worse than before)
     double max_normal_change_deg = 60.0;   ///< a changed triangle may tilt at most this much in one edit
     double min_gap_mm = 0.0;               ///< distance kept between triangles sharing no vertex
+    /// For repair(): an edit may leave intersections that were already there, as long as the changed
+    /// triangles meet no more other triangles than before the edit (never more; none when there were none).
+    bool tolerate_existing_intersections = false;
 };
 
 /// Why edits were refused, for reports.
@@ -82,6 +85,8 @@ public:
     // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
     /// Moves v to p (junction-curve and corner rules are the caller's business: see VertexKind).
     bool try_move(std::uint32_t v, const Vec3& p);
+    /// Moves every vertices[i] to positions[i] in one edit (all or none), for regions that must move together.
+    bool try_move_group(const std::vector<std::uint32_t>& vertices, const std::vector<Vec3>& positions);
     /// Collapses edge vw into w: v disappears, w keeps its position.
     bool try_collapse(std::uint32_t v, std::uint32_t w);
     /// Splits edge vw (every triangle on it) at p; returns the new vertex.
@@ -105,6 +110,10 @@ private:
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    /// Intersecting pairs that involve `slots` (alive triangles) at the current positions: among them and
+    /// with the other alive triangles. Sets the budget of the next check in tolerant mode.
+    std::size_t intersections_involving(const std::vector<std::uint32_t>& slots);
+    void set_budget(const std::vector<std::uint32_t>& slots);
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     void update_kinds(std::uint32_t v);
@@ -123,6 +132,7 @@ private:
     std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
+    std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)
     EditCounters counters_;
 };
 
