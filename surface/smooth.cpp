@@ -25,15 +25,6 @@ void validate(const SmoothOptions& options)
         throw InputError(concat("smooth: min gap ", options.min_gap_voxels, " voxels is outside [0, 1)"));
 }
 
-std::vector<Label> tissues_at(const ComplexEditor& editor, std::uint32_t v)
-{
-    std::vector<Label> tissues;
-    for (const std::uint32_t t : editor.star(v)) tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
-    std::sort(tissues.begin(), tissues.end());
-    tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
-    return tissues;
-}
-
 /// The umbrella vector: mean of the neighbours the vertex is smoothed towards, minus its position. Inside
 /// a patch only its component along the vertex normal: the tangential part would only slide vertices
 /// over the surface (and the marching-cubes triangles are already well shaped; remeshing is a later step),
@@ -102,7 +93,7 @@ SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const Sm
     const detail::VoxelEvidence evidence(image, background, options.max_depth_voxels);
     std::vector<std::vector<Label>> tissues(editor.vertex_slots());
     for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
-        tissues[v] = tissues_at(editor, v);
+        tissues[v] = tissues_around(editor, v);
         if (editor.vertex_alive(v) && editor.kind(v) == VertexKind::corner) ++report.fixed_vertices;
     }
     for (std::size_t i = 0; i < options.iterations; ++i) {

@@ -136,17 +136,7 @@ std::string format_msh2(const TetMesh& mesh, bool binary)
 
 TetMesh parse_msh2(ByteReader& in)
 {
-    const long long file_type = in.integer("the file type");
-    const long long data_size = in.integer("the data size");
-    if (file_type != 0 && file_type != 1) in.fail(concat("file type ", file_type, " is neither 0 nor 1"), "the file is corrupt");
-    const bool binary = file_type == 1;
-    if (binary) {
-        if (data_size != 8) in.fail(concat("data size ", data_size, " is not 8"), "save with 8-byte doubles");
-        in.skip_line();
-        if (in.binary<std::int32_t>("the byte-order mark") != 1)
-            in.fail("the byte-order mark is not 1", "the file was written big-endian; convert it with gmsh");
-    }
-    in.expect("$EndMeshFormat");
+    const bool binary = parse_mesh_format(in, "save with 8-byte doubles");
     TetMesh mesh;
     NodeIndex nodes;
     bool have_nodes = false;

@@ -122,4 +122,20 @@ void append_real(std::string& out, double value)
     out.append(buffer, static_cast<std::size_t>(length));
 }
 
+bool parse_mesh_format(ByteReader& in, const char* data_size_hint)
+{
+    const long long file_type = in.integer("the file type");
+    const long long data_size = in.integer("the data size");
+    if (file_type != 0 && file_type != 1) in.fail(concat("file type ", file_type, " is neither 0 nor 1"), "the file is corrupt");
+    const bool binary = file_type == 1;
+    if (binary) {
+        if (data_size != 8) in.fail(concat("data size ", data_size, " is not 8"), data_size_hint);
+        in.skip_line();
+        if (in.binary<std::int32_t>("the byte-order mark") != 1)
+            in.fail("the byte-order mark is not 1", "the file was written big-endian; convert it with gmsh");
+    }
+    in.expect("$EndMeshFormat");
+    return binary;
+}
+
 } // namespace tissuemesh::io::detail

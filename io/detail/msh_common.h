@@ -27,6 +27,11 @@ std::string format_physical_names(const TetMesh& mesh);
 /// Parses the body of $PhysicalNames (after the keyword); volume names become tissue names.
 void parse_physical_names(ByteReader& in, TissueNames& names);
 
+/// Reads the rest of $MeshFormat after the version (file type, data size, byte-order mark) up to and with
+/// $EndMeshFormat; returns whether the file is binary. `data_size_hint` says what an 8-byte data size means
+/// for this version.
+bool parse_mesh_format(ByteReader& in, const char* data_size_hint);
+
 /// Gmsh node numbers -> vertex indices, dense or sparse.
 class NodeIndex {
 public:

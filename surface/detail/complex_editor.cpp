@@ -521,4 +521,13 @@ InterfaceComplex ComplexEditor::result() const
     return out;
 }
 
+std::vector<Label> tissues_around(const ComplexEditor& editor, std::uint32_t v)
+{
+    std::vector<Label> tissues;
+    for (const std::uint32_t t : editor.star(v)) tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
+    std::sort(tissues.begin(), tissues.end());
+    tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
+    return tissues;
+}
+
 } // namespace tissuemesh::surface::detail

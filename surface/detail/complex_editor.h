@@ -136,4 +136,7 @@ private:
     EditCounters counters_;
 };
 
+/// The tissues on either side of the triangles around vertex `v`, sorted, each once.
+std::vector<Label> tissues_around(const ComplexEditor& editor, std::uint32_t v);
+
 } // namespace tissuemesh::surface::detail

@@ -16,15 +16,6 @@
 namespace tissuemesh::surface::detail {
 namespace {
 
-std::vector<Label> tissues_at(const ComplexEditor& editor, std::uint32_t v)
-{
-    std::vector<Label> tissues;
-    for (const std::uint32_t t : editor.star(v)) tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
-    std::sort(tissues.begin(), tissues.end());
-    tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
-    return tissues;
-}
-
 /// How far a vertex should go and where: the sum of the unit directions asked for, and the largest distance.
 struct Push {
     Vec3 direction{0, 0, 0};
@@ -104,7 +95,7 @@ private:
     std::optional<Vec3> where_image_allows(std::uint32_t v, const Vec3& away) const
     {
         if (!evidence_) return std::nullopt;
-        const std::vector<Label> tissues = tissues_at(editor_, v);
+        const std::vector<Label> tissues = tissues_around(editor_, v);
         const Vec3& p = editor_.position(v);
         if (evidence_->allows(p, tissues)) return std::nullopt;
         const Vec3& spacing = options_.image->spacing_mm();
@@ -117,7 +108,7 @@ private:
     bool allowed(std::uint32_t v, const Vec3& target) const
     {
         if (!evidence_) return true;
-        const std::vector<Label> tissues = tissues_at(editor_, v);
+        const std::vector<Label> tissues = tissues_around(editor_, v);
         return evidence_->allows(target, tissues) || !evidence_->allows(editor_.position(v), tissues);
     }
 

@@ -127,4 +127,17 @@ bool run_gmsh(const std::vector<std::string>& args, const fs::path& working_dir)
     return succeeded(run_program("gmsh", args, working_dir), "gmsh");
 }
 
+const TetMesh& client_sample()
+{
+    static const TetMesh mesh = nested_cubes_mesh();
+    return mesh;
+}
+
+std::map<Label, std::size_t> tets_per_label(const TetMesh& mesh)
+{
+    std::map<Label, std::size_t> counts;
+    for (const Label label : mesh.tet_labels) ++counts[label];
+    return counts;
+}
+
 } // namespace tissuemesh::testing

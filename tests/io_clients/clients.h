@@ -33,6 +33,11 @@ MeshioView meshio_read(const std::filesystem::path& file);
 /// 12 points.
 bool meshio_write_two_cubes(const std::filesystem::path& file, const std::string& format, bool binary);
 
+/// The labelled mesh every client test writes (testing::nested_cubes_mesh(), built once).
+const TetMesh& client_sample();
+/// Tets per tissue label.
+std::map<Label, std::size_t> tets_per_label(const TetMesh& mesh);
+
 /// Runs gmsh with `args` in `working_dir`; fails the test when gmsh is missing or exits non-zero.
 bool run_gmsh(const std::vector<std::string>& args, const std::filesystem::path& working_dir);
 

@@ -14,18 +14,8 @@
 namespace tissuemesh::io {
 namespace {
 
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
-
-std::map<Label, std::size_t> tets_per_label(const TetMesh& mesh)
-{
-    std::map<Label, std::size_t> counts;
-    for (const Label label : mesh.tet_labels) ++counts[label];
-    return counts;
-}
+const TetMesh& sample() { return testing::client_sample(); }
+using testing::tets_per_label;
 
 void expect_same_volumes(const std::map<Label, double>& volumes, const std::map<Label, double>& expected)
 {
