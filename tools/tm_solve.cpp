@@ -141,11 +141,7 @@ fem::Conductivities resolve_from_file(const TetMesh& mesh, const std::string& pa
 {
     if (path.empty()) return fem::resolve_conductivities(mesh, {});
     const fem::ConductivityTable table = read_conductivity_table(path);
-    try {
-        return fem::resolve_conductivities(mesh, table);
-    } catch (const InputError& error) {
-        throw InputError(concat(path, ": ", error.what()));
-    }
+    return tools::with_source(path, [&] { return fem::resolve_conductivities(mesh, table); });
 }
 
 } // namespace

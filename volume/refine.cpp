@@ -46,7 +46,8 @@ struct Refinement {
     std::vector<TetState> state;  ///< #T, like mesh.tets
 };
 
-/// Constrained mode: the interface faces (they never change, nor do their nodes), to keep new nodes off them.
+/// Constrained mode: the interface faces of `mesh` (they never change, nor do their nodes), to keep new nodes
+/// off them; reads `mesh` (kept by reference) on every query.
 /// A node placed closer to an interface than the node spacing adds nothing the interface does not already
 /// give, makes slivers against the face, and can make TetGen's -Y boundary recovery fail: on the demo's
 /// sphere head, nodes within 1e-3 mm of faces crashed TetGen 1.5 (suppresssteinerpoints) in the third round.
@@ -294,9 +295,9 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     const Vec3& spacing = image.spacing_mm();
     const double min_distance = options.min_node_distance_mm > 0 ? options.min_node_distance_mm
                                                                  : 0.5 * std::min({spacing[0], spacing[1], spacing[2]});
-    // The interface faces and their nodes are the same in every round (insert_constrained keeps both).
-    const TetMesh interfaces{.vertices = r.mesh.vertices, .faces = r.constrained ? r.mesh.faces : std::vector<Triangle>{}};
-    InterfaceClearance clearance(interfaces, r.constrained ? min_distance : 0);
+    // The interface faces and their nodes are the same in every round (insert_constrained keeps both), so the
+    // grid built from r.mesh now stays right while r.mesh is rebuilt.
+    InterfaceClearance clearance(r.mesh, r.constrained ? min_distance : 0);
     RefineIteration it = summarize(r, 0);
     it.reassessed_tets = r.mesh.tets.size();
     for (;;) {

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "image/phantom.h"
+#include "surface/detail/triangle_distance.h"
 #include "surface/extract_interfaces.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
@@ -62,18 +63,6 @@ TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
     EXPECT_EQ(assess_elements(refined, m.image).total_error_volume_mm3, start);
 }
 
-/// Distance from `p` to the triangle's plane when its projection falls inside, else to the nearest corner
-/// (an upper bound of the distance to the triangle, enough to show that a node is not on it).
-double distance_bound(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-    const Vec3 n = cross(b - a, c - a);
-    const double area2 = norm(n);
-    const double height = dot(p - a, n) / area2;
-    const Vec3 q = p - (height / area2) * n;
-    const bool inside = dot(cross(b - a, q - a), n) >= 0 && dot(cross(c - b, q - b), n) >= 0 && dot(cross(a - c, q - c), n) >= 0;
-    return inside ? std::abs(height) : std::min({distance(p, a), distance(p, b), distance(p, c)});
-}
-
 // Regression: nodes placed within 1e-3 mm of an interface face crashed TetGen (suppresssteinerpoints) in the
 // third round on the demo's sphere head; new nodes now keep the node spacing (half a voxel) from interfaces.
 TEST(RefineConstrainedClearance, NewNodesKeepHalfAVoxelFromEveryInterface)
@@ -88,8 +77,9 @@ TEST(RefineConstrainedClearance, NewNodesKeepHalfAVoxelFromEveryInterface)
     double closest = 1e300;
     for (std::size_t v = m.mesh.vertices.size(); v < m.mesh.vertices.size() + added; ++v)
         for (const Triangle& f : refined.faces)
-            closest = std::min(closest, distance_bound(refined.vertices[v], refined.vertices[f[0]], refined.vertices[f[1]],
-                                                       refined.vertices[f[2]]));
+            closest = std::min(closest, distance(refined.vertices[v], surface::detail::closest_point_on_triangle(
+                                                                    refined.vertices[v], {refined.vertices[f[0]], refined.vertices[f[1]],
+                                                                                          refined.vertices[f[2]]})));
     EXPECT_GE(closest, 0.5 * 4.0 - 1e-9);  // 4 mm voxels
 }
 
