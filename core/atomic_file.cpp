@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <fstream>
+#include <sstream>
 #include <system_error>
 #include <unistd.h>
 
@@ -55,6 +56,16 @@ void write_text_atomically(const fs::path& path, const std::string& text)
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });
+}
+
+std::string read_file_bytes(const fs::path& path)
+{
+    require_readable_file(path);
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    if (!in.good() && !in.eof()) throw IoError(concat(path.string(), ": read failed; check the file and the disk"));
+    return content.str();
 }
 
 void require_readable_file(const fs::path& path)

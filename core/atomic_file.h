@@ -21,6 +21,10 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 /// Throws IoError naming `path` when it does not exist, is a directory, or cannot be opened for reading.
 void require_readable_file(const std::filesystem::path& path);
 
+/// The whole content of `path` as bytes.
+/// @throws IoError (naming `path`) when it is missing, a directory, unreadable, or the read fails
+std::string read_file_bytes(const std::filesystem::path& path);
+
 /// The file name's extension(s) in lower case, with compression kept: "a/b.NII.gz" -> ".nii.gz".
 std::string full_extension(const std::filesystem::path& path);
 

@@ -50,12 +50,7 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
 InterfaceComplex read_surface(const std::filesystem::path& path)
 {
     const std::string extension = extension_of(path);
-    require_readable_file(path);
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream content;
-    content << in.rdbuf();
-    if (!in.good() && !in.eof()) throw IoError(concat(path.string(), ": read failed; check the file"));
-    const std::string bytes = content.str();
+    const std::string bytes = read_file_bytes(path);
     const std::string what = path.string();
     InterfaceComplex complex;
     if (extension == ".ply") complex = detail::parse_ply(bytes, what);

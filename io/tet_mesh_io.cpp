@@ -18,20 +18,9 @@ namespace {
 
 const char* const known = ".msh, .mesh, .vtu, .node/.ele, .inp";
 
-void write_bytes(const fs::path& path, const std::string& bytes)
-{
-    write_atomically(path, [&](const fs::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the folder and permissions"));
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
-    });
-}
-
 TetMesh read_msh(const fs::path& path)
 {
-    const std::string bytes = detail::read_file_bytes(path);
+    const std::string bytes = read_file_bytes(path);
     detail::ByteReader in(bytes, path.string());
     if (in.word() != "$MeshFormat") in.fail("not a Gmsh file (no $MeshFormat)", "check the file or its extension");
     const std::string version(in.next_word("a format version"));
@@ -59,20 +48,21 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWrit
     const std::string extension = full_extension(path);
     if (!is_tet_mesh_path(path))
         throw IoError(concat(path.string(), ": unknown mesh format \"", extension, "\"; use one of ", known));
-    validate_indices(mesh, path.string());
+    // write_vtu() validates the mesh itself.
     if (extension == ".vtu") return write_vtu(mesh, path, {}, {}, options.vtu_compressed ? VtuEncoding::compressed : VtuEncoding::ascii);
+    validate_indices(mesh, path.string());
     if (extension == ".node" || extension == ".ele") {
         const detail::TetgenFiles files = detail::format_tetgen(mesh);
-        write_bytes(with_extension(path, ".node"), files.node);
-        write_bytes(with_extension(path, ".ele"), files.ele);
-        write_bytes(with_extension(path, ".face"), files.face);
+        write_text_atomically(with_extension(path, ".node"), files.node);
+        write_text_atomically(with_extension(path, ".ele"), files.ele);
+        write_text_atomically(with_extension(path, ".face"), files.face);
         return;
     }
     if (extension == ".msh")
-        write_bytes(path, options.msh_version == MshVersion::v4_1 ? detail::format_msh4(mesh, options.binary)
+        write_text_atomically(path, options.msh_version == MshVersion::v4_1 ? detail::format_msh4(mesh, options.binary)
                                                                   : detail::format_msh2(mesh, options.binary));
-    if (extension == ".mesh") write_bytes(path, detail::format_medit(mesh));
-    if (extension == ".inp") write_bytes(path, detail::format_abaqus(mesh));
+    if (extension == ".mesh") write_text_atomically(path, detail::format_medit(mesh));
+    if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh));
 }
 
 TetMesh read_tet_mesh(const fs::path& path)
@@ -82,14 +72,14 @@ TetMesh read_tet_mesh(const fs::path& path)
     if (extension == ".msh") {
         mesh = read_msh(path);
     } else if (extension == ".mesh") {
-        mesh = detail::parse_medit(detail::read_file_bytes(path), path.string());
+        mesh = detail::parse_medit(read_file_bytes(path), path.string());
     } else if (extension == ".inp") {
-        mesh = detail::parse_abaqus(detail::read_file_bytes(path), path.string());
+        mesh = detail::parse_abaqus(read_file_bytes(path), path.string());
     } else if (extension == ".node" || extension == ".ele") {
         detail::TetgenFiles files;
-        files.node = detail::read_file_bytes(with_extension(path, ".node"));
-        files.ele = detail::read_file_bytes(with_extension(path, ".ele"));
-        if (fs::exists(with_extension(path, ".face"))) files.face = detail::read_file_bytes(with_extension(path, ".face"));
+        files.node = read_file_bytes(with_extension(path, ".node"));
+        files.ele = read_file_bytes(with_extension(path, ".ele"));
+        if (fs::exists(with_extension(path, ".face"))) files.face = read_file_bytes(with_extension(path, ".face"));
         mesh = detail::parse_tetgen(files, with_extension(path, "").string());
     } else if (extension == ".vtu") {
         throw IoError(concat(path.string(), ": .vtu meshes cannot be read yet; convert to .msh with meshio"));

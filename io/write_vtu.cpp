@@ -144,14 +144,7 @@ void write_vtu(const TetMesh& mesh, const std::filesystem::path& path, const std
     validate_indices(mesh, path.string());
     for (const VtuArray& array : point_arrays) check_size(array, mesh.vertices.size(), "points", path);
     for (const VtuArray& array : cell_arrays) check_size(array, mesh.tets.size(), "cells", path);
-    const std::string bytes = format_grid(mesh, point_arrays, cell_arrays, encoding);
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the folder and permissions"));
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
-    });
+    write_text_atomically(path, format_grid(mesh, point_arrays, cell_arrays, encoding));
 }
 
 } // namespace tissuemesh::io

@@ -105,12 +105,7 @@ std::string encode_png(const Canvas& canvas)
 
 void write_png(const Canvas& canvas, const std::filesystem::path& path)
 {
-    const std::string bytes = encode_png(canvas);
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream file(temporary, std::ios::binary);
-        file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        if (!file.flush()) throw IoError(concat(path.string(), ": cannot write the PNG; check space and permissions"));
-    });
+    write_text_atomically(path, encode_png(canvas));
 }
 
 Canvas decode_png(const std::string& bytes, const std::string& what)
@@ -156,13 +151,6 @@ Canvas decode_png(const std::string& bytes, const std::string& what)
             canvas.set(static_cast<long>(x), static_cast<long>(y), {p[0], p[1], p[2]});
         }
     return canvas;
-}
-
-std::string read_file_bytes(const std::filesystem::path& path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw IoError(concat(path.string(), ": cannot open for reading; check the path"));
-    return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
 }
 
 } // namespace tissuemesh::render

@@ -21,8 +21,4 @@ void write_png(const Canvas& canvas, const std::filesystem::path& path);
 /// @throws IoError when the bytes are not such a PNG (bad signature, CRC, size or compressed data)
 Canvas decode_png(const std::string& bytes, const std::string& what = "PNG");
 
-/// Reads a whole file as bytes.
-/// @throws IoError when it cannot be read
-std::string read_file_bytes(const std::filesystem::path& path);
-
 } // namespace tissuemesh::render

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "render/png.h"
 #include "render/tissue_colours.h"

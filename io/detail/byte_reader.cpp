@@ -10,16 +10,6 @@
 
 namespace tissuemesh::io::detail {
 
-std::string read_file_bytes(const std::filesystem::path& path)
-{
-    require_readable_file(path);
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream content;
-    content << in.rdbuf();
-    if (!in.good() && !in.eof()) throw IoError(concat(path.string(), ": read failed; check the file and the disk"));
-    return content.str();
-}
-
 namespace {
 bool is_space(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 } // namespace

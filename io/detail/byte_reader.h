@@ -10,9 +10,6 @@
 
 namespace tissuemesh::io::detail {
 
-/// The whole file as bytes. @throws IoError when it cannot be read
-std::string read_file_bytes(const std::filesystem::path& path);
-
 class ByteReader {
 public:
     /// `bytes` must outlive the reader; `what` names the file in messages.

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "image/phantom.h"
 #include "surface/detail/triangle_distance.h"
+#include "tests/support/programs.h"
 #include "surface/extract_interfaces.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
@@ -31,12 +32,7 @@ const Meshed& junction()
     return meshed;
 }
 
-std::map<Label, double> tissue_volumes(const TetMesh& mesh)
-{
-    std::map<Label, double> volumes;
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) volumes[mesh.tet_labels[t]] += signed_volume(mesh, t);
-    return volumes;
-}
+using testing::tissue_volumes;
 
 class RefineConstrained : public ::testing::TestWithParam<Placement> {};
 

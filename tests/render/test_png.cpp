@@ -1,6 +1,7 @@
 // PNG writing and reading: exact round trips, and damaged files refused with a message.
 #include <gtest/gtest.h>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "render/png.h"
 #include "tests/support/cli.h"
@@ -36,7 +37,7 @@ TEST(Png, WritesAtomicallyAndReadsBack)
     const render::Canvas canvas = pattern(5, 300);
     render::write_png(canvas, dir / "p.png");
     EXPECT_EQ(dir.files(), std::vector<std::string>{"p.png"});
-    EXPECT_EQ(render::decode_png(render::read_file_bytes(dir / "p.png")).pixels(), canvas.pixels());
+    EXPECT_EQ(render::decode_png(read_file_bytes(dir / "p.png")).pixels(), canvas.pixels());
 }
 
 TEST(Png, DamagedBytesAreRefusedWithTheReason)

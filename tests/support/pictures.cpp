@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/atomic_file.h"
 #include "render/png.h"
 
 namespace tissuemesh::testing {
@@ -30,7 +31,7 @@ std::size_t count_exact(const render::Canvas& picture, const render::Rgb& colour
 
 render::Canvas read_png(const std::filesystem::path& path)
 {
-    return render::decode_png(render::read_file_bytes(path), path.string());
+    return render::decode_png(read_file_bytes(path), path.string());
 }
 
 } // namespace tissuemesh::testing
