@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "core/error.h"
 #include "image/connected_components.h"
 #include "image/phantom.h"
 #include "io/read_label_image.h"
@@ -102,16 +103,23 @@ TEST(TetraSpheres4, LongAt1mmAfterDecimation)
 }
 
 /// The real 1 mm head with all its tissues (air cavities included), decimated first.
-/// Disabled: the decimated complex passes check_complex(), but TetGen 1.5 (Debian's build keeps its asserts)
-/// aborts the process in insphere_s ("oriB != 0.0", a degenerate insphere test) after about 12 minutes.
-/// Kept as the reproduction of that failure until tetrahedralize() survives it (e.g. TetGen in a child process).
-TEST(TetraSample, DISABLED_LongUscHeadAfterDecimation)
+/// The decimated complex passes check_complex(), but TetGen 1.5 (Debian's build keeps its asserts) aborted
+/// in insphere_s ("oriB != 0.0", a degenerate insphere test) after about 12 minutes, taking the process
+/// with it. TetGen now runs in a child process: this test fails if the process dies, and is skipped, with
+/// TetGen's message, while TetGen still refuses this input.
+TEST(TetraSample, LongUscHeadAfterDecimation)
 {
     const LabelImage image = io::read_label_image(testing::data_path("samples/usc19-5_head.nii.gz"));
     InterfaceComplex complex = surface::extract_interfaces(image);
     surface::decimate(complex, {.max_distance_mm = 0.5});
     ASSERT_TRUE(surface::check_complex(complex).ok());
-    const TetMesh mesh = volume::tetrahedralize(complex);
+    TetMesh mesh;
+    try {
+        mesh = volume::tetrahedralize(complex);
+    } catch (const AlgorithmError& error) {
+        EXPECT_NE(std::string(error.what()).find("TetGen"), std::string::npos) << error.what();
+        GTEST_SKIP() << "known TetGen failure on this input: " << error.what();
+    }
     // Real anatomy has single-voxel islands that a 0.5 mm decimation keeps: pieces are compared as for
     // the phantoms, and Dice is lower for the thin, folded tissues (grey matter, CSF) than on spheres.
     expect_faithful_mesh(image, complex, mesh, 0.9);

@@ -1,56 +1,15 @@
 #include "volume/detail/tetgen_adapter.h"
 
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <unistd.h>
+#include <cstdint>
+#include <cstring>
 
 #include <tetgen.h>
 
 #include "core/error.h"
+#include "volume/detail/isolated_call.h"
 
 namespace tissuemesh::volume::detail {
 namespace {
-
-/// Redirects the process's standard output to a temporary file while alive: TetGen prints with printf,
-/// and a library must not print. The captured text serves the error message.
-class StdoutCapture {
-public:
-    StdoutCapture()
-    {
-        std::fflush(stdout);
-        file_ = std::tmpfile();
-        saved_ = ::dup(STDOUT_FILENO);
-        if (file_ != nullptr && saved_ >= 0) ::dup2(::fileno(file_), STDOUT_FILENO);
-    }
-    ~StdoutCapture() { restore(); }
-    StdoutCapture(const StdoutCapture&) = delete;
-    StdoutCapture& operator=(const StdoutCapture&) = delete;
-
-    /// Restores standard output and returns what was printed meanwhile.
-    std::string restore()
-    {
-        if (saved_ < 0) return text_;
-        std::fflush(stdout);
-        ::dup2(saved_, STDOUT_FILENO);
-        ::close(saved_);
-        saved_ = -1;
-        if (file_ != nullptr) {
-            std::rewind(file_);
-            char buffer[4096];
-            std::size_t n;
-            while ((n = std::fread(buffer, 1, sizeof buffer, file_)) > 0) text_.append(buffer, n);
-            std::fclose(file_);
-            file_ = nullptr;
-        }
-        return text_;
-    }
-
-private:
-    std::FILE* file_ = nullptr;
-    int saved_ = -1;
-    std::string text_;
-};
 
 std::string explain_code(int code)
 {
@@ -63,19 +22,6 @@ std::string explain_code(int code)
     case 10: return "TetGen rejected the input (duplicate or degenerate facets)";
     default: return concat("TetGen failed with code ", code);
     }
-}
-
-/// The last non-empty lines TetGen printed, joined on one line.
-std::string last_lines(const std::string& text, int count)
-{
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);)
-        if (line.find_first_not_of(" \t") != std::string::npos) lines.push_back(line.substr(line.find_first_not_of(" \t")));
-    std::string joined;
-    for (std::size_t i = lines.size() > static_cast<std::size_t>(count) ? lines.size() - count : 0; i < lines.size(); ++i)
-        joined += (joined.empty() ? "" : " / ") + lines[i];
-    return joined;
 }
 
 void fill_input(const TetgenInput& input, tetgenio& in)
@@ -110,45 +56,91 @@ void fill_input(const TetgenInput& input, tetgenio& in)
     }
 }
 
-TetgenOutput read_output(const tetgenio& out)
-{
-    TetgenOutput result;
-    result.points.assign(out.pointlist, out.pointlist + 3 * out.numberofpoints);
-    result.tets.resize(out.numberoftetrahedra);
-    for (int t = 0; t < out.numberoftetrahedra; ++t)
-        for (int c = 0; c < 4; ++c) result.tets[t][c] = out.tetrahedronlist[t * out.numberofcorners + c];
-    if (out.numberoftetrahedronattributes > 0)
-        for (int t = 0; t < out.numberoftetrahedra; ++t)
-            result.tet_attributes.push_back(out.tetrahedronattributelist[t * out.numberoftetrahedronattributes]);
-    result.faces.resize(out.numberoftrifaces);
-    result.face_markers.resize(out.numberoftrifaces, 0);
-    for (int f = 0; f < out.numberoftrifaces; ++f) {
-        for (int c = 0; c < 3; ++c) result.faces[f][c] = out.trifacelist[3 * f + c];
-        if (out.trifacemarkerlist != nullptr) result.face_markers[f] = out.trifacemarkerlist[f];
+/// TetGen's output in a flat byte string: five counts, then the arrays as they are in memory (the
+/// child process that ran TetGen and the parent reading it are the same program).
+class OutputBytes {
+public:
+    static std::string pack(const tetgenio& out)
+    {
+        OutputBytes bytes;
+        const auto points = static_cast<std::uint64_t>(out.numberofpoints);
+        const auto tets = static_cast<std::uint64_t>(out.numberoftetrahedra);
+        const auto faces = static_cast<std::uint64_t>(out.numberoftrifaces);
+        const std::uint64_t attributes = out.numberoftetrahedronattributes > 0 ? tets : 0;
+        const std::uint64_t markers = out.trifacemarkerlist != nullptr ? faces : 0;
+        for (const std::uint64_t count : {points, tets, attributes, faces, markers}) bytes.put(&count, 1);
+        bytes.put(out.pointlist, 3 * points);
+        for (std::uint64_t t = 0; t < tets; ++t) bytes.put(out.tetrahedronlist + t * static_cast<std::uint64_t>(out.numberofcorners), 4);
+        for (std::uint64_t t = 0; t < attributes; ++t)
+            bytes.put(out.tetrahedronattributelist + t * static_cast<std::uint64_t>(out.numberoftetrahedronattributes), 1);
+        bytes.put(out.trifacelist, 3 * faces);
+        bytes.put(out.trifacemarkerlist, markers);
+        return std::move(bytes.text_);
     }
-    return result;
-}
+
+    static TetgenOutput unpack(std::string text)
+    {
+        OutputBytes bytes;
+        bytes.text_ = std::move(text);
+        std::uint64_t counts[5];
+        for (std::uint64_t& count : counts) bytes.get(&count, 1);
+        TetgenOutput result;
+        result.points.resize(3 * counts[0]);
+        result.tets.resize(counts[1]);
+        result.tet_attributes.resize(counts[2]);
+        result.faces.resize(counts[3]);
+        result.face_markers.resize(counts[3], 0);
+        bytes.get(result.points.data(), result.points.size());
+        bytes.get(result.tets.data(), result.tets.size());
+        bytes.get(result.tet_attributes.data(), counts[2]);
+        bytes.get(result.faces.data(), result.faces.size());
+        bytes.get(result.face_markers.data(), counts[4]);
+        if (bytes.offset_ != bytes.text_.size()) throw AlgorithmError("TetGen's result came back incomplete from its process");
+        return result;
+    }
+
+private:
+    template <typename T>
+    void put(const T* values, std::uint64_t count)
+    {
+        text_.append(reinterpret_cast<const char*>(values), count * sizeof(T));
+    }
+    template <typename T>
+    void get(T* values, std::uint64_t count)
+    {
+        const std::uint64_t size = count * sizeof(T);
+        if (size > text_.size() - offset_) throw AlgorithmError("TetGen's result came back incomplete from its process");
+        std::memcpy(values, text_.data() + offset_, size);
+        offset_ += size;
+    }
+
+    std::string text_;
+    std::size_t offset_ = 0;
+};
+
+static_assert(sizeof(std::array<int, 4>) == 4 * sizeof(int) && sizeof(std::array<int, 3>) == 3 * sizeof(int));
 
 } // namespace
 
 TetgenOutput run_tetgen(const TetgenInput& input)
 {
-    tetgenio in;
-    tetgenio out;
-    fill_input(input, in);
-    std::string switches = input.switches;
-    StdoutCapture capture;
-    try {
-        tetrahedralize(switches.data(), &in, &out);
-    } catch (int code) {
-        const std::string printed = capture.restore();
-        throw AlgorithmError(concat(explain_code(code), " (TetGen said: ", last_lines(printed, 3), ")"));
-    } catch (const std::bad_alloc&) {
-        capture.restore();
-        throw AlgorithmError("TetGen ran out of memory; ask for larger tets (--max-volume) or coarser surfaces");
-    }
-    capture.restore();
-    return read_output(out);
+    // TetGen runs in a child process: an assert inside it (Debian's build keeps them) then ends the child,
+    // not the program, and its printf output is captured there instead of reaching our stdout.
+    IsolatedResult result = run_isolated("TetGen", [&input] {
+        tetgenio in;
+        tetgenio out;
+        fill_input(input, in);
+        std::string switches = input.switches;
+        try {
+            tetrahedralize(switches.data(), &in, &out);
+        } catch (int code) {
+            throw AlgorithmError(explain_code(code));
+        } catch (const std::bad_alloc&) {
+            throw AlgorithmError("TetGen ran out of memory; ask for larger tets (--max-volume) or coarser surfaces");
+        }
+        return OutputBytes::pack(out);
+    });
+    return OutputBytes::unpack(std::move(result.bytes));
 }
 
 } // namespace tissuemesh::volume::detail

@@ -29,8 +29,9 @@ struct TetgenOutput {
     std::vector<int> face_markers;               ///< input triangle index + 1
 };
 
-/// Runs TetGen. TetGen's own printing is captured, not shown.
-/// @throws AlgorithmError with TetGen's diagnosis (its error code explained, its last message lines)
+/// Runs TetGen in a child process (see isolated_call.h). TetGen's own printing is captured, not shown.
+/// @throws AlgorithmError with TetGen's diagnosis (its error code explained, its last message lines),
+///         also when TetGen crashed or aborted on an assertion
 TetgenOutput run_tetgen(const TetgenInput& input);
 
 } // namespace tissuemesh::volume::detail

@@ -1,0 +1,85 @@
+// run_isolated(): third-party code that aborts or crashes in a child process becomes an AlgorithmError.
+#include <cassert>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "volume/detail/isolated_call.h"
+
+namespace tissuemesh::volume::detail {
+namespace {
+
+std::string message_of(const std::function<std::string()>& work)
+{
+    try {
+        run_isolated("the test library", work);
+    } catch (const AlgorithmError& error) {
+        return error.what();
+    }
+    return "no error";
+}
+
+TEST(IsolatedCall, ReturnsTheChildsBytesAndWhatItPrinted)
+{
+    const IsolatedResult result = run_isolated("the test library", [] {
+        std::printf("working\n");
+        return std::string("a\0b", 3);
+    });
+    EXPECT_EQ(result.bytes, std::string("a\0b", 3));
+    EXPECT_EQ(result.printed, "working\n");
+}
+
+TEST(IsolatedCall, LargeResultsComeBackWhole)
+{
+    const std::size_t size = std::size_t{64} << 20;
+    const IsolatedResult result = run_isolated("the test library", [size] { return std::string(size, 'x'); });
+    ASSERT_EQ(result.bytes.size(), size);
+    EXPECT_EQ(result.bytes.find_first_not_of('x'), std::string::npos);
+}
+
+TEST(IsolatedCall, AnAbortInTheChildIsAnErrorNamingTheSignalAndTheLastWords)
+{
+    // What Debian's TetGen does on a degenerate insphere test: print the assertion, then abort().
+    const std::string message = message_of([]() -> std::string {
+        std::fprintf(stderr, "tetgen.cxx:1234: insphere_s: Assertion `oriB != 0.0' failed.\n");
+        std::abort();
+    });
+    EXPECT_NE(message.find("the test library crashed (SIGABRT"), std::string::npos) << message;
+    EXPECT_NE(message.find("insphere_s: Assertion `oriB != 0.0' failed."), std::string::npos) << message;
+}
+
+TEST(IsolatedCall, ASegfaultInTheChildIsAnError)
+{
+    const std::string message = message_of([]() -> std::string {
+        std::raise(SIGSEGV);
+        return "unreachable";
+    });
+    // Under AddressSanitizer the child reports the SEGV itself and exits 1 instead of dying of the signal.
+    EXPECT_NE(message.find("the test library"), std::string::npos) << message;
+    EXPECT_NE(message.find("SEGV"), std::string::npos) << message;
+}
+
+TEST(IsolatedCall, AnExceptionInTheChildKeepsItsMessageAndAddsWhatWasPrinted)
+{
+    const std::string message = message_of([]() -> std::string {
+        std::printf("facets 3 and 7 intersect\n");
+        throw AlgorithmError("it found intersecting facets");
+    });
+    EXPECT_EQ(message, "it found intersecting facets (the test library said: facets 3 and 7 intersect)");
+}
+
+TEST(IsolatedCall, TheParentKeepsRunningAndItsOutputIsUntouched)
+{
+    std::fflush(stdout);
+    testing::internal::CaptureStdout();
+    std::printf("before ");
+    EXPECT_THROW(run_isolated("the test library", []() -> std::string { std::abort(); }), AlgorithmError);
+    std::printf("after");
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "before after");
+}
+
+} // namespace
+} // namespace tissuemesh::volume::detail
