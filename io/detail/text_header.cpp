@@ -47,7 +47,7 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
     bool first = true;
     // Headers are small; a line longer than this is binary data, not header.
     constexpr std::size_t max_line = 1 << 16;
-    while (std::getline(in, line) && line.size() < max_line) {
+    for (int line_number = 1; std::getline(in, line) && line.size() < max_line; ++line_number) {
         header.header_bytes += line.size() + 1;
         if (first && nrrd && !line.starts_with("NRRD"))
             throw IoError(concat(path.string(), ": not a NRRD file (wrong magic, it does not start with "
@@ -57,6 +57,14 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         if (nrrd && text.empty()) break;
         if (text.empty() || text[0] == '#') continue;
         const auto colon = text.find(nrrd ? ":" : "=");
+        // MetaIO would read such a key's value from the next line ("ElementDataFile\nOffset = a %n 0 1 2"
+        // becomes a file pattern it loops over forever): a MetaImage header has "Key = Value" lines only.
+        if (colon == std::string::npos && !nrrd && header.fields.empty())
+            throw IoError(concat(path.string(), ": not a MetaImage file (wrong magic: its first line is not "
+                                 "\"Key = Value\"); check that the file is not renamed or damaged"));
+        if (colon == std::string::npos && !nrrd)
+            throw IoError(concat(path.string(), ": header line ", line_number, " (\"", text.substr(0, 40),
+                                 "\") is not \"Key = Value\"; the header is damaged. Export the image again"));
         if (colon == std::string::npos || (nrrd && text.compare(colon, 2, ":=") == 0)) continue;
         const std::string key = normal_key(text.substr(0, colon));
         header.fields[key] = trim(text.substr(colon + 1));

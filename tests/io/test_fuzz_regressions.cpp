@@ -28,5 +28,19 @@ TEST(FuzzRegressions, NiftiNanSform)
     }
 }
 
+// fuzz_metaimage: a key without "=" ("ElementDataFile" alone on its line) made MetaIO take the next line as
+// its value, a file pattern with "%n" and a zero step, and loop forever: tm-info hung on a 168-byte file.
+TEST(FuzzRegressions, MetaimageKeyWithoutEqualsHangs)
+{
+    try {
+        (void)io::read_label_image(regression("metaimage-key-without-equals-hangs.mha"));
+        FAIL() << "read a header with a line that is not Key = Value";
+    } catch (const IoError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("metaimage-key-without-equals-hangs.mha: header line 4 (\"ElementDataFile\")"),
+                  std::string::npos) << message;
+    }
+}
+
 } // namespace
 } // namespace tissuemesh
