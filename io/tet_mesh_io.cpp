@@ -10,6 +10,7 @@
 #include "io/detail/msh2_format.h"
 #include "io/detail/msh4_format.h"
 #include "io/detail/tetgen_format.h"
+#include "io/read_vtu.h"
 #include "io/write_vtu.h"
 
 namespace tissuemesh::io {
@@ -82,7 +83,7 @@ TetMesh read_tet_mesh(const fs::path& path)
         if (fs::exists(with_extension(path, ".face"))) files.face = read_file_bytes(with_extension(path, ".face"));
         mesh = detail::parse_tetgen(files, with_extension(path, "").string());
     } else if (extension == ".vtu") {
-        throw IoError(concat(path.string(), ": .vtu meshes cannot be read yet; convert to .msh with meshio"));
+        mesh = read_vtu(path).mesh;
     } else {
         throw IoError(concat(path.string(), ": cannot read meshes of type \"", extension, "\"; use one of ", known));
     }

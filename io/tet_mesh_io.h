@@ -32,9 +32,10 @@ struct TetMeshWriteOptions {
 /// @throws IoError when the file cannot be written or the extension is unknown
 void write_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path, const TetMeshWriteOptions& options = {});
 
-/// Reads any format write_tet_mesh() writes (`.vtu` excepted), whatever its version or encoding, and
-/// the same formats from other tools (Gmsh, meshio, TetGen): tets come back positively oriented, with the
-/// labels their tags give (see each format), faces with their side pairs where the file has them.
+/// Reads any format write_tet_mesh() writes, whatever its version or encoding, and the same formats from
+/// other tools (Gmsh, meshio, TetGen, ParaView): tets come back positively oriented, with the labels their
+/// tags give (see each format), faces with their side pairs where the file has them (`.vtu`: no faces, no
+/// names; its arrays: read_vtu()).
 /// Every count is checked against the bytes that follow before anything is allocated.
 /// @throws IoError on unreadable, malformed or truncated files, InputError on dangling indices or NaN
 ///         coordinates; the message names the file, the problem and the fix
