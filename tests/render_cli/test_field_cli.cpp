@@ -73,5 +73,32 @@ TEST(FieldCli, PotentialFallsFromAnodeToCathodeAndTheBarMatchesTheSolution)
     EXPECT_GE(e["colour_min"].get<double>(), 0.0);
 }
 
+// The Makefile workflow with a solve: the potential and field pictures are made and reach report.html.
+TEST(FieldCli, TheWorkflowReportShowsThePotentialAndTheField)
+{
+    testing::TempDir dir;
+    ASSERT_EQ(run_cli("tm-phantom", {"boxes", "--voxel-mm", "4", "-o", (dir / "boxes.nii.gz").string(), "-q"}).exit_code, 0);
+    std::ofstream(dir / "cond.json") << R"({"1": 0.3, "2": 0.1, "3": 1.0})";
+    // Electrodes on the two x faces of the outer box (-24.8 .. 31.2 mm).
+    const std::string solve = "SOLVE_ARGS=--conductivity " + (dir / "cond.json").string() + " --electrode -24.8,3,3,8,1e-3 --electrode 31.2,3,3,8,-1e-3";
+    const auto result = testing::run_program(
+        "make", {"-C", testing::data_path("workflows").string(), "IMAGE=" + (dir / "boxes.nii.gz").string(), "LABELS=" + (dir / "boxes.labels.json").string(),
+                 "OUT=" + (dir / "out").string(), "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6", "REFINE_ARGS=--iterations 1",
+                 "RENDER_POTENTIAL_ARGS=--axis z --position-mm 3", solve, "-j2"});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    for (const char* step : {"solve", "render-potential", "render-field"})
+        EXPECT_EQ(testing::read_json(dir / "out" / (std::string(step) + ".json"))["status"], "ok") << step;
+    EXPECT_EQ(testing::read_json(dir / "out" / "render-potential.json")["position_mm"], 3.0);
+    std::ifstream in(dir / "out" / "report.html");
+    const std::string html{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::size_t section = html.find("<figcaption>section</figcaption>"), potential = html.find("<figcaption>potential</figcaption>"),
+                      field = html.find("<figcaption>field</figcaption>"), quality = html.find("<figcaption>quality</figcaption>");
+    ASSERT_NE(potential, std::string::npos);
+    ASSERT_NE(field, std::string::npos);
+    EXPECT_LT(section, potential) << "the model and mesh first, then its fields, then the numbers";
+    EXPECT_LT(potential, field);
+    EXPECT_LT(field, quality);
+}
+
 } // namespace
 } // namespace tissuemesh
