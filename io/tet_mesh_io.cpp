@@ -63,7 +63,7 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWrit
         write_text_atomically(path, options.msh_version == MshVersion::v4_1 ? detail::format_msh4(mesh, options.binary)
                                                                   : detail::format_msh2(mesh, options.binary));
     if (extension == ".mesh") write_text_atomically(path, detail::format_medit(mesh));
-    if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh));
+    if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh, path.string()));
 }
 
 TetMesh read_tet_mesh(const fs::path& path)

@@ -28,7 +28,7 @@ struct TetMeshWriteOptions {
 ///  - `.vtu`: VTK XML unstructured grid with cell data "tissue" (tets only).
 ///  - `.node` (or `.ele`): TetGen's `.node`, `.ele` (region attribute = label) and `.face` (marker =
 ///    1000 * from + to) next to each other, each written atomically.
-///  - `.inp`: Abaqus, C3D4 tets in one element set per tissue (no faces).
+///  - `.inp`: Abaqus, C3D4 tets in one element set per tissue; faces as element-face surfaces IF_<from>_<to>.
 /// @throws IoError when the file cannot be written or the extension is unknown
 void write_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path, const TetMeshWriteOptions& options = {});
 

@@ -1,6 +1,7 @@
 // meshio (Debian's python3-meshio) opens every tet mesh format we write with the same counts, labels and
 // volumes, and we read what meshio writes.
 #include <fstream>
+#include <sstream>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -70,6 +71,26 @@ TEST(MeshioOpensOurFiles, CompressedVtuKeepsNamedCellArrays)
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const std::size_t n = index.size();
     EXPECT_EQ(result.out, concat(n, " ", n * (n - 1) / 2, " tetra\n"));
+}
+
+TEST(MeshioOpensOurFiles, AbaqusInterfaceSurfacesAreElementSetsOfTheRightSize)
+{
+    testing::TempDir dir;
+    write_tet_mesh(sample(), dir / "a.inp");
+    std::ofstream(dir / "sets.py") << "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
+                                      "for name, blocks in sorted(m.cell_sets.items()):\n    print(name, sum(len(b) for b in blocks))\n";
+    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(dir / "sets.py").string(), (dir / "a.inp").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    std::map<std::string, std::size_t> faces;  // surface -> element faces meshio sees in its S1..S4 sets
+    std::istringstream lines(result.out);
+    for (std::string name; lines >> name;) {
+        std::size_t count = 0;
+        lines >> count;
+        if (name.rfind("IF_", 0) == 0 && name.size() > 9 && name.ends_with("_ELEMS")) faces[name.substr(0, name.size() - 9)] += count;
+    }
+    std::map<std::string, std::size_t> expected;
+    for (const LabelPair& p : sample().face_sides) ++expected[concat("IF_", p.from, "_", p.to)];
+    EXPECT_EQ(faces, expected) << result.out;
 }
 
 TEST(WeReadMeshioFiles, EveryTetMeshFormatMeshioWrites)
