@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cstdint>
 #include <cstring>
-#include <set>
 #include <zlib.h>
 
 #include "core/error.h"
@@ -122,13 +121,14 @@ std::string unpack_blocks(const ArrayContext& context, std::string_view data, bo
     return out;
 }
 
-/// The encoded bytes of an appended array: raw from its offset on, base64 up to the next array's offset.
-std::string appended_bytes(const ArrayContext& context, std::size_t offset)
+/// The encoded bytes of an appended array: raw from its offset on (a view of the file), base64 up to the next
+/// array's offset (decoded into `decoded`).
+std::string_view appended_bytes(const ArrayContext& context, std::size_t offset, std::string& decoded)
 {
     const VtkXmlFile& file = context.file;
     if (file.appended_encoding.empty()) context.fail("is appended but the file has no <AppendedData>", "the file is truncated");
     if (offset > file.appended.size()) context.fail(concat("starts at offset ", offset, ", past the ", file.appended.size(), " appended bytes"));
-    if (file.appended_encoding == "raw") return std::string(file.appended.substr(offset));
+    if (file.appended_encoding == "raw") return file.appended.substr(offset);
     std::size_t end = file.appended.size();
     for (const VtkDataArray& other : file.arrays) {
         std::size_t start = 0;
@@ -136,9 +136,8 @@ std::string appended_bytes(const ArrayContext& context, std::size_t offset)
         if (other.attribute("format") != "appended" || std::from_chars(text.data(), text.data() + text.size(), start).ec != std::errc()) continue;
         if (start > offset && start < end) end = start;
     }
-    std::string bytes;
-    if (!decode_base64(file.appended.substr(offset, end - offset), bytes)) context.fail("is not valid base64");
-    return bytes;
+    if (!decode_base64(file.appended.substr(offset, end - offset), decoded)) context.fail("is not valid base64");
+    return decoded;
 }
 
 } // namespace
@@ -184,15 +183,17 @@ std::vector<double> decode_data_array(const VtkXmlFile& file, const VtkDataArray
     if (format != "binary" && format != "appended")
         context.fail(concat("has format \"", format, "\""), "save the file with ascii, binary or appended data");
     if (values > (std::size_t{1} << 40) / type.size) context.fail(concat("would hold ", values, " ", items), "the file is corrupt");
-    std::string encoded;
+    std::string decoded;
+    std::string_view encoded;
     if (format == "binary") {
-        if (!decode_base64(array.text, encoded)) context.fail("is not valid base64");
+        if (!decode_base64(array.text, decoded)) context.fail("is not valid base64");
+        encoded = decoded;
     } else {
         std::size_t offset = 0;
         const std::string text = array.attribute("offset");
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), offset);
         if (error != std::errc() || end != text.data() + text.size()) context.fail(concat("has offset \"", text, "\""), "the file is corrupt");
-        encoded = appended_bytes(context, offset);
+        encoded = appended_bytes(context, offset, decoded);
     }
     const std::string header = file.vtk_file.count("header_type") ? file.vtk_file.at("header_type") : "UInt32";
     const std::string bytes = unpack_blocks(context, encoded, file.vtk_file.count("compressor") > 0, header == "UInt64" ? 8 : 4, values * type.size);
