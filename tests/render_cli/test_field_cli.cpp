@@ -100,5 +100,27 @@ TEST(FieldCli, TheWorkflowReportShowsThePotentialAndTheField)
     EXPECT_LT(field, quality);
 }
 
+// STOP_AFTER=remesh: the report of a chain stopped at the surfaces holds them and nothing of the mesh steps.
+TEST(FieldCli, AReportOfAChainStoppedAfterTheSurfacesShowsThem)
+{
+    testing::TempDir dir;
+    ASSERT_EQ(run_cli("tm-phantom", {"boxes", "--voxel-mm", "4", "-o", (dir / "boxes.nii.gz").string(), "-q"}).exit_code, 0);
+    const auto make = [&](const std::string& stop) {
+        return testing::run_program("make", {"-C", testing::data_path("workflows").string(), "IMAGE=" + (dir / "boxes.nii.gz").string(),
+                                             "OUT=" + (dir / "out").string(), "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6", "STOP_AFTER=" + stop});
+    };
+    const auto result = make("remesh");
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "remeshed.ply"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "tetra.json")) << "no mesh step ran";
+    std::ifstream in(dir / "out" / "report.html");
+    const std::string html{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    EXPECT_NE(html.find("<figcaption>surface</figcaption>"), std::string::npos);
+    EXPECT_EQ(html.find("<figcaption>section</figcaption>"), std::string::npos);
+    const auto unknown = make("tetra");
+    EXPECT_NE(unknown.exit_code, 0);
+    EXPECT_NE((unknown.out + unknown.err).find("STOP_AFTER=tetra: only \"remesh\""), std::string::npos) << unknown.err;
+}
+
 } // namespace
 } // namespace tissuemesh
