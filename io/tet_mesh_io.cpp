@@ -10,6 +10,7 @@
 #include "io/detail/msh2_format.h"
 #include "io/detail/msh4_format.h"
 #include "io/detail/tetgen_format.h"
+#include "io/read_vtu.h"
 #include "io/write_vtu.h"
 
 namespace tissuemesh::io {
@@ -62,7 +63,7 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWrit
         write_text_atomically(path, options.msh_version == MshVersion::v4_1 ? detail::format_msh4(mesh, options.binary)
                                                                   : detail::format_msh2(mesh, options.binary));
     if (extension == ".mesh") write_text_atomically(path, detail::format_medit(mesh));
-    if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh));
+    if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh, path.string()));
 }
 
 TetMesh read_tet_mesh(const fs::path& path)
@@ -82,7 +83,7 @@ TetMesh read_tet_mesh(const fs::path& path)
         if (fs::exists(with_extension(path, ".face"))) files.face = read_file_bytes(with_extension(path, ".face"));
         mesh = detail::parse_tetgen(files, with_extension(path, "").string());
     } else if (extension == ".vtu") {
-        throw IoError(concat(path.string(), ": .vtu meshes cannot be read yet; convert to .msh with meshio"));
+        mesh = read_vtu(path).mesh;
     } else {
         throw IoError(concat(path.string(), ": cannot read meshes of type \"", extension, "\"; use one of ", known));
     }

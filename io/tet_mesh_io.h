@@ -28,13 +28,14 @@ struct TetMeshWriteOptions {
 ///  - `.vtu`: VTK XML unstructured grid with cell data "tissue" (tets only).
 ///  - `.node` (or `.ele`): TetGen's `.node`, `.ele` (region attribute = label) and `.face` (marker =
 ///    1000 * from + to) next to each other, each written atomically.
-///  - `.inp`: Abaqus, C3D4 tets in one element set per tissue (no faces).
+///  - `.inp`: Abaqus, C3D4 tets in one element set per tissue; faces as element-face surfaces IF_<from>_<to>.
 /// @throws IoError when the file cannot be written or the extension is unknown
 void write_tet_mesh(const TetMesh& mesh, const std::filesystem::path& path, const TetMeshWriteOptions& options = {});
 
-/// Reads any format write_tet_mesh() writes (`.vtu` excepted), whatever its version or encoding, and
-/// the same formats from other tools (Gmsh, meshio, TetGen): tets come back positively oriented, with the
-/// labels their tags give (see each format), faces with their side pairs where the file has them.
+/// Reads any format write_tet_mesh() writes, whatever its version or encoding, and the same formats from
+/// other tools (Gmsh, meshio, TetGen, ParaView): tets come back positively oriented, with the labels their
+/// tags give (see each format), faces with their side pairs where the file has them (`.vtu`: no faces, no
+/// names; its arrays: read_vtu()).
 /// Every count is checked against the bytes that follow before anything is allocated.
 /// @throws IoError on unreadable, malformed or truncated files, InputError on dangling indices or NaN
 ///         coordinates; the message names the file, the problem and the fix

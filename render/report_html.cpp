@@ -141,6 +141,10 @@ ReportContent collect_report(const std::filesystem::path& folder)
     }
     if (content.steps.empty() && content.pictures.empty())
         throw InputError(concat(folder.string(), ": no tool summary (.json with \"tool\") and no .png; run the workflow with --json first"));
+    // The workflow's pictures in the order of the story (the model, the mesh, the fields, the numbers); others after them.
+    const std::vector<std::string> story{"surface", "section", "potential", "field", "quality", "convergence"};
+    const auto rank = [&](const ReportPicture& p) { return std::find(story.begin(), story.end(), p.name) - story.begin(); };
+    std::stable_sort(content.pictures.begin(), content.pictures.end(), [&](const ReportPicture& a, const ReportPicture& b) { return rank(a) < rank(b); });
     std::stable_sort(content.steps.begin(), content.steps.end(), [](const ReportStep& a, const ReportStep& b) {
         return pipeline_rank(a.summary["tool"].get<std::string>()) < pipeline_rank(b.summary["tool"].get<std::string>());
     });

@@ -31,7 +31,8 @@ struct ReportContent {
 
 /// Reads every *.json in `folder` that is a tool summary (an object with "tool") and every *.png. Steps
 /// come in pipeline order (prep, extract, smooth, decimate, remesh, tetra, check, assess, refine, solve,
-/// render, by the "tool" name; then by file name); pictures by file name.
+/// render, by the "tool" name; then by file name); pictures as the workflow tells its story (surface,
+/// section, potential, field, quality, convergence), then the others by file name.
 /// @throws IoError when the folder cannot be read or a summary is malformed; InputError when it holds
 ///         neither a summary nor a picture
 ReportContent collect_report(const std::filesystem::path& folder);

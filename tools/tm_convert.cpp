@@ -6,6 +6,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/read_vtu.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tools/mesh_format_options.h"
@@ -41,11 +42,11 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-convert",
          "Converts a tet mesh between .msh (Gmsh 2.2 or 4.1, ASCII or binary: the input's variant is detected), "
-         ".mesh (Medit), .node/.ele/.face (TetGen), .inp (Abaqus) and .vtu (write only), keeping tissue labels, "
-         "interface faces and tissue names where the formats hold them; or a surface between .ply, .vtp, .obj, "
+         ".mesh (Medit), .node/.ele/.face (TetGen), .inp (Abaqus) and .vtu, keeping tissue labels, interface faces and "
+         "tissue names where the formats hold them (.vtu to .vtu keeps every point and cell array: tm-solve's fields); or a surface between .ply, .vtp, .obj, "
          ".off and .stl. A tet mesh's interface faces can be written as a surface.",
          "Examples:\n  tm-convert -i head.msh -o head41.msh --msh-version 4.1 --binary\n"
-         "  tm-convert -i head.msh -o head.vtu\n  tm-convert -i head.msh -o head.node   # head.node, head.ele, head.face\n"
+         "  tm-convert -i head.msh -o head.vtu\n  tm-convert -i solution.vtu -o solution-zlib.vtu   # the fields, compressed\n  tm-convert -i head.msh -o head.node   # head.node, head.ele, head.face\n"
          "  tm-convert -i interfaces.ply -o interfaces.obj\n  tm-convert -i head.msh -o interfaces.ply"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh or surface to read")->required();
@@ -59,17 +60,26 @@ int main(int argc, char** argv)
                 throw InputError(concat(input, ": a surface cannot become a tet mesh by conversion; tetrahedralize it with tm-tetra"));
             auto start = std::chrono::steady_clock::now();
             if (mesh_in) {
-                const TetMesh mesh = io::read_tet_mesh(input);
+                // A .vtu's arrays (tm-solve's potential and fields) go on into a .vtu; other formats cannot hold them.
+                const bool arrays = full_extension(input) == ".vtu" && full_extension(output) == ".vtu";
+                io::VtuContent content;
+                if (arrays) content = io::read_vtu(input);
+                else content.mesh = io::read_tet_mesh(input);
+                const TetMesh& mesh = content.mesh;
                 const double read_seconds = seconds_since(start);
                 start = std::chrono::steady_clock::now();
-                if (mesh_out) io::write_tet_mesh(mesh, output, options);
+                if (arrays)
+                    io::write_vtu(mesh, output, content.point_arrays, content.cell_arrays,
+                                  options.vtu_compressed ? io::VtuEncoding::compressed : io::VtuEncoding::ascii);
+                else if (mesh_out) io::write_tet_mesh(mesh, output, options);
                 else io::write_surface(faces_of(mesh), output);
                 const std::set<Label> tissues(mesh.tet_labels.begin(), mesh.tet_labels.end());
                 context.log(concat(input, " -> ", output, ": ", mesh.vertices.size(), " nodes, ", mesh.tets.size(), " tets, ",
                                    mesh.faces.size(), " faces, ", tissues.size(), " tissues"));
                 context.summary = {{"input", input}, {"output", output}, {"kind", mesh_out ? "tet mesh" : "faces of a tet mesh"},
                                    {"nodes", mesh.vertices.size()}, {"tets", mesh.tets.size()}, {"faces", mesh.faces.size()},
-                                   {"tissues", tissues.size()}, {"seconds_read", read_seconds},
+                                   {"tissues", tissues.size()}, {"arrays", content.point_arrays.size() + content.cell_arrays.size()},
+                                   {"seconds_read", read_seconds},
                                    {"seconds_write", seconds_since(start)}};
                 return;
             }

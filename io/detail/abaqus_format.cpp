@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "io/detail/abaqus_surfaces.h"
 #include "io/detail/byte_reader.h"
 #include "io/detail/msh_common.h"
 #include "io/detail/text_records.h"
@@ -97,7 +98,7 @@ Label label_of_set(const std::string& name, const std::map<std::string, Label>& 
 
 } // namespace
 
-std::string format_abaqus(const TetMesh& mesh)
+std::string format_abaqus(const TetMesh& mesh, const std::string& what)
 {
     std::map<Label, std::vector<std::size_t>> by_tissue;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) by_tissue[mesh.tet_labels[t]].push_back(t);
@@ -113,15 +114,17 @@ std::string format_abaqus(const TetMesh& mesh)
         for (const double c : mesh.vertices[v]) out += ", ", append_real(out, c);
         out += '\n';
     }
-    std::size_t id = 1;
+    long long id = 1;
+    std::vector<long long> element_of_tet(mesh.tets.size());
     for (const auto& [label, tets] : by_tissue) {
         out += concat("*ELEMENT, TYPE=C3D4, ELSET=", set_name(mesh, label), "\n");
         for (const std::size_t t : tets) {
             const Tet& tet = mesh.tets[t];
+            element_of_tet[t] = id;
             out += concat(id++, ", ", tet[0] + 1, ", ", tet[1] + 1, ", ", tet[2] + 1, ", ", tet[3] + 1, '\n');
         }
     }
-    return out;
+    return out + format_abaqus_surfaces(mesh, element_of_tet, what);
 }
 
 TetMesh parse_abaqus(const std::string& text, const std::string& what)
@@ -135,9 +138,11 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
     std::unordered_map<long long, std::size_t> tet_of;      // element number -> tet
     std::vector<std::pair<std::string, std::vector<long long>>> sets;  // in file order
     std::map<std::string, Label> commented;
+    std::map<std::string, LabelPair> surface_pairs;  // by surface name, upper case
+    std::vector<AbaqusSurface> surfaces;
     constexpr std::size_t npos = std::string::npos;
     std::size_t element_set = npos;  // the set an *ELEMENT block's own ELSET= names
-    enum class Block { none, node_lines, tets, elset, generate } block = Block::none;
+    enum class Block { none, node_lines, tets, elset, generate, surface } block = Block::none;
     while (in.remaining() > 0) {
         const std::string line = trimmed(in.rest_of_line());
         if (line.empty()) continue;
@@ -145,8 +150,11 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             std::string comment = line.substr(2);
             char set[128] = {};
             unsigned label = 0;
+            unsigned to = 0;
             if (std::sscanf(comment.c_str(), " tissuemesh elset %127s label %u", set, &label) == 2 && label <= 65535)
                 commented[upper(set)] = static_cast<Label>(label);
+            if (std::sscanf(comment.c_str(), " tissuemesh surface %127s from %u to %u", set, &label, &to) == 3 && label <= 65535 && to <= 65535)
+                surface_pairs[upper(set)] = {static_cast<Label>(label), static_cast<Label>(to)};
             continue;
         }
         const std::vector<std::string> parts = fields(line);
@@ -156,6 +164,10 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             block = Block::none;
             element_set = npos;
             if (keyword == "*NODE") block = Block::node_lines;
+            if (keyword == "*SURFACE" && (type.empty() || type == "ELEMENT")) {
+                surfaces.push_back({parameter(parts, "NAME"), {}});
+                block = Block::surface;
+            }
             if (keyword == "*ELEMENT" && (type == "C3D4" || type == "C3D10")) block = Block::tets;
             if ((keyword == "*ELEMENT" && block == Block::tets) || keyword == "*ELSET") {
                 if (!elset.empty()) sets.push_back({elset, {}});
@@ -179,6 +191,10 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             tet_of[id] = corners.size();
             corners.push_back(c);
             if (element_set != npos) sets[element_set].second.push_back(id);
+        } else if (block == Block::surface) {
+            if (parts.size() < 2 || parts[1].size() < 2 || std::toupper(static_cast<unsigned char>(parts[1][0])) != 'S')
+                in.fail(concat("surface ", surfaces.back().name, " has a line that is not \"element set, S<face>\""), "write e.g. \"SKIN, S2\"");
+            surfaces.back().entries.push_back({parts[0], static_cast<int>(std::clamp<long long>(number(parts[1].substr(1), in, "a face id"), -1, 99))});
         } else if (block == Block::elset || block == Block::generate) {
             std::vector<long long>& members = sets.back().second;
             std::vector<long long> values;
@@ -195,15 +211,24 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
     for (const long long n : node_numbers) nodes.add(n);
     nodes.finish(in);
     mesh.tets.reserve(corners.size());
-    for (const auto& c : corners) add_tet(mesh, {nodes.at(c[0], in), nodes.at(c[1], in), nodes.at(c[2], in), nodes.at(c[3], in)}, 0);
+    std::vector<Tet> resolved;  // in the file's corner order, which the face ids refer to
+    resolved.reserve(corners.size());
+    for (const auto& c : corners) {
+        resolved.push_back({nodes.at(c[0], in), nodes.at(c[1], in), nodes.at(c[2], in), nodes.at(c[3], in)});
+        add_tet(mesh, resolved.back(), 0);
+    }
+    std::set<std::string> face_sets;  // element sets that surfaces use: faces, not tissues
+    for (const AbaqusSurface& surface : surfaces)
+        for (const auto& entry : surface.entries) face_sets.insert(upper(entry.first));
     Label position = 0;
     for (const auto& [name, members] : sets) {
         const bool has_tets = std::any_of(members.begin(), members.end(), [&](long long e) { return tet_of.count(e) > 0; });
-        if (!has_tets) continue;
+        if (!has_tets || face_sets.count(upper(name))) continue;
         const Label label = label_of_set(name, commented, ++position);
         for (const long long e : members)
             if (const auto found = tet_of.find(e); found != tet_of.end()) mesh.tet_labels[found->second] = label;
     }
+    add_abaqus_faces(mesh, {surfaces, sets, tet_of, resolved, surface_pairs}, in);
     return mesh;
 }
 

@@ -45,6 +45,19 @@ void write_meshes(const std::filesystem::path& dir)
     const std::string whole = msh(tet_nodes, {"1 4 2 1 1 1 2 3 4"});
     write_text(dir / "truncated.msh", whole.substr(0, whole.find("$Elements") + 12));
     write_text(dir / "bad.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n20 0 0 0\n");
+    // .vtu: one ASCII tet, then a triangle instead, a cut file and a point index past the points.
+    const auto vtu = [](const std::string& type, const std::string& corners) {
+        return "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>"
+               "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 20 0 0 0 20 0 0 0 20</DataArray></Points>"
+               "<Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" + corners + "</DataArray>"
+               "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4</DataArray><DataArray type=\"UInt8\" Name=\"types\" "
+               "format=\"ascii\">" + type + "</DataArray></Cells><CellData><DataArray type=\"UInt16\" Name=\"tissue\" format=\"ascii\">1"
+               "</DataArray></CellData></Piece></UnstructuredGrid></VTKFile>\n";
+    };
+    write_text(dir / "ok.vtu", vtu("10", "0 1 2 3"));
+    write_text(dir / "triangle.vtu", vtu("5", "0 1 2 3"));
+    write_text(dir / "dangling.vtu", vtu("10", "0 1 2 9"));
+    write_text(dir / "truncated.vtu", vtu("10", "0 1 2 3").substr(0, 300));
 }
 
 void write_surfaces(const std::filesystem::path& dir)

@@ -69,10 +69,18 @@ elif fmt == "medit":
     cell_data = {"medit:ref": [labels]}
 elif fmt == "tetgen":
     cell_data = {"tetgen:ref": [labels]}
+elif fmt.startswith("vtu"):
+    # "vtu": inline base64, zlib (meshio's default); "vtu-raw": base64 uncompressed; "vtu-lzma"; "vtu-ascii".
+    cell_data = {"tissue": [labels], "volume": [np.full(12, 1.0 / 6)]}
+    point_data = {"phi": pts[:, 0] + 2 * pts[:, 1]}
+options = {"binary": binary} if fmt.startswith("gmsh") else {}
+if fmt.startswith("vtu"):
+    options = {"binary": fmt != "vtu-ascii", "compression": {"vtu": "zlib", "vtu-lzma": "lzma"}.get(fmt)}
+    fmt = "vtu"
 mesh = meshio.Mesh(pts, cells, cell_data=cell_data, point_data=point_data)
 if fmt == "abaqus":
     mesh.cell_sets = {"tissue1": [np.where(labels == 1)[0]], "tissue2": [np.where(labels == 2)[0]]}
-meshio.write(out, mesh, file_format=fmt, **({"binary": binary} if fmt.startswith("gmsh") else {}))
+meshio.write(out, mesh, file_format=fmt, **options)
 )PY";
 
 fs::path script(const fs::path& folder, const char* name, const char* text)

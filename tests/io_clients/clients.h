@@ -28,7 +28,9 @@ struct MeshioView {
 MeshioView meshio_read(const std::filesystem::path& file);
 
 /// Writes the two-cube mesh below with meshio in `format` ("gmsh22", "gmsh", "medit", "tetgen",
-/// "abaqus"); returns false (with ADD_FAILURE) when meshio fails.
+/// "abaqus", "vtu" (base64, zlib), "vtu-raw" (base64), "vtu-lzma", "vtu-ascii"; the .vtu ones with cell
+/// data "tissue" and "volume" (1/6 each), point data "phi" = x + 2 y); returns false (with ADD_FAILURE)
+/// when meshio fails.
 /// The mesh: two unit cubes side by side, 6 Kuhn tets each: tissue 1 at x in [0, 1], tissue 2 at [1, 2],
 /// 12 points.
 bool meshio_write_two_cubes(const std::filesystem::path& file, const std::string& format, bool binary);

@@ -1,10 +1,12 @@
 // meshio (Debian's python3-meshio) opens every tet mesh format we write with the same counts, labels and
 // volumes, and we read what meshio writes.
 #include <fstream>
+#include <sstream>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 
+#include "io/read_vtu.h"
 #include "io/tet_mesh_io.h"
 #include "io/write_vtu.h"
 #include "tests/io_clients/clients.h"
@@ -71,6 +73,26 @@ TEST(MeshioOpensOurFiles, CompressedVtuKeepsNamedCellArrays)
     EXPECT_EQ(result.out, concat(n, " ", n * (n - 1) / 2, " tetra\n"));
 }
 
+TEST(MeshioOpensOurFiles, AbaqusInterfaceSurfacesAreElementSetsOfTheRightSize)
+{
+    testing::TempDir dir;
+    write_tet_mesh(sample(), dir / "a.inp");
+    std::ofstream(dir / "sets.py") << "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
+                                      "for name, blocks in sorted(m.cell_sets.items()):\n    print(name, sum(len(b) for b in blocks))\n";
+    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(dir / "sets.py").string(), (dir / "a.inp").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    std::map<std::string, std::size_t> faces;  // surface -> element faces meshio sees in its S1..S4 sets
+    std::istringstream lines(result.out);
+    for (std::string name; lines >> name;) {
+        std::size_t count = 0;
+        lines >> count;
+        if (name.rfind("IF_", 0) == 0 && name.size() > 9 && name.ends_with("_ELEMS")) faces[name.substr(0, name.size() - 9)] += count;
+    }
+    std::map<std::string, std::size_t> expected;
+    for (const LabelPair& p : sample().face_sides) ++expected[concat("IF_", p.from, "_", p.to)];
+    EXPECT_EQ(faces, expected) << result.out;
+}
+
 TEST(WeReadMeshioFiles, EveryTetMeshFormatMeshioWrites)
 {
     testing::TempDir dir;
@@ -89,6 +111,56 @@ TEST(WeReadMeshioFiles, EveryTetMeshFormatMeshioWrites)
         expect_same_volumes(testing::tissue_volumes(mesh), {{1, 1.0}, {2, 1.0}});
         for (std::size_t t = 0; t < mesh.tets.size(); ++t) EXPECT_GT(signed_volume(mesh, t), 0) << "tet " << t;
     }
+}
+
+TEST(WeReadMeshioFiles, VtuInEveryEncodingMeshioWritesWithItsArrays)
+{
+    testing::TempDir dir;
+    for (const std::string format : {"vtu", "vtu-raw", "vtu-ascii"}) {
+        SCOPED_TRACE("meshio " + format);
+        const auto file = dir / (format + ".vtu");
+        if (!testing::meshio_write_two_cubes(file, format, true)) continue;
+        const VtuContent content = read_vtu(file);
+        EXPECT_EQ(content.mesh.vertices.size(), 12u);
+        EXPECT_EQ(content.label_array, "tissue");
+        EXPECT_EQ(tets_per_label(content.mesh), (std::map<Label, std::size_t>{{1, 6}, {2, 6}}));
+        expect_same_volumes(testing::tissue_volumes(content.mesh), {{1, 1.0}, {2, 1.0}});
+        const VtuArray* phi = content.point_array("phi");
+        ASSERT_NE(phi, nullptr);
+        for (std::size_t p = 0; p < 12; ++p)
+            EXPECT_DOUBLE_EQ(phi->values[p], content.mesh.vertices[p][0] + 2 * content.mesh.vertices[p][1]) << "point " << p;
+        const VtuArray* volume = content.cell_array("volume");
+        ASSERT_NE(volume, nullptr);
+        // meshio writes ASCII with 12 significant digits.
+        for (std::size_t t = 0; t < 12; ++t) EXPECT_NEAR(volume->values[t], signed_volume(content.mesh, t), 1e-11) << "tet " << t;
+    }
+    // LZMA is not read; the message says how to save instead.
+    if (testing::meshio_write_two_cubes(dir / "lzma.vtu", "vtu-lzma", true)) {
+        try {
+            read_vtu(dir / "lzma.vtu");
+            ADD_FAILURE() << "an LZMA-compressed file was accepted";
+        } catch (const IoError& e) {
+            EXPECT_NE(std::string(e.what()).find("vtkLZMADataCompressor"), std::string::npos) << e.what();
+        }
+    }
+}
+
+TEST(WeReadMeshioFiles, OurVtuReadByMeshioAndBackKeepsThePotential)
+{
+    // meshio reads our compressed file and writes it again in its own encoding; we read that.
+    testing::TempDir dir;
+    std::vector<double> phi;
+    for (const Vec3& p : sample().vertices) phi.push_back(p[0] - 0.5 * p[2]);
+    write_vtu(sample(), dir / "ours.vtu", {make_vtu_array("potential_V", phi)}, {}, VtuEncoding::compressed);
+    std::ofstream(dir / "again.py") << "import sys, meshio\nmeshio.write(sys.argv[2], meshio.read(sys.argv[1]), binary=True)\n";
+    const testing::CliResult result =
+        testing::run_program("/usr/bin/python3", {(dir / "again.py").string(), (dir / "ours.vtu").string(), (dir / "theirs.vtu").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    const VtuContent back = read_vtu(dir / "theirs.vtu");
+    EXPECT_EQ(back.mesh.vertices, sample().vertices);
+    EXPECT_EQ(back.mesh.tet_labels, sample().tet_labels);
+    ASSERT_NE(back.point_array("potential_V"), nullptr);
+    EXPECT_EQ(back.point_array("potential_V")->values, phi);
 }
 
 } // namespace
