@@ -32,7 +32,7 @@ std::vector<double> estimate_error(const TetMesh& mesh, const Conductivities& co
                                    const std::vector<double>& potential_v)
 {
     const TetFields fields = compute_fields(mesh, conductivities, potential_v);
-    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh, detail::node_tets(mesh));
+    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
     const auto count = static_cast<std::int64_t>(mesh.tet_count());
     std::vector<double> indicator(mesh.tet_count(), 0.0);
     // Each tet sums its own faces (k = 0..3): every interior face is evaluated from both sides.

@@ -10,7 +10,7 @@ OuterBoundary outer_boundary(const TetMesh& mesh)
 {
     if (mesh.tets.empty()) return {};
     validate_indices(mesh, "mesh");
-    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh, detail::node_tets(mesh));
+    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
     struct Entry {
         Triangle sorted;
         Triangle oriented;

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "fem/assemble.h"
 #include "fem/detail/sources.h"
+#include "fem/detail/subtraction.h"
 #include "fem/outer_boundary.h"
 
 namespace tissuemesh::fem {
@@ -27,8 +28,9 @@ void fix_node(std::vector<double>& fixed, std::uint32_t node, double value, cons
 }
 
 // Loads (A) of current electrodes and dipoles; fixed potentials (NaN: free) of the others.
-Eigen::VectorXd build_loads(const TetMesh& mesh, const PotentialProblem& problem, std::vector<double>& fixed,
-                            PotentialReport& report)
+Eigen::VectorXd build_loads(const TetMesh& mesh, const Conductivities& conductivities, const PotentialProblem& problem,
+                            std::vector<double>& fixed, PotentialReport& report,
+                            std::vector<detail::SubtractionSource>& subtracted)
 {
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.vertex_count()));
     if (problem.fixed.nodes.size() != problem.fixed.values_v.size())
@@ -55,7 +57,14 @@ Eigen::VectorXd build_loads(const TetMesh& mesh, const PotentialProblem& problem
             injected_magnitude += std::abs(electrode.current_a);
         }
     }
-    for (std::size_t d = 0; d < problem.dipoles.size(); ++d) detail::add_dipole_load(mesh, problem.dipoles[d], d, rhs);
+    for (std::size_t d = 0; d < problem.dipoles.size(); ++d) {
+        if (problem.dipole_model == DipoleModel::partial_integration) {
+            detail::add_dipole_load(mesh, problem.dipoles[d], d, rhs);
+        } else {
+            subtracted.push_back(detail::subtraction_source(mesh, conductivities, problem.dipoles[d], d));
+            detail::add_subtraction_load(mesh, conductivities, boundary, subtracted.back(), rhs);
+        }
+    }
     const bool anything_fixed = std::any_of(fixed.begin(), fixed.end(), [](double v) { return !std::isnan(v); });
     // Insulated body: the current that goes in must come out (1e-9 relative: round-off of user input).
     if (!anything_fixed && std::abs(injected) > 1e-9 * injected_magnitude)
@@ -122,8 +131,13 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
 {
     auto start = std::chrono::steady_clock::now();
     PotentialReport local;
+    // Assembly first: it checks every tet and tissue, which the parallel source loops rely on.
+    SparseMatrix stiffness = assemble_stiffness(mesh, conductivities);
+    local.assembly_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
     std::vector<double> fixed(mesh.vertex_count(), unset);
-    const Eigen::VectorXd rhs = build_loads(mesh, problem, fixed, local);
+    std::vector<detail::SubtractionSource> subtracted;
+    const Eigen::VectorXd rhs = build_loads(mesh, conductivities, problem, fixed, local, subtracted);
     const bool anything_fixed = std::any_of(fixed.begin(), fixed.end(), [](double v) { return !std::isnan(v); });
     // Pure Neumann: the loads sum to zero, so fixing one node to 0 V picks one solution out of the
     // constants; zero_mean then shifts it.
@@ -131,19 +145,21 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
         const std::uint32_t node = problem.reference == Reference::node ? problem.reference_node : 0;
         fix_node(fixed, node, 0.0, "reference node");
     }
+    // With subtraction the unknown is the correction: fixed nodes hold their potential minus phi_inf.
+    std::vector<double> singular(subtracted.empty() ? 0 : fixed.size(), 0.0);
+    for (const detail::SubtractionSource& source : subtracted)
+        for (std::size_t i = 0; i < singular.size(); ++i) singular[i] += detail::unbounded_potential(source, mesh.vertices[i]);
+    std::vector<double> fixed_correction(fixed);
+    for (std::size_t i = 0; i < singular.size(); ++i) fixed_correction[i] -= singular[i];
     local.loads_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    ReducedSystem system = [&] {
-        const SparseMatrix stiffness = assemble_stiffness(mesh, conductivities);
-        local.assembly_seconds = seconds_since(start);
-        start = std::chrono::steady_clock::now();
-        return reduce(stiffness, rhs, fixed);
-    }();
+    ReducedSystem system = reduce(stiffness, rhs, fixed_correction);
+    stiffness = SparseMatrix();
     local.reduction_seconds = seconds_since(start);
     const Eigen::VectorXd solution = solve_spd(system.matrix, system.rhs, options, progress, &local.solver);
     std::vector<double> potential(fixed);
     for (std::size_t i = 0; i < potential.size(); ++i)
-        if (system.free_index[i] >= 0) potential[i] = solution[system.free_index[i]];
+        if (system.free_index[i] >= 0) potential[i] = solution[system.free_index[i]] + (singular.empty() ? 0 : singular[i]);
     local.unknowns = static_cast<std::size_t>(system.matrix.rows());
     local.fixed_nodes = fixed.size() - local.unknowns;
     if (!anything_fixed && problem.reference == Reference::zero_mean && !potential.empty()) {

@@ -1,6 +1,8 @@
 #include "fem/detail/incidence.h"
 
 #include <algorithm>
+#include <array>
+#include <cstddef>
 
 namespace tissuemesh::fem::detail {
 
@@ -19,44 +21,46 @@ NodeTets node_tets(const TetMesh& mesh)
     return incidence;
 }
 
-namespace {
-
-bool holds(const Tet& tet, std::uint32_t v)
+std::vector<std::uint32_t> face_neighbours(const TetMesh& mesh)
 {
-    return tet[0] == v || tet[1] == v || tet[2] == v || tet[3] == v;
-}
-
-// The tet other than `self` around the face (a, b, c): it is in the list of a and holds b and c. In a
-// conforming mesh there is at most one.
-std::uint32_t across(const TetMesh& mesh, const NodeTets& incidence, std::uint32_t self, std::uint32_t a,
-                     std::uint32_t b, std::uint32_t c)
-{
-    for (std::size_t i = incidence.offsets[a]; i < incidence.offsets[a + 1]; ++i) {
-        const std::uint32_t other = incidence.tets[i];
-        if (other != self && holds(mesh.tets[other], b) && holds(mesh.tets[other], c)) return other;
-    }
-    return no_tet;
-}
-
-} // namespace
-
-std::vector<std::uint32_t> face_neighbours(const TetMesh& mesh, const NodeTets& incidence)
-{
-    const auto count = static_cast<std::int64_t>(mesh.tet_count());
-    std::vector<std::uint32_t> neighbours(4 * mesh.tet_count(), no_tet);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t t = 0; t < count; ++t) {
-        const Tet& tet = mesh.tets[static_cast<std::size_t>(t)];
+    // Every tet face goes into the bucket of its smallest vertex (a counting sort), then each small bucket
+    // is sorted by the other two vertices and equal neighbours are paired: sequential passes over the
+    // faces, no search through other tets per face.
+    struct Face {
+        std::uint32_t middle, largest, slot;  ///< slot = 4 tet + k
+    };
+    const std::size_t nodes = mesh.vertex_count();
+    std::vector<std::size_t> start(nodes + 1, 0);
+    const auto smallest_of = [&](const Tet& tet, int k) {
+        return std::min({tet[face_vertices[k][0]], tet[face_vertices[k][1]], tet[face_vertices[k][2]]});
+    };
+    for (const Tet& tet : mesh.tets)
+        for (int k = 0; k < 4; ++k) ++start[smallest_of(tet, k) + 1];
+    for (std::size_t v = 0; v < nodes; ++v) start[v + 1] += start[v];
+    std::vector<Face> faces(start.back());
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
         for (int k = 0; k < 4; ++k) {
-            const std::uint32_t a = tet[face_vertices[k][0]], b = tet[face_vertices[k][1]], c = tet[face_vertices[k][2]];
-            // Scan the shortest of the three lists.
-            const auto length = [&](std::uint32_t v) { return incidence.offsets[v + 1] - incidence.offsets[v]; };
-            const std::uint32_t self = static_cast<std::uint32_t>(t);
-            std::uint32_t other = no_tet;
-            if (length(a) <= length(b) && length(a) <= length(c)) other = across(mesh, incidence, self, a, b, c);
-            else if (length(b) <= length(c)) other = across(mesh, incidence, self, b, c, a);
-            else other = across(mesh, incidence, self, c, a, b);
-            neighbours[4 * static_cast<std::size_t>(t) + static_cast<std::size_t>(k)] = other;
+            std::array<std::uint32_t, 3> v{mesh.tets[t][face_vertices[k][0]], mesh.tets[t][face_vertices[k][1]],
+                                           mesh.tets[t][face_vertices[k][2]]};
+            std::sort(v.begin(), v.end());
+            faces[next[v[0]]++] = {v[1], v[2], static_cast<std::uint32_t>(4 * t + static_cast<std::size_t>(k))};
+        }
+    std::vector<std::uint32_t> neighbours(4 * mesh.tet_count(), no_tet);
+    const auto count = static_cast<std::int64_t>(nodes);
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (std::int64_t v = 0; v < count; ++v) {
+        const auto begin = faces.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(v)]);
+        const auto end = faces.begin() + static_cast<std::ptrdiff_t>(start[static_cast<std::size_t>(v) + 1]);
+        std::sort(begin, end, [](const Face& a, const Face& b) {
+            return a.middle != b.middle ? a.middle < b.middle : a.largest != b.largest ? a.largest < b.largest : a.slot < b.slot;
+        });
+        for (auto face = begin; face != end; ++face) {
+            const auto other = face + 1;
+            if (other == end || other->middle != face->middle || other->largest != face->largest) continue;
+            neighbours[face->slot] = other->slot / 4;
+            neighbours[other->slot] = face->slot / 4;
+            face = other;
         }
     }
     return neighbours;

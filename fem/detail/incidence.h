@@ -25,8 +25,9 @@ inline constexpr std::uint32_t no_tet = 0xffffffffu;
 /// normal point out of a positively oriented tet.
 inline constexpr int face_vertices[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-/// For face k of tet t, the other tet that holds it, or no_tet: entry 4 t + k (#T by 4). Found per face
-/// from the node-to-tet lists, in parallel; the result does not depend on the thread count.
-std::vector<std::uint32_t> face_neighbours(const TetMesh& mesh, const NodeTets& incidence);
+/// For face k of tet t, the other tet that holds it, or no_tet: entry 4 t + k (#T by 4). The result does
+/// not depend on the thread count.
+/// @pre validate_indices(mesh) passes
+std::vector<std::uint32_t> face_neighbours(const TetMesh& mesh);
 
 } // namespace tissuemesh::fem::detail
