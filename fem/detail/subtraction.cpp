@@ -116,6 +116,14 @@ SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& 
     if (sigma != isotropic(sigma[0]))
         throw InputError(concat(where(), " lies in an anisotropic tissue; the subtraction approach needs an isotropic ",
                                 "one around the source: use partial integration"));
+    // phi_inf is infinite at the source: it must not sit on a node (1e-6 of the tet's size: round-off).
+    std::array<Vec3, 4> corners{};
+    for (int k = 0; k < 4; ++k) corners[k] = mesh.vertices[mesh.tets[t][k]];
+    for (int k = 0; k < 4; ++k)
+        if (distance(corners[k], dipole.position_mm) <= 1e-6 * longest_edge(corners.data(), 4))
+            throw InputError(concat(where(), " lies on mesh node ", mesh.tets[t][k], ", where the unbounded-medium ",
+                                    "potential of the subtraction approach is infinite: move the dipole off the node ",
+                                    "or use partial integration"));
     // The correction is smooth only if the conductivity is sigma_inf on the source's tet and every tet
     // touching it (the volume term then stays at least one element away from the singularity).
     const Tet& source_tet = mesh.tets[t];

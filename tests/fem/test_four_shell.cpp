@@ -80,16 +80,29 @@ TEST(FourShellHead, EccentricitiesLong)
     }
 }
 
-// The subtraction approach on the same mesh, up to eccentricity 0.95 (3.9 mm from the CSF).
-TEST(FourShellHead, SubtractionEccentricities)
+// The subtraction approach on the same mesh: the singular part is exact, so the error left is the P1
+// error of the smooth correction. Measured at eccentricity 0.5: radial RDM 0.0030 MAG 1.0038, tangential
+// RDM 0.0024 MAG 1.0036 (partial integration: 0.019 and 0.020 above).
+TEST(FourShellHead, SubtractionAtHalfEccentricity)
 {
     const TetMesh mesh = testing::four_shell_head(4, 10.0);
-    for (double eccentricity : {0.5, 0.8, 0.9, 0.95}) {
+    expect_dipole_agreement(mesh, {0, 0, 39}, {0, 0, 1e-8}, 0.01, 0.01, DipoleModel::subtraction);
+    expect_dipole_agreement(mesh, {0, 0, 39}, {1e-8, 0, 0}, 0.01, 0.01, DipoleModel::subtraction);
+}
+
+// Up to eccentricity 0.95 (3.9 mm from the CSF, about one brain element of this mesh). Measured
+// (radial / tangential RDM, MAG): 0.8: 0.0089 / 0.0069, 1.006 / 1.005; 0.9: 0.0185 / 0.0122, 1.008 / 1.006;
+// 0.95: 0.0375 / 0.0223, 1.007 / 1.006. Partial integration on the same mesh: 0.8: 0.032 / 0.024; 0.9:
+// 0.020 / 0.024; 0.95: 0.024 / 0.036. Near the interface the correction itself is steep and this 62 k-node
+// mesh is too coarse for it: the bounds are the measured worst plus a margin.
+TEST(FourShellHead, SubtractionEccentricitiesLong)
+{
+    const TetMesh mesh = testing::four_shell_head(4, 10.0);
+    for (double eccentricity : {0.8, 0.9, 0.95}) {
         const Vec3 position{0, 0, 78 * eccentricity};
-        for (const Vec3 moment : {Vec3{0, 0, 1e-8}, Vec3{1e-8, 0, 0}}) {
-            expect_dipole_agreement(mesh, position, moment, 0.05, 0.02, DipoleModel::subtraction);
-            expect_dipole_agreement(mesh, position, moment, 0.05, 0.05, DipoleModel::partial_integration);
-        }
+        const double max_rdm = eccentricity < 0.85 ? 0.015 : eccentricity < 0.925 ? 0.025 : 0.05;
+        expect_dipole_agreement(mesh, position, {0, 0, 1e-8}, max_rdm, 0.015, DipoleModel::subtraction);
+        expect_dipole_agreement(mesh, position, {1e-8, 0, 0}, max_rdm, 0.015, DipoleModel::subtraction);
     }
 }
 
