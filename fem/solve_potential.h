@@ -41,9 +41,9 @@ enum class DipoleModel {
     /// phi = phi_inf + phi_corr: the dipole's exact potential in an unbounded medium of the source tissue's
     /// conductivity plus a smooth P1 correction whose loads are integrals over the tissues of other
     /// conductivity and the outer boundary (fem/detail/subtraction.h). Far more accurate near interfaces
-    /// (see the README); needs an isotropic tissue on the source's tet and every tet touching it, and costs
-    /// a quadrature pass over those tets per dipole. Nodal potentials (and E, J from them) then hold the
-    /// singular part too.
+    /// (see the README); needs an isotropic tissue at the source and a source off the nodes, and costs a
+    /// quadrature pass over the tets of other conductivity per dipole. Nodal potentials (and E, J from
+    /// them) then hold the singular part too.
     subtraction,
 };
 
@@ -81,7 +81,7 @@ struct PotentialReport {
 
 /// Nodal potentials (V, #V) of the problem.
 /// @throws InputError when a dipole lies outside the mesh (or, for subtraction, in an anisotropic tissue or
-///         within one element of a conductivity change), an electrode covers no boundary face, node
+///         on a node), an electrode covers no boundary face, node
 ///         indices are out of range, a node gets two different fixed potentials, or the injected currents
 ///         do not sum to zero while nothing is fixed (the insulated body would have no solution)
 /// @throws AlgorithmError when CG does not converge (see solve_spd)

@@ -207,7 +207,7 @@ void record_solver_phases(const fem::PotentialReport& report, PhaseClock& clock)
 
 int main(int argc, char** argv)
 {
-    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg", dipole_model = "subtraction";
+    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg", dipole_model = "partial-integration";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     bool error_indicator = false, vtu_ascii = false;
@@ -230,8 +230,9 @@ int main(int argc, char** argv)
             app.add_option("--sensors", sensors_path, "CSV with header x,y,z (mm)");
             app.add_option("--sensor-potentials", sensor_output, "CSV out: x,y,z,potential (V) at the nearest surface node");
             app.add_option("--dipole-model", dipole_model,
-                           "Dipole singularity: subtraction (exact unbounded-medium potential plus a smooth correction; "
-                           "needs one isotropic tissue around the source) or partial-integration")
+                           "Dipole singularity: partial-integration (any tissue), or subtraction (exact unbounded-medium "
+                           "potential plus a smooth correction: far more accurate near interfaces; needs an isotropic "
+                           "tissue at the source)")
                 ->check(CLI::IsMember({"subtraction", "partial-integration"}));
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
             app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);

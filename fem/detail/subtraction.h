@@ -24,9 +24,8 @@ struct SubtractionSource {
     double sigma_inf = 0;
 };
 
-/// @throws InputError when the dipole is outside the mesh or on a node, its tissue is anisotropic, or a tet sharing a
-///         node with the source's tet has another conductivity (names the dipole and the fix: move it, or use
-///         partial integration)
+/// @throws InputError when the dipole is outside the mesh or on a node, or its tissue is anisotropic (names
+///         the dipole and the fix: move it, or use partial integration)
 SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
                                      std::size_t index);
 

@@ -72,19 +72,19 @@ TEST(Dipole, OffCentreDipoleBySubtraction)
     EXPECT_THROW(solve_potential(mesh, resolve_conductivities(mesh, {}), problem), InputError);
 }
 
-TEST(Dipole, SubtractionNextToAConductivityChangeIsAnInputError)
+TEST(Dipole, SubtractionInAnAnisotropicTissueIsAnInputError)
 {
-    // Two tissues split at x = 10 mm; the dipole's tet touches tissue 2.
-    const TetMesh mesh = testing::box_mesh(5, 20.0, 0, [](const Vec3& c) { return c[0] < 10 ? Label{1} : Label{2}; });
+    // phi_inf is the unbounded-medium potential of an isotropic conductivity.
+    const TetMesh mesh = testing::box_mesh(5, 20.0);
     PotentialProblem problem;
-    problem.dipoles = {{.position_mm = {9, 10, 10}, .moment_am = {0, 0, 1e-8}}};
+    problem.dipoles = {{.position_mm = {9, 10.3, 10.1}, .moment_am = {0, 0, 1e-8}}};
     problem.dipole_model = DipoleModel::subtraction;
+    const Mat3 tensor{0.5, 0, 0, 0, 0.1, 0, 0, 0, 0.1};
     try {
-        solve_potential(mesh, resolve_conductivities(mesh, {{"1", isotropic(0.33)}, {"2", isotropic(1.0)}}), problem);
-        FAIL() << "subtraction next to a conductivity change must be refused";
+        solve_potential(mesh, resolve_conductivities(mesh, {{"1", tensor}}), problem);
+        FAIL() << "subtraction in an anisotropic tissue must be refused";
     } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("within one element of a conductivity change"), std::string::npos)
-            << error.what();
+        EXPECT_NE(std::string(error.what()).find("lies in an anisotropic tissue"), std::string::npos) << error.what();
     }
 }
 
