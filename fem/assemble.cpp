@@ -1,8 +1,12 @@
 #include "fem/assemble.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/error.h"
+#include "fem/detail/incidence.h"
 
 namespace tissuemesh::fem {
 
@@ -28,25 +32,113 @@ P1Element p1_element(const TetMesh& mesh, std::size_t t)
     return element;
 }
 
+namespace {
+
+// The upper triangle of a tet's symmetric 4 x 4 element matrix, row by row: (0,0) (0,1) (0,2) (0,3)
+// (1,1) (1,2) (1,3) (2,2) (2,3) (3,3). Storing one triangle keeps K exactly symmetric and halves the
+// memory of the element pass (80 bytes per tet).
+using ElementMatrix = std::array<double, 10>;
+
+constexpr int packed(int i, int j)
+{
+    const int low = i < j ? i : j, high = i < j ? j : i;
+    return low * 4 - low * (low + 1) / 2 + high;
+}
+
+ElementMatrix element_matrix(const TetMesh& mesh, const Conductivities& conductivities, std::size_t t)
+{
+    const Mat3& sigma = conductivities.of(mesh.tet_labels[t], t);
+    const P1Element element = p1_element(mesh, t);
+    ElementMatrix matrix{};
+    for (int i = 0; i < 4; ++i) {
+        const Vec3 flux = multiply(sigma, element.gradients[i]);
+        for (int j = i; j < 4; ++j) matrix[packed(i, j)] = element.volume_m3 * dot(flux, element.gradients[j]);
+    }
+    return matrix;
+}
+
+// Element matrices of every tet, in parallel. An exception may not leave an OpenMP loop: the loop notes
+// the first bad tet, and that one is computed again outside to throw its message.
+std::vector<ElementMatrix> element_matrices(const TetMesh& mesh, const Conductivities& conductivities)
+{
+    const auto count = static_cast<std::int64_t>(mesh.tet_count());
+    std::vector<ElementMatrix> matrices(mesh.tet_count());
+    std::int64_t first_bad = count;
+#pragma omp parallel for schedule(static) reduction(min : first_bad)
+    for (std::int64_t t = 0; t < count; ++t) {
+        try {
+            matrices[static_cast<std::size_t>(t)] = element_matrix(mesh, conductivities, static_cast<std::size_t>(t));
+        } catch (...) {
+            first_bad = std::min(first_bad, t);
+        }
+    }
+    if (first_bad < count) element_matrix(mesh, conductivities, static_cast<std::size_t>(first_bad));
+    return matrices;
+}
+
+// Sorted distinct nodes of the tets around `node` (the columns of its row) into `columns`.
+void row_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, std::vector<int>& columns)
+{
+    columns.clear();
+    for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i)
+        for (std::uint32_t v : mesh.tets[incidence.tets[i]]) columns.push_back(static_cast<int>(v));
+    std::sort(columns.begin(), columns.end());
+    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+}
+
+// Row `node` of K: its columns, then the sum of its tets' element rows in increasing tet order (so the
+// bytes do not depend on how rows are shared among threads).
+void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
+              std::size_t node, SparseMatrix& matrix, std::vector<int>& columns)
+{
+    row_columns(mesh, incidence, node, columns);
+    const auto begin = static_cast<std::size_t>(matrix.outerIndexPtr()[node]);
+    int* inner = matrix.innerIndexPtr() + begin;
+    double* values = matrix.valuePtr() + begin;
+    std::copy(columns.begin(), columns.end(), inner);
+    std::fill(values, values + columns.size(), 0.0);
+    for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i) {
+        const std::uint32_t t = incidence.tets[i];
+        const Tet& tet = mesh.tets[t];
+        const int local = static_cast<int>(std::find(tet.begin(), tet.end(), node) - tet.begin());
+        for (int j = 0; j < 4; ++j) {
+            const auto at = std::lower_bound(inner, inner + columns.size(), static_cast<int>(tet[j])) - inner;
+            values[at] += elements[t][packed(local, j)];
+        }
+    }
+}
+
+} // namespace
+
 SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& conductivities)
 {
     validate_indices(mesh, "mesh");
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(16 * mesh.tet_count());
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        const Mat3& sigma = conductivities.of(mesh.tet_labels[t], t);
-        const P1Element element = p1_element(mesh, t);
-        for (int i = 0; i < 4; ++i) {
-            const Vec3 flux = multiply(sigma, element.gradients[i]);
-            for (int j = 0; j < 4; ++j)
-                triplets.emplace_back(static_cast<int>(mesh.tets[t][i]), static_cast<int>(mesh.tets[t][j]),
-                                      element.volume_m3 * dot(flux, element.gradients[j]));
+    const std::vector<ElementMatrix> elements = element_matrices(mesh, conductivities);
+    const detail::NodeTets incidence = detail::node_tets(mesh);
+    const auto n = static_cast<std::int64_t>(mesh.vertex_count());
+    SparseMatrix matrix(static_cast<int>(n), static_cast<int>(n));
+    std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);
+#pragma omp parallel
+    {
+        std::vector<int> columns;
+#pragma omp for schedule(static)
+        for (std::int64_t v = 0; v < n; ++v) {
+            row_columns(mesh, incidence, static_cast<std::size_t>(v), columns);
+            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(columns.size());
         }
     }
-    const auto n = static_cast<int>(mesh.vertex_count());
-    SparseMatrix matrix(n, n);
-    // setFromTriplets sums duplicates in triplet order: one thread, fixed order, same bytes every run.
-    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
+    if (row_start.back() > std::numeric_limits<int>::max())
+        throw InputError(concat("mesh: ", row_start.back(), " matrix entries exceed the 32-bit index range; split the ",
+                                "mesh or coarsen it"));
+    matrix.resizeNonZeros(static_cast<Eigen::Index>(row_start.back()));
+    for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v) matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
+#pragma omp parallel
+    {
+        std::vector<int> columns;
+#pragma omp for schedule(static)
+        for (std::int64_t v = 0; v < n; ++v) fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, columns);
+    }
     return matrix;
 }
 

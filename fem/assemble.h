@@ -34,7 +34,9 @@ P1Element p1_element(const TetMesh& mesh, std::size_t t);
 /// Stiffness matrix K_ij = integral of grad(phi_i) . sigma grad(phi_j) over the mesh (S), sigma taken per
 /// tet from `conductivities` by the tet's tissue. K is symmetric positive semi-definite with rows summing
 /// to zero (constants are in its kernel: no boundary condition is applied here; the outer boundary is
-/// insulated). Assembly is one ordered pass over the tets, so the result is the same bytes on every run.
+/// insulated). K is exactly symmetric (one triangle of each element matrix is computed). Rows are
+/// assembled in parallel (OpenMP) straight into compressed rows; each entry sums its tets in increasing tet
+/// order, so the bytes are the same on every run and for any thread count.
 /// @throws InputError when a tissue has no conductivity or a tet is degenerate
 SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& conductivities);
 

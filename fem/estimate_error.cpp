@@ -2,52 +2,55 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "fem/assemble.h"
 #include "fem/compute_fields.h"
+#include "fem/detail/incidence.h"
 
 namespace tissuemesh::fem {
+namespace {
+
+// 1/2 h_F |F| [J . n]_F^2 of the face (a, b, c) between two tets with currents j_in and j_out. The face's
+// geometry is computed from its vertices in sorted order, so both tets get the same bytes.
+double face_share(const TetMesh& mesh, Triangle face, const Vec3& j_in, const Vec3& j_out)
+{
+    std::sort(face.begin(), face.end());
+    const Vec3 a = metres_per_mm * mesh.vertices[face[0]];
+    const Vec3 b = metres_per_mm * mesh.vertices[face[1]];
+    const Vec3 c = metres_per_mm * mesh.vertices[face[2]];
+    const Vec3 normal = cross(b - a, c - a);
+    const double area = 0.5 * norm(normal);
+    const double h = std::max({distance(a, b), distance(b, c), distance(c, a)});
+    const double jump = dot(j_in - j_out, (0.5 / area) * normal);
+    return 0.5 * h * area * jump * jump;
+}
+
+} // namespace
 
 std::vector<double> estimate_error(const TetMesh& mesh, const Conductivities& conductivities,
                                    const std::vector<double>& potential_v)
 {
     const TetFields fields = compute_fields(mesh, conductivities, potential_v);
-    struct FaceEntry {
-        Triangle sorted;
-        std::uint32_t tet;
-    };
-    // Face k of a tet is the one opposite its vertex k.
-    std::vector<FaceEntry> faces;
-    faces.reserve(4 * mesh.tet_count());
-    for (std::uint32_t t = 0; t < mesh.tet_count(); ++t)
+    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
+    const auto count = static_cast<std::int64_t>(mesh.tet_count());
+    std::vector<double> indicator(mesh.tet_count(), 0.0);
+    // Each tet sums its own faces (k = 0..3): every interior face is evaluated from both sides.
+#pragma omp parallel for schedule(static)
+    for (std::int64_t t = 0; t < count; ++t) {
+        const auto tet_index = static_cast<std::size_t>(t);
+        const Tet& tet = mesh.tets[tet_index];
+        double squared = 0;
         for (int k = 0; k < 4; ++k) {
-            Triangle face{};
-            for (int i = 0, j = 0; i < 4; ++i)
-                if (i != k) face[j++] = mesh.tets[t][i];
-            std::sort(face.begin(), face.end());
-            faces.push_back({face, t});
+            const std::uint32_t other = neighbours[4 * tet_index + static_cast<std::size_t>(k)];
+            if (other == detail::no_tet) continue;
+            const Triangle face{tet[detail::face_vertices[k][0]], tet[detail::face_vertices[k][1]],
+                                tet[detail::face_vertices[k][2]]};
+            squared += face_share(mesh, face, fields.current_a_per_m2[tet_index], fields.current_a_per_m2[other]);
         }
-    std::sort(faces.begin(), faces.end(), [](const FaceEntry& a, const FaceEntry& b) {
-        return a.sorted != b.sorted ? a.sorted < b.sorted : a.tet < b.tet;
-    });
-    std::vector<double> squared(mesh.tet_count(), 0.0);
-    for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
-        if (faces[i].sorted != faces[i + 1].sorted) continue;
-        const Vec3 a = metres_per_mm * mesh.vertices[faces[i].sorted[0]];
-        const Vec3 b = metres_per_mm * mesh.vertices[faces[i].sorted[1]];
-        const Vec3 c = metres_per_mm * mesh.vertices[faces[i].sorted[2]];
-        const Vec3 normal = cross(b - a, c - a);
-        const double area = 0.5 * norm(normal);
-        const double h = std::max({distance(a, b), distance(b, c), distance(c, a)});
-        const double jump = dot(fields.current_a_per_m2[faces[i].tet] - fields.current_a_per_m2[faces[i + 1].tet],
-                                (0.5 / area) * normal);
-        const double share = 0.5 * h * area * jump * jump;
-        squared[faces[i].tet] += share;
-        squared[faces[i + 1].tet] += share;
-        ++i;
+        indicator[tet_index] = std::sqrt(squared);
     }
-    for (double& value : squared) value = std::sqrt(value);
-    return squared;
+    return indicator;
 }
 
 } // namespace tissuemesh::fem

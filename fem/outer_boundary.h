@@ -15,6 +15,7 @@ struct OuterBoundary {
 };
 
 /// Faces shared by no other tet (the insulated outer surface and any inner cavity's surface).
+/// @throws InputError when a vertex index is out of range or a coordinate is not finite
 OuterBoundary outer_boundary(const TetMesh& mesh);
 
 } // namespace tissuemesh::fem

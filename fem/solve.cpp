@@ -13,7 +13,13 @@ namespace {
 struct RawSolve {
     Eigen::VectorXd solution;
     int iterations = 0;
+    double copy_seconds = 0, setup_seconds = 0, iterate_seconds = 0;
 };
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 RawSolve solve_jacobi(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, const SolverOptions& options)
 {
@@ -21,8 +27,13 @@ RawSolve solve_jacobi(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, co
     Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg;
     cg.setTolerance(options.relative_tolerance);
     cg.setMaxIterations(options.max_iterations);
+    auto start = std::chrono::steady_clock::now();
     cg.compute(matrix);
-    RawSolve result{cg.solve(rhs), 0};
+    RawSolve result;
+    result.setup_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    result.solution = cg.solve(rhs);
+    result.iterate_seconds = seconds_since(start);
     result.iterations = static_cast<int>(cg.iterations());
     return result;
 }
@@ -46,15 +57,18 @@ Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs
         if (options.preconditioner == Preconditioner::amg) {
             detail::HyprePcgResult amg = detail::solve_with_boomeramg(matrix, rhs, options.relative_tolerance,
                                                                       options.max_iterations);
-            raw = {std::move(amg.solution), amg.iterations};
+            raw = {std::move(amg.solution), amg.iterations, amg.copy_seconds, amg.setup_seconds, amg.iterate_seconds};
         } else {
             raw = solve_jacobi(matrix, rhs, options);
         }
         solution = std::move(raw.solution);
         local.iterations = raw.iterations;
+        local.copy_seconds = raw.copy_seconds;
+        local.setup_seconds = raw.setup_seconds;
+        local.iterate_seconds = raw.iterate_seconds;
         local.relative_residual = (rhs - matrix * solution).norm() / rhs_norm;
     }
-    local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    local.seconds = seconds_since(start);
     progress.info("solve", concat(local.preconditioner, "-CG: ", rhs.size(), " unknowns, ", local.iterations,
                                   " iterations, relative residual ", local.relative_residual));
     // The recomputed residual may sit slightly above the solver's own estimate (round-off in the

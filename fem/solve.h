@@ -27,7 +27,10 @@ struct SolverReport {
     std::string preconditioner;      ///< "jacobi" or "amg"
     int iterations = 0;              ///< CG iterations
     double relative_residual = 0;    ///< ||b - A x||_2 / ||b||_2 recomputed from the returned x
-    double seconds = 0;              ///< setup and solve
+    double seconds = 0;              ///< everything below, and the residual check
+    double copy_seconds = 0;         ///< handing the system to the solver (hypre's own matrix and vectors)
+    double setup_seconds = 0;        ///< preconditioner setup (the AMG hierarchy; the diagonal for jacobi)
+    double iterate_seconds = 0;      ///< the CG iterations
 };
 
 /// Solves A x = b by preconditioned conjugate gradients from x = 0.

@@ -1,11 +1,14 @@
 #include "fem/solve_potential.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 #include "core/error.h"
 #include "fem/assemble.h"
 #include "fem/detail/sources.h"
+#include "fem/detail/subtraction.h"
 #include "fem/outer_boundary.h"
 
 namespace tissuemesh::fem {
@@ -25,8 +28,9 @@ void fix_node(std::vector<double>& fixed, std::uint32_t node, double value, cons
 }
 
 // Loads (A) of current electrodes and dipoles; fixed potentials (NaN: free) of the others.
-Eigen::VectorXd build_loads(const TetMesh& mesh, const PotentialProblem& problem, std::vector<double>& fixed,
-                            PotentialReport& report)
+Eigen::VectorXd build_loads(const TetMesh& mesh, const Conductivities& conductivities, const PotentialProblem& problem,
+                            std::vector<double>& fixed, PotentialReport& report,
+                            std::vector<detail::SubtractionSource>& subtracted)
 {
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.vertex_count()));
     if (problem.fixed.nodes.size() != problem.fixed.values_v.size())
@@ -53,7 +57,14 @@ Eigen::VectorXd build_loads(const TetMesh& mesh, const PotentialProblem& problem
             injected_magnitude += std::abs(electrode.current_a);
         }
     }
-    for (std::size_t d = 0; d < problem.dipoles.size(); ++d) detail::add_dipole_load(mesh, problem.dipoles[d], d, rhs);
+    for (std::size_t d = 0; d < problem.dipoles.size(); ++d) {
+        if (problem.dipole_model == DipoleModel::partial_integration) {
+            detail::add_dipole_load(mesh, problem.dipoles[d], d, rhs);
+        } else {
+            subtracted.push_back(detail::subtraction_source(mesh, conductivities, problem.dipoles[d], d));
+            detail::add_subtraction_load(mesh, conductivities, boundary, subtracted.back(), rhs);
+        }
+    }
     const bool anything_fixed = std::any_of(fixed.begin(), fixed.end(), [](double v) { return !std::isnan(v); });
     // Insulated body: the current that goes in must come out (1e-9 relative: round-off of user input).
     if (!anything_fixed && std::abs(injected) > 1e-9 * injected_magnitude)
@@ -62,38 +73,54 @@ Eigen::VectorXd build_loads(const TetMesh& mesh, const PotentialProblem& problem
     return rhs;
 }
 
-// Reduced system on the free nodes: K_FF x_F = b_F - K_FD x_D.
-std::vector<double> solve_reduced(const SparseMatrix& stiffness, const Eigen::VectorXd& rhs,
-                                  const std::vector<double>& fixed, const SolverOptions& options,
-                                  const Progress& progress, PotentialReport& report)
+// The system on the free nodes, K_FF x_F = b_F - K_FD x_D, written straight into compressed rows.
+struct ReducedSystem {
+    SparseMatrix matrix;
+    Eigen::VectorXd rhs;
+    std::vector<int> free_index;  ///< #V: row of each free node, -1 for fixed ones
+};
+
+ReducedSystem reduce(const SparseMatrix& stiffness, const Eigen::VectorXd& rhs, const std::vector<double>& fixed)
 {
     const auto n = static_cast<int>(fixed.size());
-    std::vector<int> free_index(fixed.size(), -1);
-    int free_count = 0;
-    for (int i = 0; i < n; ++i)
-        if (std::isnan(fixed[i])) free_index[i] = free_count++;
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    Eigen::VectorXd reduced_rhs(free_count);
+    ReducedSystem system;
+    system.free_index.assign(fixed.size(), -1);
+    std::vector<int> row_start{0};
     for (int row = 0; row < n; ++row) {
-        if (free_index[row] < 0) continue;
-        double value = rhs[row];
-        for (SparseMatrix::InnerIterator entry(stiffness, row); entry; ++entry) {
-            if (free_index[entry.col()] >= 0)
-                triplets.emplace_back(free_index[row], free_index[entry.col()], entry.value());
-            else
-                value -= entry.value() * fixed[entry.col()];
-        }
-        reduced_rhs[free_index[row]] = value;
+        if (!std::isnan(fixed[row])) continue;
+        system.free_index[row] = static_cast<int>(row_start.size()) - 1;
+        int kept = 0;
+        for (SparseMatrix::InnerIterator entry(stiffness, row); entry; ++entry) kept += std::isnan(fixed[entry.col()]);
+        row_start.push_back(row_start.back() + kept);
     }
-    SparseMatrix reduced(free_count, free_count);
-    reduced.setFromTriplets(triplets.begin(), triplets.end());
-    const Eigen::VectorXd solution = solve_spd(reduced, reduced_rhs, options, progress, &report.solver);
-    std::vector<double> potential(fixed);
-    for (int i = 0; i < n; ++i)
-        if (free_index[i] >= 0) potential[i] = solution[free_index[i]];
-    report.unknowns = static_cast<std::size_t>(free_count);
-    report.fixed_nodes = fixed.size() - report.unknowns;
-    return potential;
+    const auto free_count = static_cast<int>(row_start.size()) - 1;
+    system.matrix.resize(free_count, free_count);
+    system.matrix.resizeNonZeros(row_start.back());
+    std::copy(row_start.begin(), row_start.end(), system.matrix.outerIndexPtr());
+    system.rhs.resize(free_count);
+    for (int row = 0; row < n; ++row) {
+        const int reduced_row = system.free_index[row];
+        if (reduced_row < 0) continue;
+        double value = rhs[row];
+        int at = row_start[static_cast<std::size_t>(reduced_row)];
+        // Free indices grow with the node index, so the sorted columns stay sorted.
+        for (SparseMatrix::InnerIterator entry(stiffness, row); entry; ++entry) {
+            const int column = system.free_index[entry.col()];
+            if (column >= 0) {
+                system.matrix.innerIndexPtr()[at] = column;
+                system.matrix.valuePtr()[at++] = entry.value();
+            } else {
+                value -= entry.value() * fixed[entry.col()];
+            }
+        }
+        system.rhs[reduced_row] = value;
+    }
+    return system;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 } // namespace
@@ -102,10 +129,15 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
                                     const PotentialProblem& problem, const SolverOptions& options,
                                     const Progress& progress, PotentialReport* report)
 {
-    const SparseMatrix stiffness = assemble_stiffness(mesh, conductivities);
+    auto start = std::chrono::steady_clock::now();
     PotentialReport local;
+    // Assembly first: it checks every tet and tissue, which the parallel source loops rely on.
+    SparseMatrix stiffness = assemble_stiffness(mesh, conductivities);
+    local.assembly_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
     std::vector<double> fixed(mesh.vertex_count(), unset);
-    const Eigen::VectorXd rhs = build_loads(mesh, problem, fixed, local);
+    std::vector<detail::SubtractionSource> subtracted;
+    const Eigen::VectorXd rhs = build_loads(mesh, conductivities, problem, fixed, local, subtracted);
     const bool anything_fixed = std::any_of(fixed.begin(), fixed.end(), [](double v) { return !std::isnan(v); });
     // Pure Neumann: the loads sum to zero, so fixing one node to 0 V picks one solution out of the
     // constants; zero_mean then shifts it.
@@ -113,7 +145,23 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
         const std::uint32_t node = problem.reference == Reference::node ? problem.reference_node : 0;
         fix_node(fixed, node, 0.0, "reference node");
     }
-    std::vector<double> potential = solve_reduced(stiffness, rhs, fixed, options, progress, local);
+    // With subtraction the unknown is the correction: fixed nodes hold their potential minus phi_inf.
+    std::vector<double> singular(subtracted.empty() ? 0 : fixed.size(), 0.0);
+    for (const detail::SubtractionSource& source : subtracted)
+        for (std::size_t i = 0; i < singular.size(); ++i) singular[i] += detail::unbounded_potential(source, mesh.vertices[i]);
+    std::vector<double> fixed_correction(fixed);
+    for (std::size_t i = 0; i < singular.size(); ++i) fixed_correction[i] -= singular[i];
+    local.loads_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    ReducedSystem system = reduce(stiffness, rhs, fixed_correction);
+    stiffness = SparseMatrix();
+    local.reduction_seconds = seconds_since(start);
+    const Eigen::VectorXd solution = solve_spd(system.matrix, system.rhs, options, progress, &local.solver);
+    std::vector<double> potential(fixed);
+    for (std::size_t i = 0; i < potential.size(); ++i)
+        if (system.free_index[i] >= 0) potential[i] = solution[system.free_index[i]] + (singular.empty() ? 0 : singular[i]);
+    local.unknowns = static_cast<std::size_t>(system.matrix.rows());
+    local.fixed_nodes = fixed.size() - local.unknowns;
     if (!anything_fixed && problem.reference == Reference::zero_mean && !potential.empty()) {
         double mean = 0;
         for (double value : potential) mean += value;

@@ -26,15 +26,25 @@ struct Electrode {
     double potential_v = 0;       ///< patch potential, V (Mode::potential)
 };
 
-/// A current dipole (primary current p * delta(x - position)), treated by partial integration: the
-/// right-hand side is b_i = p . grad(phi_i)(position) in the tet that contains the position. Chosen
-/// because it needs no homogeneous region around the source (subtraction does), has no free parameter
-/// (St. Venant's monopole spread does), keeps sum(b) = 0 exactly (compatible with the insulated
-/// boundary) and costs one point location. Its weakness, shared by all direct methods, is accuracy when
-/// the dipole sits within about one element of a conductivity jump.
+/// A current dipole: primary current p * delta(x - position). See DipoleModel for its treatment.
 struct Dipole {
     Vec3 position_mm{};  ///< world mm, inside the mesh
     Vec3 moment_am{};    ///< A*m
+};
+
+/// How a dipole's singularity enters the FE system.
+enum class DipoleModel {
+    /// b_i = p . grad(phi_i)(position) in the tet that contains the position: needs no homogeneous region,
+    /// has no free parameter (St. Venant's monopole spread does), keeps sum(b) = 0 exactly and costs one
+    /// point location. Its error grows as the dipole nears a conductivity jump, within a few elements.
+    partial_integration,
+    /// phi = phi_inf + phi_corr: the dipole's exact potential in an unbounded medium of the source tissue's
+    /// conductivity plus a smooth P1 correction whose loads are integrals over the tissues of other
+    /// conductivity and the outer boundary (fem/detail/subtraction.h). Far more accurate near interfaces
+    /// (see the README); needs an isotropic tissue at the source and a source off the nodes, and costs a
+    /// quadrature pass over the tets of other conductivity per dipole. Nodal potentials (and E, J from
+    /// them) then hold the singular part too.
+    subtraction,
 };
 
 /// Dirichlet nodes: node indices with their potentials (V).
@@ -52,6 +62,7 @@ enum class Reference {
 struct PotentialProblem {
     std::vector<Electrode> electrodes;
     std::vector<Dipole> dipoles;
+    DipoleModel dipole_model = DipoleModel::partial_integration;  ///< for every dipole
     FixedPotentials fixed;                 ///< inner Dirichlet conditions (electrodes add theirs)
     Reference reference = Reference::zero_mean;  ///< used only when nothing is fixed
     std::uint32_t reference_node = 0;      ///< node index for Reference::node
@@ -63,10 +74,14 @@ struct PotentialReport {
     std::size_t fixed_nodes = 0;           ///< nodes with a Dirichlet value (electrodes included)
     std::vector<std::size_t> electrode_nodes;  ///< boundary nodes per electrode
     std::vector<double> electrode_area_mm2;    ///< patch area per electrode (faces with 3 nodes inside)
+    double loads_seconds = 0;      ///< outer boundary, electrode patches, dipole location, fixed nodes
+    double assembly_seconds = 0;   ///< stiffness matrix
+    double reduction_seconds = 0;  ///< the system on the free nodes (the solver's times are in `solver`)
 };
 
 /// Nodal potentials (V, #V) of the problem.
-/// @throws InputError when a dipole lies outside the mesh, an electrode covers no boundary face, node
+/// @throws InputError when a dipole lies outside the mesh (or, for subtraction, in an anisotropic tissue or
+///         on a node), an electrode covers no boundary face, node
 ///         indices are out of range, a node gets two different fixed potentials, or the injected currents
 ///         do not sum to zero while nothing is fixed (the insulated body would have no solution)
 /// @throws AlgorithmError when CG does not converge (see solve_spd)

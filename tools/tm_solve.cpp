@@ -1,5 +1,8 @@
 // tm-solve: stationary current / electrostatics on a labelled tet mesh (P1 FEM, CG with BoomerAMG).
+#include <chrono>
 #include <cmath>
+#include <ctime>
+#include <map>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -105,27 +108,54 @@ std::string sensor_csv(const TetMesh& mesh, const std::vector<Vec3>& sensors, co
 /// Per-tissue tets, volume, volume-weighted mean and maximum |E| (V/m) and mean |J| (A/m^2).
 nlohmann::json field_statistics(const TetMesh& mesh, const fem::TetFields& fields)
 {
-    nlohmann::json tissues = nlohmann::json::object();
+    struct Sums {
+        std::size_t tets = 0;
+        double volume_mm3 = 0, e_volume = 0, max_e = 0, j_volume = 0;
+    };
+    std::map<Label, Sums> by_label;
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        nlohmann::json& entry = tissues[std::to_string(mesh.tet_labels[t])];
-        if (entry.is_null()) entry = {{"tets", 0}, {"volume_mm3", 0.0}, {"mean_E_V_per_m", 0.0}, {"max_E_V_per_m", 0.0},
-                                      {"mean_J_A_per_m2", 0.0}};
+        Sums& sums = by_label[mesh.tet_labels[t]];
         const double volume = signed_volume(mesh, t), e = norm(fields.electric_v_per_m[t]);
-        entry["tets"] = entry["tets"].get<std::size_t>() + 1;
-        entry["volume_mm3"] = entry["volume_mm3"].get<double>() + volume;
-        entry["mean_E_V_per_m"] = entry["mean_E_V_per_m"].get<double>() + volume * e;
-        entry["max_E_V_per_m"] = std::max(entry["max_E_V_per_m"].get<double>(), e);
-        entry["mean_J_A_per_m2"] = entry["mean_J_A_per_m2"].get<double>() + volume * norm(fields.current_a_per_m2[t]);
+        ++sums.tets;
+        sums.volume_mm3 += volume;
+        sums.e_volume += volume * e;
+        sums.max_e = std::max(sums.max_e, e);
+        sums.j_volume += volume * norm(fields.current_a_per_m2[t]);
     }
-    for (auto& [label, entry] : tissues.items()) {
-        const double volume = entry["volume_mm3"].get<double>();
-        entry["mean_E_V_per_m"] = entry["mean_E_V_per_m"].get<double>() / volume;
-        entry["mean_J_A_per_m2"] = entry["mean_J_A_per_m2"].get<double>() / volume;
-        const auto name = mesh.names.find(static_cast<Label>(std::stoul(label)));
-        entry["name"] = name == mesh.names.end() ? label : name->second;
+    nlohmann::json tissues = nlohmann::json::object();
+    for (const auto& [label, sums] : by_label) {
+        const auto name = mesh.names.find(label);
+        tissues[std::to_string(label)] = {{"tets", sums.tets}, {"volume_mm3", sums.volume_mm3},
+                                          {"mean_E_V_per_m", sums.e_volume / sums.volume_mm3},
+                                          {"max_E_V_per_m", sums.max_e},
+                                          {"mean_J_A_per_m2", sums.j_volume / sums.volume_mm3},
+                                          {"name", name == mesh.names.end() ? std::to_string(label) : name->second}};
     }
     return tissues;
 }
+
+/// Seconds per phase of the run, for the --json summary: wall time, and the process's CPU time (all threads;
+/// on a shared machine the CPU time says what a phase costs when the wall time mostly says how busy it was).
+class PhaseClock {
+public:
+    void lap(const std::string& phase)
+    {
+        const auto now = std::chrono::steady_clock::now();
+        const std::clock_t cpu_now = std::clock();
+        phases_[phase] = std::chrono::duration<double>(now - last_).count();
+        cpu_phases_[phase] = static_cast<double>(cpu_now - last_cpu_) / CLOCKS_PER_SEC;
+        last_ = now;
+        last_cpu_ = cpu_now;
+    }
+    void set(const std::string& phase, double seconds) { phases_[phase] = seconds; }
+    const nlohmann::json& phases() const { return phases_; }
+    const nlohmann::json& cpu_phases() const { return cpu_phases_; }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+    std::clock_t last_cpu_ = std::clock();
+    nlohmann::json phases_ = nlohmann::json::object(), cpu_phases_ = nlohmann::json::object();
+};
 
 /// Smallest dihedral angle of the mesh (deg): slivers slow CG down, so it goes next to the iterations.
 double min_dihedral_deg(const TetMesh& mesh)
@@ -144,18 +174,48 @@ fem::Conductivities resolve_from_file(const TetMesh& mesh, const std::string& pa
     return tools::with_source(path, [&] { return fem::resolve_conductivities(mesh, table); });
 }
 
+/// The sources given on the command line.
+fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, const std::vector<std::string>& electrodes)
+{
+    fem::PotentialProblem problem;
+    for (const std::string& text : dipoles) {
+        const auto v = parse_numbers(text, 6, "--dipole", "X,Y,Z,PX,PY,PZ (mm, A*m)");
+        problem.dipoles.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+    }
+    for (const std::string& text : electrodes) {
+        const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
+        problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4]});
+    }
+    if (problem.dipoles.empty() && problem.electrodes.empty())
+        throw InputError("no source: without --dipole or --electrode no current flows and the potential is zero "
+                         "everywhere; give at least one");
+    return problem;
+}
+
+/// The solver's own phases (assembly, loads, AMG setup, CG) into `clock`.
+void record_solver_phases(const fem::PotentialReport& report, PhaseClock& clock)
+{
+    clock.set("loads", report.loads_seconds);
+    clock.set("assembly", report.assembly_seconds);
+    clock.set("reduction", report.reduction_seconds);
+    clock.set("solver_copy", report.solver.copy_seconds);
+    clock.set("solver_setup", report.solver.setup_seconds);
+    clock.set("solver_iterations", report.solver.iterate_seconds);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg";
+    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg", dipole_model = "partial-integration";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
+    bool error_indicator = false, vtu_ascii = false;
     return tools::run_tool(
         argc, argv,
         {"tm-solve",
          "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
-         "dipoles (partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
+         "dipoles (subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
          "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
          "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
          "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
@@ -169,49 +229,63 @@ int main(int argc, char** argv)
             app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
             app.add_option("--sensors", sensors_path, "CSV with header x,y,z (mm)");
             app.add_option("--sensor-potentials", sensor_output, "CSV out: x,y,z,potential (V) at the nearest surface node");
+            app.add_option("--dipole-model", dipole_model,
+                           "Dipole singularity: partial-integration (any tissue), or subtraction (exact unbounded-medium "
+                           "potential plus a smooth correction: far more accurate near interfaces; needs an isotropic "
+                           "tissue at the source)")
+                ->check(CLI::IsMember({"subtraction", "partial-integration"}));
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
             app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
+            app.add_flag("--error-indicator", error_indicator,
+                         "Also write the flux-jump error indicator per tet (error_indicator) and its total to --json");
+            app.add_flag("--vtu-ascii", vtu_ascii, "Write the .vtu as ASCII instead of zlib-compressed binary");
         },
         [&](tools::ToolContext& context) {
             if (sensors_path.empty() != sensor_output.empty())
                 throw InputError("--sensors and --sensor-potentials go together; give both or neither");
+            PhaseClock clock;
             const TetMesh mesh = io::read_tet_mesh(input);
+            clock.lap("read");
             const fem::Conductivities sigma = resolve_from_file(mesh, conductivity);
-            fem::PotentialProblem problem;
-            for (const std::string& text : dipoles) {
-                const auto v = parse_numbers(text, 6, "--dipole", "X,Y,Z,PX,PY,PZ (mm, A*m)");
-                problem.dipoles.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
-            }
-            for (const std::string& text : electrodes) {
-                const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
-                problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4]});
-            }
-            if (problem.dipoles.empty() && problem.electrodes.empty())
-                throw InputError("no source: without --dipole or --electrode no current flows and the potential is zero "
-                                 "everywhere; give at least one");
+            fem::PotentialProblem problem = parse_problem(dipoles, electrodes);
+            problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction : fem::DipoleModel::partial_integration;
             const std::vector<Vec3> sensors = sensors_path.empty() ? std::vector<Vec3>{} : read_sensors(sensors_path);
+            clock.lap("inputs");
             fem::PotentialReport report;
             const std::vector<double> phi = fem::solve_potential(
                 mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
                                        .relative_tolerance = tolerance}, context.progress, &report);
+            clock.lap("solve");
+            record_solver_phases(report, clock);
             const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
-            const std::vector<double> indicator = fem::estimate_error(mesh, sigma, phi);
+            clock.lap("fields");
+            std::vector<io::VtuArray> cell_arrays{io::make_vtu_vectors("E_V_per_m", fields.electric_v_per_m),
+                                                  io::make_vtu_vectors("J_A_per_m2", fields.current_a_per_m2)};
             std::vector<double> magnitude;
             for (const Vec3& e : fields.electric_v_per_m) magnitude.push_back(norm(e));
-            io::write_vtu(mesh, output, {io::make_vtu_array("potential_V", phi)},
-                          {io::make_vtu_vectors("E_V_per_m", fields.electric_v_per_m),
-                           io::make_vtu_vectors("J_A_per_m2", fields.current_a_per_m2),
-                           io::make_vtu_array("E_magnitude_V_per_m", magnitude), io::make_vtu_array("error_indicator", indicator)});
-            double indicator2 = 0;
-            for (double eta : indicator) indicator2 += eta * eta;
+            cell_arrays.push_back(io::make_vtu_array("E_magnitude_V_per_m", magnitude));
+            if (error_indicator) {
+                const std::vector<double> indicator = fem::estimate_error(mesh, sigma, phi);
+                double indicator2 = 0;
+                for (double eta : indicator) indicator2 += eta * eta;
+                context.summary["error_indicator_total"] = std::sqrt(indicator2);
+                cell_arrays.push_back(io::make_vtu_array("error_indicator", indicator));
+                clock.lap("error_indicator");
+            }
+            context.summary["tissues"] = field_statistics(mesh, fields);
+            context.summary["min_dihedral_deg"] = min_dihedral_deg(mesh);
+            clock.lap("statistics");
+            io::write_vtu(mesh, output, {io::make_vtu_array("potential_V", phi)}, cell_arrays,
+                          vtu_ascii ? io::VtuEncoding::ascii : io::VtuEncoding::compressed);
             if (!sensor_output.empty()) write_text_atomically(sensor_output, sensor_csv(mesh, sensors, phi));
+            clock.lap("write");
             context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
                                report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
-            context.summary = {{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
-                               {"preconditioner", report.solver.preconditioner}, {"iterations", report.solver.iterations},
-                               {"min_dihedral_deg", min_dihedral_deg(mesh)},
-                               {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
-                               {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
-                               {"sensors", sensors.size()}, {"error_indicator_total", std::sqrt(indicator2)}, {"tissues", field_statistics(mesh, fields)}};
+            context.summary.update({{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
+                                    {"preconditioner", report.solver.preconditioner}, {"iterations", report.solver.iterations},
+                                    {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
+                                    {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
+                                    {"sensors", sensors.size()}, {"phase_seconds", clock.phases()},
+                                    {"phase_cpu_seconds", clock.cpu_phases()}});
         });
 }

@@ -11,6 +11,9 @@ struct HyprePcgResult {
     Eigen::VectorXd solution;
     int iterations = 0;
     bool converged = false;
+    double copy_seconds = 0;     ///< building hypre's matrix and vectors
+    double setup_seconds = 0;    ///< BoomerAMG setup
+    double iterate_seconds = 0;  ///< PCG iterations
 };
 
 /// Runs BoomerAMG-preconditioned CG on one MPI process (MPI and hypre are initialised on first use and

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #include "io/tet_mesh_io.h"
 #include "tests/support/cli.h"
@@ -56,7 +58,7 @@ TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
                                                   "--electrode", "220,10,10," + radius + ",-0.002",
                                                   "--sensors", (dir / "sensors.csv").string(),
                                                   "--sensor-potentials", (dir / "eeg.csv").string(),
-                                                  "--json", (dir / "summary.json").string()});
+                                                  "--error-indicator", "--json", (dir / "summary.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const nlohmann::json summary = read_json(dir / "summary.json");
     EXPECT_EQ(summary["nodes"], 125);
@@ -99,14 +101,36 @@ TEST(SolveCli, SameBytesOnEveryRun)
 {
     TempDir dir;
     io::write_tet_mesh(brain_box(), dir / "box.msh");
-    for (const char* name : {"a.vtu", "b.vtu"}) {
+    // One and two OpenMP threads: assembly, fields and the indicator sum in a fixed order.
+    for (const auto& [name, threads] : {std::pair{"a.vtu", "1"}, std::pair{"b.vtu", "2"}}) {
+        setenv("OMP_NUM_THREADS", threads, 1);
         const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / name).string(),
-                                                      "--dipole", "10,10,10,0,0,1e-8", "--dipole", "7,12,9,1e-8,0,0"});
+                                                      "--dipole", "10,10,10,0,0,1e-8", "--dipole", "7,12,9,1e-8,0,0",
+                                                      "--error-indicator"});
+        unsetenv("OMP_NUM_THREADS");
         ASSERT_EQ(result.exit_code, 0) << result.err;
     }
     const std::string first = read_file(dir / "a.vtu");
     EXPECT_GT(first.size(), 1000u);
     EXPECT_EQ(first, read_file(dir / "b.vtu"));
+}
+
+TEST(SolveCli, ErrorIndicatorAndPhaseTimesInTheSummary)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                                  "--dipole", "10,10,10,0,0,1e-8", "--json", (dir / "summary.json").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    // Without --error-indicator the indicator is neither computed nor written.
+    EXPECT_EQ(read_file(dir / "out.vtu").find("Name=\"error_indicator\""), std::string::npos);
+    const nlohmann::json summary = read_json(dir / "summary.json");
+    EXPECT_FALSE(summary.contains("error_indicator_total"));
+    // The iterations go next to the smallest dihedral angle (slivers slow CG down).
+    EXPECT_GT(summary["iterations"].get<int>(), 0);
+    EXPECT_TRUE(summary.contains("min_dihedral_deg"));
+    for (const char* phase : {"read", "assembly", "solver_setup", "solver_iterations", "fields", "write"})
+        EXPECT_GE(summary["phase_seconds"][phase].get<double>(), 0.0) << phase;
 }
 
 TEST(SolveCli, BadInputExitsTwoWithTheReason)
