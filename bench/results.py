@@ -8,6 +8,9 @@ import os
 import statistics
 from collections import defaultdict
 
+INPUTS = {"extraction": "spheres4 4 mm, 0.11 M voxels", "smoothing": "its interfaces",
+          "decimation": "the smoothed interfaces", "tetrahedralization": "the smoothed interfaces (tm-tetra defaults)",
+          "assessment": "that mesh against the image", "solve": "that mesh, tDCS, AMG-CG"}
 MESHERS = {"ours": "ours", "cgal": "CGAL (count-matched)", "cgal-acc": "CGAL (accuracy-matched)"}
 
 
@@ -121,11 +124,14 @@ def micro_table(path):
     if not os.path.exists(path):
         print(f"(not measured: tm-bench-stages wrote no {path}; see its output next to it)")
         return
-    print("| stage | input | ms per run | throughput |")
-    print("|---|---|---:|---:|")
+    print("Rates per CPU second of the benchmark thread (Google Benchmark's default), steadier than wall time on a "
+          "shared machine; wall ms shown for reference.\n")
+    print("| stage | input | CPU ms per run | wall ms per run | throughput |")
+    print("|---|---|---:|---:|---:|")
     for b in json.load(open(path))["benchmarks"]:
         rates = [f"{v / 1e6:.3g} M {k}" if v >= 1e5 else f"{v:.3g} {k}" for k, v in b.items() if k.endswith("/s")]
-        print(f"| {b['name'].split('/')[0]} | spheres4 4 mm chain | {b['real_time']:.1f} | {', '.join(rates)} |")
+        print(f"| {b['name'].split('/')[0]} | {INPUTS.get(b['name'].split('/')[0], '')} | {b['cpu_time']:.1f} | "
+              f"{b['real_time']:.1f} | {', '.join(rates)} |")
 
 
 def main():
