@@ -4,7 +4,6 @@ peak RSS from /usr/bin/time) and measures (--json summaries of the meshers, tm-c
 import argparse
 import datetime
 import json
-import os
 import statistics
 from collections import defaultdict
 
@@ -121,14 +120,16 @@ def closing_note(cases, steps, measures):
 
 
 def micro_table(path):
-    if not os.path.exists(path):
-        print(f"(not measured: tm-bench-stages wrote no {path}; see its output next to it)")
+    try:
+        benchmarks = json.load(open(path))["benchmarks"]
+    except (OSError, ValueError, KeyError):
+        print(f"(not measured: tm-bench-stages wrote no complete {path}; see its output next to it)")
         return
     print("Rates per CPU second of the benchmark thread (Google Benchmark's default), steadier than wall time on a "
           "shared machine; wall ms shown for reference.\n")
     print("| stage | input | CPU ms per run | wall ms per run | throughput |")
     print("|---|---|---:|---:|---:|")
-    for b in json.load(open(path))["benchmarks"]:
+    for b in benchmarks:
         rates = [f"{v / 1e6:.3g} M {k}" if v >= 1e5 else f"{v:.3g} {k}" for k, v in b.items() if k.endswith("/s")]
         print(f"| {b['name'].split('/')[0]} | {INPUTS.get(b['name'].split('/')[0], '')} | {b['cpu_time']:.1f} | "
               f"{b['real_time']:.1f} | {', '.join(rates)} |")
