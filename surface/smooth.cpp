@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
@@ -48,28 +49,53 @@ Vec3 umbrella(const ComplexEditor& editor, std::uint32_t v)
     return dot(shift, n) * n;
 }
 
-/// One Jacobi step of factor `factor`: displacements from the current positions, applied vertex by
-/// vertex with the checks.
+/// Where the voxel evidence lets v go by `shift`: the full step, else half of it, else nowhere.
+std::optional<Vec3> allowed_target(const Vec3& p, const Vec3& shift, const detail::VoxelEvidence& evidence,
+                                   const std::vector<Label>& tissues)
+{
+    if (evidence.allows(p + shift, tissues)) return p + shift;
+    if (evidence.allows(p + 0.5 * shift, tissues)) return p + 0.5 * shift;
+    return std::nullopt;
+}
+
+/// One Jacobi step of factor `factor`: every displacement from the current positions, held to the
+/// image, then all moves made at once by the editor, which puts back the ones that would break the
+/// complex; those are tried once more at half length.
 void step(ComplexEditor& editor, const detail::VoxelEvidence& evidence, const std::vector<std::vector<Label>>& tissues,
           double factor, SmoothReport& report)
 {
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
     std::vector<Vec3> shift(editor.vertex_slots(), Vec3{0, 0, 0});
-    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
-        if (editor.kind(v) != VertexKind::corner && editor.vertex_alive(v)) shift[v] = factor * umbrella(editor, v);
-    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
+    std::vector<std::optional<Vec3>> target(editor.vertex_slots());
+    std::vector<char> refused(editor.vertex_slots(), 0);
+#pragma omp parallel for schedule(dynamic, 2048)
+    for (std::int64_t i = 0; i < slots; ++i) {
+        const auto v = static_cast<std::uint32_t>(i);
         if (editor.kind(v) == VertexKind::corner || !editor.vertex_alive(v)) continue;
+        shift[v] = factor * umbrella(editor, v);
         if (dot(shift[v], shift[v]) < 1e-20) continue;  // flat here: nothing to do
-        Vec3 target = editor.position(v) + shift[v];
-        if (!evidence.allows(target, tissues[v])) {
-            target = editor.position(v) + 0.5 * shift[v];
-            if (!evidence.allows(target, tissues[v])) {
-                ++report.refused_by_image;
-                continue;
-            }
-        }
-        if (editor.try_move(v, target)) ++report.moves;
+        target[v] = allowed_target(editor.position(v), shift[v], evidence, tissues[v]);
+        refused[v] = target[v] ? 0 : 1;
+    }
+    report.refused_by_image += static_cast<std::size_t>(std::count(refused.begin(), refused.end(), 1));
+    std::vector<std::uint32_t> vertices;
+    std::vector<Vec3> targets;
+    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
+        if (target[v]) vertices.push_back(v), targets.push_back(*target[v]);
+    const std::vector<char> moved = editor.move_together(vertices, targets);
+    std::vector<std::uint32_t> again;
+    std::vector<Vec3> halves;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        if (moved[i]) continue;
+        const std::uint32_t v = vertices[i];
+        const Vec3 half = editor.position(v) + 0.5 * (targets[i] - editor.position(v));
+        if (evidence.allows(half, tissues[v])) again.push_back(v), halves.push_back(half);
         else ++report.refused_by_checks;
     }
+    const std::vector<char> moved_again = editor.move_together(again, halves);
+    const auto made = [](const std::vector<char>& m) { return static_cast<std::size_t>(std::count(m.begin(), m.end(), 1)); };
+    report.moves += made(moved) + made(moved_again);
+    report.refused_by_checks += again.size() - made(moved_again);
 }
 
 } // namespace
