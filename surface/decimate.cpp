@@ -187,6 +187,34 @@ private:
         return std::nullopt;
     }
 
+    /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
+    /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
+    /// (the answer is the same, most closest-point computations are saved).
+    bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
+                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
+    {
+        std::vector<std::pair<Vec3, double>> spheres;
+        for (const TriangleCorners& c : shapes) {
+            const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
+            spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
+        }
+        for (const std::uint32_t t : sources)
+            for (const std::uint32_t s : samples_[t]) {
+                const Vec3& p = editor_.position(s);
+                std::size_t nearest = 0;
+                double best = std::numeric_limits<double>::max();
+                for (std::size_t i = 0; i < shapes.size(); ++i) {
+                    if (distance(p, spheres[i].first) - spheres[i].second >= best) continue;
+                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
+                    if (d < best) best = d, nearest = i;
+                }
+                if (best > options_.max_distance_mm) return false;
+                worst = std::max(worst, best);
+                assignment.emplace_back(nearest, s);
+            }
+        return true;
+    }
+
     /// The triangles around w after collapsing v into w: geometry and slot (slots of v's changed triangles).
     bool collapse(std::uint32_t v, std::uint32_t w)
     {
@@ -208,27 +236,17 @@ private:
             targets.push_back(t);
             shapes.push_back(editor_.corners(t));
         }
-        // Every input vertex the changed triangles answer for must stay within the bound.
+        // Every input vertex the changed triangles answer for must stay within the bound; asked only
+        // once the cheap local checks passed.
         std::vector<std::pair<std::size_t, std::uint32_t>> assignment;
         double worst = 0;
-        for (const std::uint32_t t : sources)
-            for (const std::uint32_t s : samples_[t]) {
-                const Vec3& p = editor_.position(s);
-                std::size_t nearest = 0;
-                double best = std::numeric_limits<double>::max();
-                for (std::size_t i = 0; i < shapes.size(); ++i) {
-                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
-                    if (d < best) best = d, nearest = i;
-                }
-                if (best > options_.max_distance_mm) {
-                    ++report_.refused_by_distance;
-                    return false;
-                }
-                worst = std::max(worst, best);
-                assignment.emplace_back(nearest, s);
-            }
-        if (!editor_.try_collapse(v, w)) {
-            ++report_.refused_by_checks;
+        bool too_far = false;
+        const auto within_bound = [&] {
+            too_far = !assign_samples(sources, shapes, assignment, worst);
+            return !too_far;
+        };
+        if (!editor_.try_collapse(v, w, within_bound)) {
+            ++(too_far ? report_.refused_by_distance : report_.refused_by_checks);
             return false;
         }
         for (const std::uint32_t t : sources) samples_[t].clear();

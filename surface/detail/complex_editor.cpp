@@ -114,7 +114,8 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     const auto& star = stars_[v];
     if (star.empty()) return VertexKind::corner;
     std::size_t junction = 0;
-    for (const std::uint32_t u : neighbours(v)) {
+    const std::vector<std::uint32_t> ring = neighbours(v);
+    for (const std::uint32_t u : ring) {
         const std::size_t m = edge_multiplicity(v, u);
         if (m >= 3) ++junction;
         else if (m != 2) return VertexKind::corner;
@@ -125,7 +126,7 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     for (const std::uint32_t t : star)
         if (!(sides_[t] == first)) return VertexKind::corner;
     // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
-    return neighbours(v).size() == star.size() ? VertexKind::patch : VertexKind::corner;
+    return ring.size() == star.size() ? VertexKind::patch : VertexKind::corner;
 }
 
 void ComplexEditor::update_kinds(std::uint32_t v)
@@ -188,7 +189,9 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
                 return false;
     grid_.query(all, nearby_);
     for (const std::uint32_t t : nearby_) {
-        if (!alive_[t] || std::find(excluded.begin(), excluded.end(), t) != excluded.end()) continue;
+        if (!alive_[t] || !boxes_overlap(all, boxes_[t]) ||
+            std::find(excluded.begin(), excluded.end(), t) != excluded.end())
+            continue;
         const TriangleCorners cb = corners(t);
         const Box3 box = bounding_box(cb);
         if (!boxes_overlap(all, box)) continue;
@@ -350,7 +353,7 @@ bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
     return true;
 }
 
-bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
+bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
     const std::size_t multiplicity = edge_multiplicity(v, w);
@@ -360,7 +363,6 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
         ++counters_.topology;
         return false;
     }
-    set_budget(stars_[v]);
     std::vector<std::uint32_t> removed;
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) {
@@ -372,7 +374,14 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
         std::replace(moved.begin(), moved.end(), v, w);
         changes.push_back({t, moved, corners(t)});
     }
-    if (!acceptable(changes, removed)) return false;
+    // Most refused collapses fold or squeeze a triangle: those local tests go first, the grid search last.
+    for (const Change& change : changes)
+        if (!shape_ok(change)) return false;
+    if (veto && !veto()) return false;
+    set_budget(stars_[v]);
+    std::vector<std::uint32_t> excluded = removed;
+    for (const Change& change : changes) excluded.push_back(change.slot);
+    if (!clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
     update_kinds(w);
     return true;

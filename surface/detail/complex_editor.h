@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -94,8 +95,10 @@ public:
     /// on the input (not on thread count or scheduling). Returns, per entry, whether the vertex moved.
     /// @pre not in tolerant mode (EditLimits::tolerate_existing_intersections false)
     std::vector<char> move_together(const std::vector<std::uint32_t>& vertices, const std::vector<Vec3>& targets);
-    /// Collapses edge vw into w: v disappears, w keeps its position.
-    bool try_collapse(std::uint32_t v, std::uint32_t w);
+    /// Collapses edge vw into w: v disappears, w keeps its position. `veto`, when given, is asked after
+    /// the cheap local checks (topology, shape, tilt) and before the costly ones (intersection, gap):
+    /// false refuses the collapse (counted by the caller, not in counters()).
+    bool try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto = {});
     /// Splits edge vw (every triangle on it) at p; returns the new vertex.
     std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
     /// Replaces edge vw (two triangles of one patch) by the edge between their opposite vertices.
