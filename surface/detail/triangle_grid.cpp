@@ -97,17 +97,6 @@ void TriangleGrid::erase(std::uint32_t t, const Box3& box)
     });
 }
 
-void TriangleGrid::collect(const Box3& box, std::vector<std::uint32_t>& out) const
-{
-    const auto low = cell_of(box.low), high = cell_of(box.high);
-    for (std::int64_t k = low[2]; k <= high[2]; ++k)
-        for (std::int64_t j = low[1]; j <= high[1]; ++j)
-            for (std::int64_t i = low[0]; i <= high[0]; ++i) {
-                const auto& cell = cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))];
-                out.insert(out.end(), cell.begin(), cell.end());
-            }
-}
-
 void TriangleGrid::query(const Box3& box, std::vector<std::uint32_t>& out)
 {
     out.clear();

@@ -44,9 +44,6 @@ public:
     void erase(std::uint32_t t, const Box3& box);
     /// Triangles whose cells overlap `box`, each once, in no particular order (boxes not compared).
     void query(const Box3& box, std::vector<std::uint32_t>& out);
-    /// Appends the triangles of the cells `box` overlaps to `out`, repeats included (a triangle filed in
-    /// several cells comes once per cell). Reads only: safe from several threads at once.
-    void collect(const Box3& box, std::vector<std::uint32_t>& out) const;
     /// Calls visit(t) for every triangle of the cells `box` overlaps, repeats included. Reads only.
     template <class Visit> void visit(const Box3& box, Visit visit) const
     {
