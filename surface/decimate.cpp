@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
 
 #include <OpenMesh/Core/Utils/vector_traits.hh>
 #include <OpenMesh/Core/Geometry/QuadricT.hh>
@@ -12,6 +11,7 @@
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
 #include "surface/detail/mesh_measures.h"
+#include "surface/detail/vertex_queue.h"
 
 namespace tissuemesh::surface {
 namespace {
@@ -38,17 +38,6 @@ void validate(const DecimateOptions& options)
                                     pair.second, " must be positive"));
 }
 
-struct Candidate {
-    double cost = 0;
-    std::uint32_t v = 0;  ///< disappears
-    std::uint32_t w = 0;  ///< stays
-    std::uint32_t version = 0;
-    bool operator>(const Candidate& other) const
-    {
-        return std::tie(cost, v, w) > std::tie(other.cost, other.v, other.w);
-    }
-};
-
 class Decimator {
 public:
     /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in.
@@ -59,7 +48,7 @@ public:
                    .max_normal_change_deg = options.max_normal_change_deg,
                    .min_gap_mm = options.min_gap_mm},
                   cell_mm),
-          quadrics_(editor_.vertex_slots()), samples_(editor_.triangle_slots()), version_(editor_.vertex_slots(), 0)
+          quadrics_(editor_.vertex_slots()), samples_(editor_.triangle_slots())
     {
         for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
             const TriangleCorners c = editor_.corners(t);
@@ -82,9 +71,9 @@ public:
         std::size_t next_rebuild = start / 2;
         while (!queue_.empty()) {
             if (options_.target_triangles > 0 && editor_.triangle_count() <= options_.target_triangles) break;
-            const Candidate c = queue_.top();
+            const detail::VertexQueue::Entry c = queue_.top();
             queue_.pop();
-            if (c.version != version_[c.v] || !editor_.vertex_alive(c.v)) continue;
+            if (!editor_.vertex_alive(c.v)) continue;
             const std::optional<std::uint32_t> w = collapse_cheapest(c.v);
             if (!w) continue;
             ++report_.collapses;
@@ -174,9 +163,9 @@ private:
     /// Queues v with the cost of its cheapest collapse.
     void enqueue(std::uint32_t v)
     {
-        ++version_[v];
         const auto targets = targets_of(v);
-        if (!targets.empty()) queue_.push({targets.front().first, v, targets.front().second, version_[v]});
+        if (targets.empty()) queue_.erase(v);
+        else queue_.set({targets.front().first, v, targets.front().second});
     }
 
     /// Tries v's collapses cheapest first; returns the target it collapsed into.
@@ -185,6 +174,34 @@ private:
         for (const auto& [c, w] : targets_of(v))
             if (collapse(v, w)) return w;
         return std::nullopt;
+    }
+
+    /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
+    /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
+    /// (the answer is the same, most closest-point computations are saved).
+    bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
+                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
+    {
+        std::vector<std::pair<Vec3, double>> spheres;
+        for (const TriangleCorners& c : shapes) {
+            const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
+            spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
+        }
+        for (const std::uint32_t t : sources)
+            for (const std::uint32_t s : samples_[t]) {
+                const Vec3& p = editor_.position(s);
+                std::size_t nearest = 0;
+                double best = std::numeric_limits<double>::max();
+                for (std::size_t i = 0; i < shapes.size(); ++i) {
+                    if (distance(p, spheres[i].first) - spheres[i].second >= best) continue;
+                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
+                    if (d < best) best = d, nearest = i;
+                }
+                if (best > options_.max_distance_mm) return false;
+                worst = std::max(worst, best);
+                assignment.emplace_back(nearest, s);
+            }
+        return true;
     }
 
     /// The triangles around w after collapsing v into w: geometry and slot (slots of v's changed triangles).
@@ -208,27 +225,17 @@ private:
             targets.push_back(t);
             shapes.push_back(editor_.corners(t));
         }
-        // Every input vertex the changed triangles answer for must stay within the bound.
+        // Every input vertex the changed triangles answer for must stay within the bound; asked only
+        // once the cheap local checks passed.
         std::vector<std::pair<std::size_t, std::uint32_t>> assignment;
         double worst = 0;
-        for (const std::uint32_t t : sources)
-            for (const std::uint32_t s : samples_[t]) {
-                const Vec3& p = editor_.position(s);
-                std::size_t nearest = 0;
-                double best = std::numeric_limits<double>::max();
-                for (std::size_t i = 0; i < shapes.size(); ++i) {
-                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
-                    if (d < best) best = d, nearest = i;
-                }
-                if (best > options_.max_distance_mm) {
-                    ++report_.refused_by_distance;
-                    return false;
-                }
-                worst = std::max(worst, best);
-                assignment.emplace_back(nearest, s);
-            }
-        if (!editor_.try_collapse(v, w)) {
-            ++report_.refused_by_checks;
+        bool too_far = false;
+        const auto within_bound = [&] {
+            too_far = !assign_samples(sources, shapes, assignment, worst);
+            return !too_far;
+        };
+        if (!editor_.try_collapse(v, w, within_bound)) {
+            ++(too_far ? report_.refused_by_distance : report_.refused_by_checks);
             return false;
         }
         for (const std::uint32_t t : sources) samples_[t].clear();
@@ -243,7 +250,6 @@ private:
     {
         if (samples_.size() < editor_.triangle_slots()) samples_.resize(editor_.triangle_slots());
         if (quadrics_.size() < editor_.vertex_slots()) quadrics_.resize(editor_.vertex_slots());
-        if (version_.size() < editor_.vertex_slots()) version_.resize(editor_.vertex_slots(), 0);
         std::vector<std::uint32_t> pool;
         const std::vector<std::uint32_t>& star = editor_.star(m);
         for (const std::uint32_t t : star) {
@@ -267,8 +273,7 @@ private:
     ComplexEditor editor_;
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
-    std::vector<std::uint32_t> version_;
-    std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue_;
+    detail::VertexQueue queue_;  ///< per vertex its cheapest collapse
 };
 
 } // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
@@ -25,22 +26,40 @@ void validate(const SmoothOptions& options)
         throw InputError(concat("smooth: min gap ", options.min_gap_voxels, " voxels is outside [0, 1)"));
 }
 
-/// The umbrella vector: mean of the neighbours the vertex is smoothed towards, minus its position. Inside
-/// a patch only its component along the vertex normal: the tangential part would only slide vertices
-/// over the surface (and the marching-cubes triangles are already well shaped; remeshing is a later step),
-/// so flat places do not move at all and cost nothing.
-Vec3 umbrella(const ComplexEditor& editor, std::uint32_t v)
+/// The vertices each vertex is smoothed towards (its neighbours; its two curve neighbours on a junction
+/// curve; none for a corner), listed once: smoothing never changes the connectivity.
+struct Rings {
+    std::vector<std::size_t> begin{0};
+    std::vector<std::uint32_t> items;
+
+    explicit Rings(const ComplexEditor& editor)
+    {
+        for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
+            if (editor.vertex_alive(v) && editor.kind(v) != VertexKind::corner) {
+                const std::vector<std::uint32_t> ring =
+                    editor.kind(v) == VertexKind::curve ? editor.curve_neighbours(v) : editor.neighbours(v);
+                items.insert(items.end(), ring.begin(), ring.end());
+            }
+            begin.push_back(items.size());
+        }
+    }
+};
+
+/// The umbrella vector at `positions`: mean of the ring minus the vertex. Inside a patch only its
+/// component along the vertex normal: the tangential part would only slide vertices over the surface
+/// (and the marching-cubes triangles are already well shaped; remeshing is a later step), so flat places
+/// do not move at all and cost nothing.
+Vec3 umbrella(const ComplexEditor& editor, const Rings& rings, const std::vector<Vec3>& positions, std::uint32_t v)
 {
-    const bool curve = editor.kind(v) == VertexKind::curve;
-    const std::vector<std::uint32_t> ring = curve ? editor.curve_neighbours(v) : editor.neighbours(v);
     Vec3 mean{0, 0, 0};
-    for (const std::uint32_t u : ring) mean = mean + editor.position(u);
-    const Vec3 shift = (1.0 / static_cast<double>(ring.size())) * mean - editor.position(v);
-    if (curve) return shift;
+    for (std::size_t i = rings.begin[v]; i < rings.begin[v + 1]; ++i) mean = mean + positions[rings.items[i]];
+    const auto count = static_cast<double>(rings.begin[v + 1] - rings.begin[v]);
+    const Vec3 shift = (1.0 / count) * mean - positions[v];
+    if (editor.kind(v) == VertexKind::curve) return shift;
     Vec3 normal{0, 0, 0};
     for (const std::uint32_t t : editor.star(v)) {
-        const detail::TriangleCorners c = editor.corners(t);
-        normal = normal + cross(c[1] - c[0], c[2] - c[0]);
+        const Triangle& tri = editor.triangle(t);
+        normal = normal + cross(positions[tri[1]] - positions[tri[0]], positions[tri[2]] - positions[tri[0]]);
     }
     const double length = norm(normal);
     if (length == 0) return shift;
@@ -48,28 +67,68 @@ Vec3 umbrella(const ComplexEditor& editor, std::uint32_t v)
     return dot(shift, n) * n;
 }
 
-/// One Jacobi step of factor `factor`: displacements from the current positions, applied vertex by
-/// vertex with the checks.
-void step(ComplexEditor& editor, const detail::VoxelEvidence& evidence, const std::vector<std::vector<Label>>& tissues,
-          double factor, SmoothReport& report)
+/// `positions` after one Jacobi step of factor `factor` (unchecked).
+std::vector<Vec3> jacobi_step(const ComplexEditor& editor, const Rings& rings, const std::vector<Vec3>& positions,
+                              double factor)
 {
-    std::vector<Vec3> shift(editor.vertex_slots(), Vec3{0, 0, 0});
+    std::vector<Vec3> next = positions;
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < slots; ++i) {
+        const auto v = static_cast<std::uint32_t>(i);
+        if (rings.begin[v + 1] > rings.begin[v]) next[v] = positions[v] + factor * umbrella(editor, rings, positions, v);
+    }
+    return next;
+}
+
+/// Where the voxel evidence lets v go by `shift`: the full step, else half of it, else nowhere.
+std::optional<Vec3> allowed_target(const Vec3& p, const Vec3& shift, const detail::VoxelEvidence& evidence,
+                                   const std::vector<Label>& tissues)
+{
+    if (evidence.allows(p + shift, tissues)) return p + shift;
+    if (evidence.allows(p + 0.5 * shift, tissues)) return p + 0.5 * shift;
+    return std::nullopt;
+}
+
+/// One Taubin pair: the lambda and the mu Jacobi step computed together, then only the net move of each
+/// vertex is held to the image and checked (the intermediate, shrunk surface is never kept, so it need
+/// not be valid): all moves are made at once by the editor, which puts back the ones that would break
+/// the complex; those are tried once more at half length.
+void step_pair(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvidence& evidence,
+               const std::vector<std::vector<Label>>& tissues, const SmoothOptions& options, SmoothReport& report)
+{
+    const std::vector<Vec3>& now = editor.positions();
+    const std::vector<Vec3> after = jacobi_step(editor, rings, jacobi_step(editor, rings, now, options.lambda), options.mu);
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
+    std::vector<std::optional<Vec3>> target(editor.vertex_slots());
+    std::vector<char> refused(editor.vertex_slots(), 0);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < slots; ++i) {
+        const auto v = static_cast<std::uint32_t>(i);
+        const Vec3 shift = after[v] - now[v];
+        if (dot(shift, shift) < 1e-20) continue;  // flat here (or a corner): nothing to do
+        target[v] = allowed_target(now[v], shift, evidence, tissues[v]);
+        refused[v] = target[v] ? 0 : 1;
+    }
+    report.refused_by_image += static_cast<std::size_t>(std::count(refused.begin(), refused.end(), 1));
+    std::vector<std::uint32_t> vertices;
+    std::vector<Vec3> targets;
     for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
-        if (editor.kind(v) != VertexKind::corner && editor.vertex_alive(v)) shift[v] = factor * umbrella(editor, v);
-    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
-        if (editor.kind(v) == VertexKind::corner || !editor.vertex_alive(v)) continue;
-        if (dot(shift[v], shift[v]) < 1e-20) continue;  // flat here: nothing to do
-        Vec3 target = editor.position(v) + shift[v];
-        if (!evidence.allows(target, tissues[v])) {
-            target = editor.position(v) + 0.5 * shift[v];
-            if (!evidence.allows(target, tissues[v])) {
-                ++report.refused_by_image;
-                continue;
-            }
-        }
-        if (editor.try_move(v, target)) ++report.moves;
+        if (target[v]) vertices.push_back(v), targets.push_back(*target[v]);
+    const std::vector<char> moved = editor.move_together(vertices, targets);
+    std::vector<std::uint32_t> again;
+    std::vector<Vec3> halves;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        if (moved[i]) continue;
+        const std::uint32_t v = vertices[i];
+        const Vec3 half = editor.position(v) + 0.5 * (targets[i] - editor.position(v));
+        if (evidence.allows(half, tissues[v])) again.push_back(v), halves.push_back(half);
         else ++report.refused_by_checks;
     }
+    const std::vector<char> moved_again = editor.move_together(again, halves);
+    const auto made = [](const std::vector<char>& m) { return static_cast<std::size_t>(std::count(m.begin(), m.end(), 1)); };
+    report.moves += made(moved) + made(moved_again);
+    report.refused_by_checks += again.size() - made(moved_again);
 }
 
 } // namespace
@@ -96,9 +155,9 @@ SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const Sm
         tissues[v] = tissues_around(editor, v);
         if (editor.vertex_alive(v) && editor.kind(v) == VertexKind::corner) ++report.fixed_vertices;
     }
+    const Rings rings(editor);
     for (std::size_t i = 0; i < options.iterations; ++i) {
-        step(editor, evidence, tissues, options.lambda, report);
-        step(editor, evidence, tissues, options.mu, report);
+        step_pair(editor, rings, evidence, tissues, options, report);
         ++report.iterations;
         progress.update("smooth", static_cast<double>(i + 1) / static_cast<double>(options.iterations));
     }

@@ -40,9 +40,11 @@ struct SmoothReport {
 /// inside a patch move along their normal by the normal part of the step towards the mean of their
 /// neighbours (no tangential sliding: flat places stay, shapes stay); vertices on a junction curve towards the
 /// mean of their two curve neighbours (1-D smoothing along the curve, so they stay on it); corners of
-/// junction curves stay. Every move is checked against `image` (SmoothOptions::max_depth_voxels; a
-/// refused move is retried at half length) and against the complex (no fold, no intersection, no gap
-/// closing, see surface/detail/complex_editor.h), so the topology and validity never change.
+/// junction curves stay. The net move of each lambda|mu pair is checked against `image`
+/// (SmoothOptions::max_depth_voxels; a refused move is tried at half length) and against the complex (no
+/// fold, no intersection, no gap closing, see surface/detail/complex_editor.h): all moves of a pair are
+/// made together, the offending ones put back and tried once more at half length, so the topology and
+/// validity never change. Runs on OpenMP threads; the result does not depend on their number.
 /// @pre  `complex` passes check_complex() and lies over `image` (as extract_interfaces() makes it)
 /// @post it still passes check_complex(); triangles and connectivity unchanged
 /// @throws InputError when options are out of range

@@ -4,57 +4,11 @@
 #include <cmath>
 
 #include "surface/detail/cgal_intersections.h"
+#include "surface/detail/edit_rules.h"
 #include "surface/detail/mesh_measures.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-bool contains(const Triangle& t, std::uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
-
-bool shares_vertex(const Triangle& a, const Triangle& b)
-{
-    return contains(b, a[0]) || contains(b, a[1]) || contains(b, a[2]);
-}
-
-/// Whether a and b use the same three vertices (triangles never repeat a vertex).
-bool same_vertex_set(const Triangle& a, const Triangle& b)
-{
-    return contains(b, a[0]) && contains(b, a[1]) && contains(b, a[2]);
-}
-
-Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
-
-double angle_between_deg(const Vec3& a, const Vec3& b)
-{
-    return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / pi;
-}
-
-/// A cheap sufficient test for distance(a, b) > gap: the bounding spheres around the centroids are apart.
-bool farther_than(const TriangleCorners& a, const TriangleCorners& b, double gap)
-{
-    const Vec3 ca = (1.0 / 3.0) * (a[0] + a[1] + a[2]), cb = (1.0 / 3.0) * (b[0] + b[1] + b[2]);
-    double ra = 0, rb = 0;
-    for (int k = 0; k < 3; ++k) {
-        ra = std::max(ra, distance(a[k], ca));
-        rb = std::max(rb, distance(b[k], cb));
-    }
-    return distance(ca, cb) - ra - rb > gap;
-}
-
-/// Whether triangle `now` (formerly `before`) comes closer than `gap` to `other`, vertex to face, where
-/// it was not that close before.
-bool closes_gap(const TriangleCorners& now, const TriangleCorners& before, const TriangleCorners& other, double gap)
-{
-    for (int k = 0; k < 3; ++k) {
-        const double d = distance(now[k], closest_point_on_triangle(now[k], other));
-        if (d < gap && d < distance(before[k], closest_point_on_triangle(before[k], other)) - 1e-12) return true;
-        const double e = distance(other[k], closest_point_on_triangle(other[k], now));
-        if (e < gap && e < distance(other[k], closest_point_on_triangle(other[k], before)) - 1e-12) return true;
-    }
-    return false;
-}
 
 /// Canonical orientation of a patch: the larger label behind, except that the background is always in front.
 bool canonical(const LabelPair& side, Label background)
@@ -104,8 +58,13 @@ void ComplexEditor::rebuild_grid(double cell_mm)
     }
     if (bounds.low[0] > bounds.high[0]) bounds = Box3{};
     grid_ = TriangleGrid(bounds, cell_mm, triangles_.size());
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) grid_.insert(t, bounding_box(corners(t)));
+    boxes_.assign(triangles_.size(), CompactBox{});
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        if (!alive_[t]) continue;
+        const Box3 box = bounding_box(corners(t));
+        grid_.insert(t, box);
+        boxes_[t] = compact(box);
+    }
 }
 
 TriangleCorners ComplexEditor::corners(std::uint32_t t) const
@@ -155,7 +114,8 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     const auto& star = stars_[v];
     if (star.empty()) return VertexKind::corner;
     std::size_t junction = 0;
-    for (const std::uint32_t u : neighbours(v)) {
+    const std::vector<std::uint32_t> ring = neighbours(v);
+    for (const std::uint32_t u : ring) {
         const std::size_t m = edge_multiplicity(v, u);
         if (m >= 3) ++junction;
         else if (m != 2) return VertexKind::corner;
@@ -166,7 +126,7 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     for (const std::uint32_t t : star)
         if (!(sides_[t] == first)) return VertexKind::corner;
     // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
-    return neighbours(v).size() == star.size() ? VertexKind::patch : VertexKind::corner;
+    return ring.size() == star.size() ? VertexKind::patch : VertexKind::corner;
 }
 
 void ComplexEditor::update_kinds(std::uint32_t v)
@@ -229,7 +189,9 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
                 return false;
     grid_.query(all, nearby_);
     for (const std::uint32_t t : nearby_) {
-        if (!alive_[t] || std::find(excluded.begin(), excluded.end(), t) != excluded.end()) continue;
+        if (!alive_[t] || !boxes_overlap(all, boxes_[t]) ||
+            std::find(excluded.begin(), excluded.end(), t) != excluded.end())
+            continue;
         const TriangleCorners cb = corners(t);
         const Box3 box = bounding_box(cb);
         if (!boxes_overlap(all, box)) continue;
@@ -242,7 +204,7 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
             // are what the normal and intersection tests are for), and is measured between vertices and
             // faces (the closest approach of nearly parallel layers).
             if (gap > 0 && !shares_vertex(a, triangles_[t]) && !farther_than(shapes[i], cb, gap) &&
-                !(sides_[t] == side_of(changes[i])) && closes_gap(shapes[i], changes[i].before, cb, gap)) {
+                !(sides_[t] == side_of(changes[i])) && closes_gap(shapes[i], changes[i].before, cb, cb, gap)) {
                 ++counters_.gap;
                 return false;
             }
@@ -313,7 +275,10 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
         triangles_[t] = change.triangle;
         alive_[t] = 1;
         for (const std::uint32_t v : change.triangle) stars_[v].push_back(t);
-        grid_.insert(t, bounding_box(corners(t)));
+        const Box3 box = bounding_box(corners(t));
+        grid_.insert(t, box);
+        if (t >= boxes_.size()) boxes_.resize(static_cast<std::size_t>(t) + 1 + boxes_.size() / 2);
+        boxes_[t] = compact(box);
     }
     ++counters_.accepted;
 }
@@ -388,17 +353,16 @@ bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
     return true;
 }
 
-bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
+bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
     const std::size_t multiplicity = edge_multiplicity(v, w);
     const bool allowed = multiplicity > 0 && kinds_[v] != VertexKind::corner &&
                          (kinds_[v] == VertexKind::patch || multiplicity >= 3);
-    if (!allowed || !link_condition(v, w)) {
+    if (!allowed) {
         ++counters_.topology;
         return false;
     }
-    set_budget(stars_[v]);
     std::vector<std::uint32_t> removed;
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) {
@@ -410,7 +374,19 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w)
         std::replace(moved.begin(), moved.end(), v, w);
         changes.push_back({t, moved, corners(t)});
     }
-    if (!acceptable(changes, removed)) return false;
+    // Most refused collapses fold or squeeze a triangle (on raw terraces 15 for every one the link
+    // condition refuses): those tests go first, the grid search last.
+    for (const Change& change : changes)
+        if (!shape_ok(change)) return false;
+    if (!link_condition(v, w)) {
+        ++counters_.topology;
+        return false;
+    }
+    if (veto && !veto()) return false;
+    set_budget(stars_[v]);
+    std::vector<std::uint32_t> excluded = removed;
+    for (const Change& change : changes) excluded.push_back(change.slot);
+    if (!clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
     update_kinds(w);
     return true;

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -87,8 +88,17 @@ public:
     bool try_move(std::uint32_t v, const Vec3& p);
     /// Moves every vertices[i] to positions[i] in one edit (all or none), for regions that must move together.
     bool try_move_group(const std::vector<std::uint32_t>& vertices, const std::vector<Vec3>& positions);
-    /// Collapses edge vw into w: v disappears, w keeps its position.
-    bool try_collapse(std::uint32_t v, std::uint32_t w);
+    /// Moves every vertices[i] (distinct) to targets[i] at once and keeps as many of the moves as it can:
+    /// the changed triangles are judged together (in parallel, by the rules of try_move()), the moved
+    /// vertices of every offending triangle and of the triangles it meets or crowds go back to where they
+    /// were, and the triangles around those are judged again, until none offends. The outcome depends only
+    /// on the input (not on thread count or scheduling). Returns, per entry, whether the vertex moved.
+    /// @pre not in tolerant mode (EditLimits::tolerate_existing_intersections false)
+    std::vector<char> move_together(const std::vector<std::uint32_t>& vertices, const std::vector<Vec3>& targets);
+    /// Collapses edge vw into w: v disappears, w keeps its position. `veto`, when given, is asked after
+    /// the cheap local checks (topology, shape, tilt) and before the costly ones (intersection, gap):
+    /// false refuses the collapse (counted by the caller, not in counters()).
+    bool try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto = {});
     /// Splits edge vw (every triangle on it) at p; returns the new vertex.
     std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
     /// Replaces edge vw (two triangles of one patch) by the edge between their opposite vertices.
@@ -114,6 +124,12 @@ private:
     /// with the other alive triangles. Sets the budget of the next check in tolerant mode.
     std::size_t intersections_involving(const std::vector<std::uint32_t>& slots);
     void set_budget(const std::vector<std::uint32_t>& slots);
+    /// The rule a moved triangle `t` breaks at the current positions (0: none), `start` holding the
+    /// positions before the batch; `judged` marks the triangles judged in the same round (a pair of two
+    /// of them is judged by the smaller index only). With `partners`, collects every triangle t meets or
+    /// crowds instead of stopping at the first.
+    std::uint8_t judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
+                             std::vector<std::uint32_t>& nearby, std::vector<std::uint32_t>* partners) const;
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     void update_kinds(std::uint32_t v);
@@ -131,6 +147,7 @@ private:
     std::vector<VertexKind> kinds_;
     std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
+    std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)
     EditCounters counters_;

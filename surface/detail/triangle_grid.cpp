@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tissuemesh::surface::detail {
 
@@ -20,6 +21,26 @@ bool boxes_overlap(const Box3& a, const Box3& b)
     for (int i = 0; i < 3; ++i)
         if (a.high[i] < b.low[i] || b.high[i] < a.low[i]) return false;
     return true;
+}
+
+CompactBox compact(const Box3& box)
+{
+    CompactBox out;
+    for (int i = 0; i < 3; ++i) {
+        out.low[i] = std::nextafter(static_cast<float>(box.low[i]), -std::numeric_limits<float>::infinity());
+        out.high[i] = std::nextafter(static_cast<float>(box.high[i]), std::numeric_limits<float>::infinity());
+    }
+    return out;
+}
+
+Box3 box_union(const Box3& a, const Box3& b)
+{
+    Box3 box;
+    for (int i = 0; i < 3; ++i) {
+        box.low[i] = std::min(a.low[i], b.low[i]);
+        box.high[i] = std::max(a.high[i], b.high[i]);
+    }
+    return box;
 }
 
 TriangleGrid::TriangleGrid(const Box3& bounds, double cell_mm, std::size_t triangle_slots, std::size_t max_cells)

@@ -17,6 +17,21 @@ struct Box3 {
 
 Box3 bounding_box(const TriangleCorners& t, double margin = 0);
 bool boxes_overlap(const Box3& a, const Box3& b);
+/// A box in single precision, rounded outward (it holds the Box3 it was made from): half the memory,
+/// for per-triangle boxes kept for quick rejection.
+struct CompactBox {
+    std::array<float, 3> low{0, 0, 0};
+    std::array<float, 3> high{0, 0, 0};
+};
+CompactBox compact(const Box3& box);
+inline bool boxes_overlap(const Box3& a, const CompactBox& b)
+{
+    for (int i = 0; i < 3; ++i)
+        if (a.high[i] < b.low[i] || b.high[i] < a.low[i]) return false;
+    return true;
+}
+/// The smallest box holding a and b.
+Box3 box_union(const Box3& a, const Box3& b);
 
 class TriangleGrid {
 public:
@@ -29,6 +44,16 @@ public:
     void erase(std::uint32_t t, const Box3& box);
     /// Triangles whose cells overlap `box`, each once, in no particular order (boxes not compared).
     void query(const Box3& box, std::vector<std::uint32_t>& out);
+    /// Calls visit(t) for every triangle of the cells `box` overlaps, repeats included. Reads only.
+    template <class Visit> void visit(const Box3& box, Visit visit) const
+    {
+        const auto low = cell_of(box.low), high = cell_of(box.high);
+        for (std::int64_t k = low[2]; k <= high[2]; ++k)
+            for (std::int64_t j = low[1]; j <= high[1]; ++j)
+                for (std::int64_t i = low[0]; i <= high[0]; ++i)
+                    for (const std::uint32_t t : cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))])
+                        visit(t);
+    }
     double cell_mm() const { return cell_mm_; }
 
 private:

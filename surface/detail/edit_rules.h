@@ -1,0 +1,60 @@
+// Small geometric rules shared by the editor's single edits and its batch moves: index tests on
+// triangles, tilt, and the gap test that keeps thin layers apart.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/interface_complex.h"
+#include "surface/detail/triangle_distance.h"
+
+namespace tissuemesh::surface::detail {
+
+inline bool contains(const Triangle& t, std::uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+inline bool shares_vertex(const Triangle& a, const Triangle& b)
+{
+    return contains(b, a[0]) || contains(b, a[1]) || contains(b, a[2]);
+}
+
+/// Whether a and b use the same three vertices (triangles never repeat a vertex).
+inline bool same_vertex_set(const Triangle& a, const Triangle& b)
+{
+    return contains(b, a[0]) && contains(b, a[1]) && contains(b, a[2]);
+}
+
+inline Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
+
+inline double angle_between_deg(const Vec3& a, const Vec3& b)
+{
+    return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / 3.14159265358979323846;
+}
+
+/// A cheap sufficient test for distance(a, b) > gap: the bounding spheres around the centroids are apart.
+inline bool farther_than(const TriangleCorners& a, const TriangleCorners& b, double gap)
+{
+    const Vec3 ca = (1.0 / 3.0) * (a[0] + a[1] + a[2]), cb = (1.0 / 3.0) * (b[0] + b[1] + b[2]);
+    double ra = 0, rb = 0;
+    for (int k = 0; k < 3; ++k) {
+        ra = std::max(ra, distance(a[k], ca));
+        rb = std::max(rb, distance(b[k], cb));
+    }
+    return distance(ca, cb) - ra - rb > gap;
+}
+
+/// Whether triangle `now` (formerly `before`) comes closer than `gap` to `other` (formerly
+/// `other_before`), vertex to face, where it was not that close before.
+inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before, const TriangleCorners& other,
+                       const TriangleCorners& other_before, double gap)
+{
+    for (int k = 0; k < 3; ++k) {
+        const double d = distance(now[k], closest_point_on_triangle(now[k], other));
+        if (d < gap && d < distance(before[k], closest_point_on_triangle(before[k], other_before)) - 1e-12) return true;
+        const double e = distance(other[k], closest_point_on_triangle(other[k], now));
+        if (e < gap && e < distance(other_before[k], closest_point_on_triangle(other_before[k], before)) - 1e-12)
+            return true;
+    }
+    return false;
+}
+
+} // namespace tissuemesh::surface::detail

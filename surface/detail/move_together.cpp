@@ -1,0 +1,134 @@
+// ComplexEditor::move_together(): many vertex moves checked at once. Checking each move on its own
+// (try_move) costs a grid query and a transaction per vertex; smoothing moves every vertex of the
+// complex per step, so here all moves are made first and each changed triangle is judged once, in
+// parallel, against its neighbours in the grid. Only the offenders are put back and judged again.
+#include <algorithm>
+
+#include "core/error.h"
+#include "surface/detail/cgal_intersections.h"
+#include "surface/detail/complex_editor.h"
+#include "surface/detail/edit_rules.h"
+#include "surface/detail/mesh_measures.h"
+
+namespace tissuemesh::surface::detail {
+namespace {
+
+enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule };
+
+TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t)
+{
+    return {positions[t[0]], positions[t[1]], positions[t[2]]};
+}
+
+} // namespace
+
+std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
+                                        std::vector<std::uint32_t>& nearby, std::vector<std::uint32_t>* partners) const
+{
+    const Triangle& tri = triangles_[t];
+    const TriangleCorners now = corners(t), before = corners_at(start, tri);
+    if (are_collinear(now[0], now[1], now[2])) return shape_rule;
+    const double angle = smallest_angle_deg(now);
+    if (angle < limits_.min_angle_deg && angle < smallest_angle_deg(before) - 1e-9) return shape_rule;
+    if (angle_between_deg(normal_of(now), normal_of(before)) > limits_.max_normal_change_deg) return normal_rule;
+    const double gap = limits_.min_gap_mm;
+    const Box3 box = bounding_box(now, gap), tight = bounding_box(now);
+    // Candidates: boxes overlapping, each once (sorted, so the first rule found does not depend on
+    // the grid's filing order).
+    nearby.clear();
+    grid_.visit(box, [&](std::uint32_t u) {
+        if (boxes_overlap(box, boxes_[u]) && u != t && !(judged[u] && u < t)) nearby.push_back(u);
+    });
+    std::sort(nearby.begin(), nearby.end());
+    nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
+    std::uint8_t found = none;
+    for (const std::uint32_t u : nearby) {
+        const TriangleCorners other = corners(u);
+        const Box3 other_box = bounding_box(other);
+        const Triangle& b = triangles_[u];
+        std::uint8_t broken = none;
+        if (boxes_overlap(tight, other_box) && triangles_intersect(positions_, tri, b)) broken = intersection_rule;
+        else if (gap > 0 && !shares_vertex(tri, b) && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
+                 closes_gap(now, before, other, corners_at(start, b), gap))
+            broken = gap_rule;
+        if (broken == none) continue;
+        if (!partners) return broken;
+        if (found == none) found = broken;
+        partners->push_back(u);
+    }
+    return found;
+}
+
+std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>& vertices,
+                                               const std::vector<Vec3>& targets)
+{
+    if (limits_.tolerate_existing_intersections)
+        throw AlgorithmError("move_together: not available in tolerant mode (use try_move)");
+    const std::vector<Vec3> start = positions_;
+    std::vector<char> moved(positions_.size(), 0), judged(triangles_.size(), 0);
+    std::vector<std::uint32_t> round;  // triangles to judge, ascending
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        if (!vertex_alive(vertices[i])) continue;
+        positions_[vertices[i]] = targets[i];
+        moved[vertices[i]] = 1;
+        round.insert(round.end(), stars_[vertices[i]].begin(), stars_[vertices[i]].end());
+    }
+    std::sort(round.begin(), round.end());
+    round.erase(std::unique(round.begin(), round.end()), round.end());
+    // While judged, a changed triangle is filed under the box of both its old and its new place, so that
+    // a query finds it wherever its vertices are (each is either back at the start or at its target).
+    const std::vector<std::uint32_t> changed = round;
+    std::vector<Box3> swept(changed.size());
+    for (std::size_t i = 0; i < changed.size(); ++i) {
+        const Box3 old_box = bounding_box(corners_at(start, triangles_[changed[i]]));
+        swept[i] = box_union(old_box, bounding_box(corners(changed[i])));
+        grid_.erase(changed[i], old_box);
+        grid_.insert(changed[i], swept[i]);
+        boxes_[changed[i]] = compact(swept[i]);
+    }
+    std::vector<std::uint8_t> verdict;
+    while (!round.empty()) {
+        verdict.assign(round.size(), none);
+        for (const std::uint32_t t : round) judged[t] = 1;
+        const auto count = static_cast<std::int64_t>(round.size());
+#pragma omp parallel
+        {
+            std::vector<std::uint32_t> nearby;
+#pragma omp for schedule(dynamic, 512)
+            for (std::int64_t i = 0; i < count; ++i)
+                verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, nearby, nullptr);
+        }
+        // Sequential, in index order: which vertices go back does not depend on the threads.
+        std::vector<std::uint32_t> back, nearby, partners;
+        for (std::size_t i = 0; i < round.size(); ++i) {
+            if (verdict[i] == none) continue;
+            const std::uint32_t t = round[i];
+            partners.assign(1, t);
+            if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, nearby, &partners);
+            ++(verdict[i] == shape_rule ? counters_.shape
+               : verdict[i] == normal_rule ? counters_.normal
+               : verdict[i] == intersection_rule ? counters_.intersection
+                                                 : counters_.gap);
+            for (const std::uint32_t p : partners)
+                for (const std::uint32_t v : triangles_[p])
+                    if (moved[v]) moved[v] = 0, positions_[v] = start[v], back.push_back(v);
+        }
+        for (const std::uint32_t t : round) judged[t] = 0;
+        round.clear();
+        for (const std::uint32_t v : back) round.insert(round.end(), stars_[v].begin(), stars_[v].end());
+        std::sort(round.begin(), round.end());
+        round.erase(std::unique(round.begin(), round.end()), round.end());
+    }
+    for (std::size_t i = 0; i < changed.size(); ++i) {
+        grid_.erase(changed[i], swept[i]);
+        const Box3 box = bounding_box(corners(changed[i]));
+        grid_.insert(changed[i], box);
+        boxes_[changed[i]] = compact(box);
+    }
+    std::vector<char> result(vertices.size(), 0);
+    for (std::size_t i = 0; i < vertices.size(); ++i) result[i] = moved[vertices[i]];
+    counters_.accepted += static_cast<std::size_t>(std::count(result.begin(), result.end(), 1));
+    return result;
+}
+
+} // namespace tissuemesh::surface::detail
