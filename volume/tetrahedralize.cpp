@@ -180,6 +180,23 @@ TetMesh assemble(const InterfaceComplex& complex, const detail::TetgenOutput& ou
     return mesh;
 }
 
+/// TetGen keeps every interface triangle with -Y, and then sometimes leaves a flat tet between nearly
+/// coplanar interface triangles, whose tissue the interfaces around it cannot settle: a mesh with tissues
+/// touching across unmarked faces. Such a mesh is refused here rather than written (outputs are valid or absent).
+void require_fit_for_fem(const TetMesh& mesh)
+{
+    const MeshCheckReport check = check_mesh(mesh);
+    if (check.ok()) return;
+    std::string what;
+    for (std::size_t i = 0, shown = 0; i < check.problems.size() && shown < 2; ++i) {
+        if (i > 0 && check.problems[i] == check.problems[i - 1]) continue;
+        what += (shown++ > 0 ? "; " : "") + check.problems[i];
+    }
+    throw AlgorithmError(concat("TetGen's mesh of this surface fails the mesh check (", what, "); remesh the surface with "
+                                "shorter edges where the interfaces come close (tm-remesh), or let TetGen split interface "
+                                "triangles (tm-tetra --allow-steiner)"));
+}
+
 } // namespace
 
 TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOptions& options, const Progress& progress,
@@ -209,6 +226,7 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     progress.update("tetra", 0.8);
     const std::vector<Label> labels = label_tets(complex, out);
     TetMesh mesh = assemble(complex, out, labels, options.mesh_background_cavities);
+    require_fit_for_fem(mesh);
     progress.update("tetra", 1.0);
 
     if (report != nullptr) {

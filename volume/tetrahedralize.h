@@ -47,9 +47,11 @@ struct TetrahedralizeReport {
 /// face (faces know their two tissues and their orientation), and labels spread across the other faces.
 /// Tets outside the outermost surfaces (the background around the object) are not meshed.
 /// @pre  `complex` is fit for tetrahedralization (surface::check_complex(complex).ok())
-/// @post every tet positively oriented; faces/face_sides hold the interface and boundary faces
+/// @post every tet positively oriented; faces/face_sides hold the interface and boundary faces; the mesh
+///       passes check_mesh() (conforming, interfaces present and rightly labelled, no tissues touching elsewhere)
 /// @throws InputError when the complex is not fit (names the first defect, tissues and place)
-/// @throws AlgorithmError when TetGen fails (its diagnosis, the place in mm when known, and a hint)
+/// @throws AlgorithmError when TetGen fails or crashes (its diagnosis, the place in mm when known, and a hint),
+///         or when its mesh fails check_mesh() (the first problems and a hint)
 TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOptions& options = {},
                        const Progress& progress = {}, TetrahedralizeReport* report = nullptr);
 
