@@ -103,12 +103,14 @@ private:
     template <typename T>
     void put(const T* values, std::uint64_t count)
     {
+        if (count == 0) return;  // TetGen leaves the lists it did not fill null
         text_.append(reinterpret_cast<const char*>(values), count * sizeof(T));
     }
     template <typename T>
     void get(T* values, std::uint64_t count)
     {
         const std::uint64_t size = count * sizeof(T);
+        if (size == 0) return;
         if (size > text_.size() - offset_) throw AlgorithmError("TetGen's result came back incomplete from its process");
         std::memcpy(values, text_.data() + offset_, size);
         offset_ += size;
