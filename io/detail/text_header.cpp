@@ -112,6 +112,15 @@ std::uint64_t meta_image_bound(const fs::path& path)
     if (!header.fields.count("elementdatafile") || !header.fields.count("dimsize"))
         throw IoError(concat(path.string(), ": not a MetaImage file (wrong magic: no DimSize or "
                              "ElementDataFile line); check that the file is not renamed or damaged"));
+    // MetaIO reads NDims values per field with an unsigned count: "NDims = -1" has it reading 2^32 numbers.
+    const auto ndims = header.fields.find("ndims");
+    if (ndims != header.fields.end()) {
+        char* end = nullptr;
+        const long dimensions = std::strtol(ndims->second.c_str(), &end, 10);
+        if (end == ndims->second.c_str() || *end != '\0' || dimensions < 1 || dimensions > 4)
+            throw IoError(concat(path.string(), ": NDims is '", ndims->second.substr(0, 20),
+                                 "', not a dimension count of 1 to 4; the header is damaged. Export the image again"));
+    }
     const std::string data_file = header.fields.at("elementdatafile");
     std::uint64_t stored = 0;
     if (data_file == "LOCAL") {

@@ -42,5 +42,17 @@ TEST(FuzzRegressions, MetaimageKeyWithoutEqualsHangs)
     }
 }
 
+// fuzz_metaimage: "NDims = -1 - 0 0 1" made MetaIO read 2^32 numbers per field (its count is unsigned): a hang.
+TEST(FuzzRegressions, MetaimageNegativeNdimsHangs)
+{
+    try {
+        (void)io::read_label_image(regression("metaimage-negative-ndims-hangs.mha"));
+        FAIL() << "read a header with NDims -1";
+    } catch (const IoError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("metaimage-negative-ndims-hangs.mha: NDims is '-1 - 0 0 1'"), std::string::npos) << message;
+    }
+}
+
 } // namespace
 } // namespace tissuemesh
