@@ -88,8 +88,7 @@ int wait_for(pid_t child)
     return status;
 }
 
-} // namespace
-
+/// The last `count` non-empty lines of `text`, trimmed and joined by " / ".
 std::string last_lines(const std::string& text, int count)
 {
     std::vector<std::string> lines;
@@ -101,6 +100,8 @@ std::string last_lines(const std::string& text, int count)
     for (std::size_t i = first; i < lines.size(); ++i) joined += (joined.empty() ? "" : " / ") + lines[i];
     return joined;
 }
+
+} // namespace
 
 IsolatedResult run_isolated(const std::string& what, const std::function<std::string()>& work)
 {

@@ -22,7 +22,4 @@ struct IsolatedResult {
 /// @throws IoError when the temporary files or the child process cannot be made
 IsolatedResult run_isolated(const std::string& what, const std::function<std::string()>& work);
 
-/// The last `count` non-empty lines of `text`, trimmed and joined by " / ".
-std::string last_lines(const std::string& text, int count);
-
 } // namespace tissuemesh::volume::detail
