@@ -6,6 +6,9 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
+
+#include <zlib.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -87,6 +90,34 @@ std::uint64_t data_file_size(const fs::path& header_path, const std::string& dat
     return fs::file_size(data, ec);
 }
 
+/// Whether `bytes` bytes of `file` from `offset` hold one whole zlib stream: inflated through a small
+/// scratch buffer (nothing kept). MetaIO's own inflate loop never ends on a stream that asks for a preset
+/// dictionary or breaks off, so the stream is proven whole before MetaIO sees it.
+bool whole_zlib_stream(const fs::path& file, std::uint64_t offset, std::uint64_t bytes)
+{
+    std::ifstream in(file, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(offset));
+    z_stream stream{};
+    if (inflateInit(&stream) != Z_OK) return false;
+    std::vector<unsigned char> input(1 << 16), output(1 << 16);
+    int status = Z_OK;
+    while (status == Z_OK && bytes > 0 && in) {
+        in.read(reinterpret_cast<char*>(input.data()), static_cast<std::streamsize>(std::min<std::uint64_t>(bytes, input.size())));
+        const auto got = static_cast<std::uint64_t>(in.gcount());
+        if (got == 0) break;
+        bytes -= got;
+        stream.next_in = input.data();
+        stream.avail_in = static_cast<uInt>(got);
+        do {
+            stream.next_out = output.data();
+            stream.avail_out = static_cast<uInt>(output.size());
+            status = inflate(&stream, Z_NO_FLUSH);
+        } while (status == Z_OK && stream.avail_in > 0);
+    }
+    inflateEnd(&stream);
+    return status == Z_STREAM_END;
+}
+
 std::uint64_t nrrd_bound(const fs::path& path)
 {
     const TextHeader header = parse_header(path, true);
@@ -123,7 +154,8 @@ std::uint64_t meta_image_bound(const fs::path& path)
     }
     const std::string data_file = header.fields.at("elementdatafile");
     std::uint64_t stored = 0;
-    if (data_file == "LOCAL") {
+    const bool local = data_file == "LOCAL";
+    if (local) {
         const auto size = fs::file_size(path);
         stored = size > header.header_bytes ? size - header.header_bytes : 0;
     } else {
@@ -139,7 +171,11 @@ std::uint64_t meta_image_bound(const fs::path& path)
             throw IoError(concat(path.string(), ": truncated, the header announces ", expected,
                                  " bytes of compressed voxel data but the file holds ", stored,
                                  "; the file is incomplete. Copy or export it again"));
+        stored = expected;
     }
+    if (!whole_zlib_stream(local ? path : path.parent_path() / data_file, local ? header.header_bytes : 0, stored))
+        throw IoError(concat(path.string(), ": its compressed voxel data is not one whole zlib stream (broken off, "
+                             "damaged or needing a preset dictionary); the file is damaged. Export the image again"));
     return stored * deflate_ratio;
 }
 

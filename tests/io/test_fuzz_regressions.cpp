@@ -49,5 +49,13 @@ TEST(FuzzRegressions, MetaimageNegativeNdimsHangs)
     expect_refused<IoError>("metaimage-negative-ndims-hangs.mha", "metaimage-negative-ndims-hangs.mha: NDims is '-1 - 0 0 1'");
 }
 
+// fuzz_metaimage: compressed voxel data whose zlib header asks for a preset dictionary made MetaIO's inflate
+// loop spin forever (zlib answers Z_NEED_DICT, which MetaIO neither handles nor treats as an error).
+TEST(FuzzRegressions, MetaimageZlibPresetDictionaryHangs)
+{
+    expect_refused<IoError>("metaimage-zlib-preset-dictionary-hangs.mha",
+                            "metaimage-zlib-preset-dictionary-hangs.mha: its compressed voxel data is not one whole zlib stream");
+}
+
 } // namespace
 } // namespace tissuemesh
