@@ -75,12 +75,32 @@ Vec3 tet_centroid(const detail::TetgenOutput& out, int t)
     return 0.25 * sum;
 }
 
+std::string place(const Vec3& where)
+{
+    return concat("(", format_mm(where[0], 1), ", ", format_mm(where[1], 1), ", ", format_mm(where[2], 1), ") mm");
+}
+
 /// The local face index (opposite vertex i) of tet t that has the three given vertices.
 int local_face(const std::array<int, 4>& tet, const std::array<int, 3>& face)
 {
     for (int i = 0; i < 4; ++i)
         if (std::find(face.begin(), face.end(), tet[i]) == face.end()) return i;
     return -1;
+}
+
+/// The tissue of tet t on its face `local` that lies on input triangle `source`: the side of the
+/// triangle's plane its opposite vertex is on, decided exactly. (A centroid tested in doubles picks the
+/// wrong side of nearly flat tets, which TetGen makes between close interfaces.)
+Label tissue_on_side(const InterfaceComplex& complex, std::size_t source, const detail::TetgenOutput& out, int t, int local)
+{
+    const Triangle& tri = complex.triangles[source];
+    const int side = detail::exact_side(complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]],
+                                        point(out.points, out.tets[t][local]));
+    if (side == 0)
+        throw AlgorithmError(concat("TetGen made a tetrahedron without volume near ", place(tet_centroid(out, t)),
+                                    " on the interface ", complex.sides[source].from, "|", complex.sides[source].to,
+                                    " (input triangle ", source, "); please report this input"));
+    return side > 0 ? complex.sides[source].to : complex.sides[source].from;
 }
 
 /// Labels every tet: tets on interface faces take the tissue on their side, the rest by flooding.
@@ -98,8 +118,6 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
             throw AlgorithmError(concat("TetGen returned a boundary face without its input triangle (marker ", marker,
                                         "); please report this input"));
         const std::size_t source = static_cast<std::size_t>(marker - 1);
-        const Vec3 normal = triangle_normal(complex, source);
-        const Vec3 anchor = complex.vertices[complex.triangles[source][0]];
         const auto found = tets_of_face.find(detail::face_key(static_cast<std::uint32_t>(out.faces[f][0]),
                                                                static_cast<std::uint32_t>(out.faces[f][1]),
                                                                static_cast<std::uint32_t>(out.faces[f][2])));
@@ -108,16 +126,14 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
         for (const std::int64_t tet_index : found->second.tets) {
             if (tet_index < 0) continue;
             const int t = static_cast<int>(tet_index);
-            interface_mask[t] |= static_cast<std::uint8_t>(1u << local_face(out.tets[t], out.faces[f]));
-            const Label side = dot(tet_centroid(out, t) - anchor, normal) > 0 ? complex.sides[source].to
-                                                                              : complex.sides[source].from;
-            if (labels[t] != unlabelled && labels[t] != side) {
-                const Vec3 where = tet_centroid(out, t);
-                throw AlgorithmError(concat("a tetrahedron near (", format_mm(where[0], 1), ", ", format_mm(where[1], 1), ", ",
-                                            format_mm(where[2], 1), ") mm lies between interfaces that disagree on its "
-                                            "tissue (", complex.sides[source].from, "|", complex.sides[source].to,
-                                            "); the surface orientation is inconsistent: run tm-check-surface"));
-            }
+            const int local = local_face(out.tets[t], out.faces[f]);
+            interface_mask[t] |= static_cast<std::uint8_t>(1u << local);
+            const Label side = tissue_on_side(complex, source, out, t, local);
+            if (labels[t] != unlabelled && labels[t] != side)
+                throw AlgorithmError(concat("a tetrahedron near ", place(tet_centroid(out, t)), " lies between interfaces that "
+                                            "disagree on its tissue (", labels[t], " from one face, ", side, " from interface ",
+                                            complex.sides[source].from, "|", complex.sides[source].to, "); the surface "
+                                            "orientation is inconsistent: run tm-check-surface"));
             if (labels[t] == unlabelled) queue.push_back(t);
             labels[t] = side;
         }
@@ -164,7 +180,10 @@ TetMesh assemble(const InterfaceComplex& complex, const detail::TetgenOutput& ou
         Tet tet{use(out.tets[t][0]), use(out.tets[t][1]), use(out.tets[t][2]), use(out.tets[t][3])};
         mesh.tets.push_back(tet);
         mesh.tet_labels.push_back(labels[t]);
-        if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+        // The exact sign: a nearly flat tet whose volume rounds to the wrong sign would come out inverted.
+        const auto& p = out.tets[t];
+        if (detail::exact_side(point(out.points, p[0]), point(out.points, p[1]), point(out.points, p[2]), point(out.points, p[3])) < 0)
+            std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
     }
     for (std::size_t f = 0; f < out.faces.size(); ++f) {
         const std::size_t source = static_cast<std::size_t>(out.face_markers[f] - 1);

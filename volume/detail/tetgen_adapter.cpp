@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <mutex>
 
 #include <tetgen.h>
 
@@ -123,6 +124,19 @@ private:
 static_assert(sizeof(std::array<int, 4>) == 4 * sizeof(int) && sizeof(std::array<int, 3>) == 3 * sizeof(int));
 
 } // namespace
+
+int exact_side(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+               const std::array<double, 3>& d)
+{
+    // The predicates need their rounding constants once; their static filter (sized by the bounding box,
+    // which this function does not know) stays off, the adaptive stages keep them exact.
+    static std::once_flag once;
+    std::call_once(once, [] { exactinit(0, 0, 1, 1.0, 1.0, 1.0); });
+    std::array<double, 3> pa = a, pb = b, pc = c, pd = d;
+    // Shewchuk's orient3d is positive when d lies below the plane of a counter-clockwise (a, b, c).
+    const double orientation = orient3d(pa.data(), pb.data(), pc.data(), pd.data());
+    return orientation < 0 ? 1 : orientation > 0 ? -1 : 0;
+}
 
 TetgenOutput run_tetgen(const TetgenInput& input)
 {

@@ -29,6 +29,12 @@ struct TetgenOutput {
     std::vector<int> face_markers;               ///< input triangle index + 1
 };
 
+/// The exact sign of dot(d - a, cross(b - a, c - a)), by TetGen's robust orient3d: +1 when d lies on the
+/// side the right-hand normal of (a, b, c) points to, -1 on the other side, 0 when the four are coplanar.
+/// Exact where the same expression in doubles is not: for nearly flat tets its rounding can flip the sign.
+int exact_side(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+               const std::array<double, 3>& d);
+
 /// Runs TetGen in a child process (see isolated_call.h). TetGen's own printing is captured, not shown.
 /// @throws AlgorithmError with TetGen's diagnosis (its error code explained, its last message lines),
 ///         also when TetGen crashed or aborted on an assertion
