@@ -76,36 +76,55 @@ std::vector<ElementMatrix> element_matrices(const TetMesh& mesh, const Conductiv
     return matrices;
 }
 
-// Sorted distinct nodes of the tets around `node` (the columns of its row) into `columns`.
-void row_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, std::vector<int>& columns)
+// Per-thread scratch of the row loops. `slot[v]` is the position of column v in the current row, -1 when
+// v is not in it: a mark array instead of sorting the 4 x (tets around the node) repeated nodes of a row
+// (about 100 for ~15 distinct columns), which made the row loops the bulk of the assembly time.
+struct RowScratch {
+    explicit RowScratch(std::size_t nodes) : slot(nodes, -1) {}
+    std::vector<int> slot;
+    std::vector<int> columns;
+};
+
+// The distinct nodes of the tets around `node` (the columns of its row) into `scratch.columns`, unsorted;
+// their slots are left marked (0) until release_columns().
+void gather_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, RowScratch& scratch)
 {
-    columns.clear();
+    scratch.columns.clear();
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i)
-        for (std::uint32_t v : mesh.tets[incidence.tets[i]]) columns.push_back(static_cast<int>(v));
-    std::sort(columns.begin(), columns.end());
-    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+        for (std::uint32_t v : mesh.tets[incidence.tets[i]])
+            if (scratch.slot[v] < 0) {
+                scratch.slot[v] = 0;
+                scratch.columns.push_back(static_cast<int>(v));
+            }
 }
 
-// Row `node` of K: its columns, then the sum of its tets' element rows in increasing tet order (so the
-// bytes do not depend on how rows are shared among threads).
-void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
-              std::size_t node, SparseMatrix& matrix, std::vector<int>& columns)
+void release_columns(RowScratch& scratch)
 {
-    row_columns(mesh, incidence, node, columns);
+    for (int column : scratch.columns) scratch.slot[static_cast<std::size_t>(column)] = -1;
+}
+
+// Row `node` of K: its sorted columns, then the sum of its tets' element rows in increasing tet order (so
+// the bytes do not depend on how rows are shared among threads).
+void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
+              std::size_t node, SparseMatrix& matrix, RowScratch& scratch)
+{
+    gather_columns(mesh, incidence, node, scratch);
+    std::sort(scratch.columns.begin(), scratch.columns.end());
     const auto begin = static_cast<std::size_t>(matrix.outerIndexPtr()[node]);
     int* inner = matrix.innerIndexPtr() + begin;
     double* values = matrix.valuePtr() + begin;
-    std::copy(columns.begin(), columns.end(), inner);
-    std::fill(values, values + columns.size(), 0.0);
+    for (std::size_t k = 0; k < scratch.columns.size(); ++k) {
+        inner[k] = scratch.columns[k];
+        values[k] = 0.0;
+        scratch.slot[static_cast<std::size_t>(scratch.columns[k])] = static_cast<int>(k);
+    }
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i) {
         const std::uint32_t t = incidence.tets[i];
         const Tet& tet = mesh.tets[t];
         const int local = static_cast<int>(std::find(tet.begin(), tet.end(), node) - tet.begin());
-        for (int j = 0; j < 4; ++j) {
-            const auto at = std::lower_bound(inner, inner + columns.size(), static_cast<int>(tet[j])) - inner;
-            values[at] += elements[t][packed(local, j)];
-        }
+        for (int j = 0; j < 4; ++j) values[scratch.slot[tet[j]]] += elements[t][packed(local, j)];
     }
+    release_columns(scratch);
 }
 
 } // namespace
@@ -120,11 +139,12 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);
 #pragma omp parallel
     {
-        std::vector<int> columns;
+        RowScratch scratch(static_cast<std::size_t>(n));
 #pragma omp for schedule(static)
         for (std::int64_t v = 0; v < n; ++v) {
-            row_columns(mesh, incidence, static_cast<std::size_t>(v), columns);
-            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(columns.size());
+            gather_columns(mesh, incidence, static_cast<std::size_t>(v), scratch);
+            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(scratch.columns.size());
+            release_columns(scratch);
         }
     }
     for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
@@ -135,9 +155,9 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v) matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
 #pragma omp parallel
     {
-        std::vector<int> columns;
+        RowScratch scratch(static_cast<std::size_t>(n));
 #pragma omp for schedule(static)
-        for (std::int64_t v = 0; v < n; ++v) fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, columns);
+        for (std::int64_t v = 0; v < n; ++v) fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, scratch);
     }
     return matrix;
 }
