@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include <omp.h>
+
 #include "core/error.h"
 #include "fem/detail/incidence.h"
 
@@ -103,20 +105,18 @@ void release_columns(RowScratch& scratch)
     for (int column : scratch.columns) scratch.slot[static_cast<std::size_t>(column)] = -1;
 }
 
-// Row `node` of K: its sorted columns, then the sum of its tets' element rows in increasing tet order (so
-// the bytes do not depend on how rows are shared among threads).
+// Row `node` of K, whose sorted columns are already in `matrix`: the sum of its tets' element rows in
+// increasing tet order (so the bytes do not depend on how rows are shared among threads).
 void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
               std::size_t node, SparseMatrix& matrix, RowScratch& scratch)
 {
-    gather_columns(mesh, incidence, node, scratch);
-    std::sort(scratch.columns.begin(), scratch.columns.end());
     const auto begin = static_cast<std::size_t>(matrix.outerIndexPtr()[node]);
-    int* inner = matrix.innerIndexPtr() + begin;
+    const auto size = static_cast<std::size_t>(matrix.outerIndexPtr()[node + 1]) - begin;
+    const int* inner = matrix.innerIndexPtr() + begin;
     double* values = matrix.valuePtr() + begin;
-    for (std::size_t k = 0; k < scratch.columns.size(); ++k) {
-        inner[k] = scratch.columns[k];
+    for (std::size_t k = 0; k < size; ++k) {
         values[k] = 0.0;
-        scratch.slot[static_cast<std::size_t>(scratch.columns[k])] = static_cast<int>(k);
+        scratch.slot[static_cast<std::size_t>(inner[k])] = static_cast<int>(k);
     }
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i) {
         const std::uint32_t t = incidence.tets[i];
@@ -124,7 +124,7 @@ void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std:
         const int local = static_cast<int>(std::find(tet.begin(), tet.end(), node) - tet.begin());
         for (int j = 0; j < 4; ++j) values[scratch.slot[tet[j]]] += elements[t][packed(local, j)];
     }
-    release_columns(scratch);
+    for (std::size_t k = 0; k < size; ++k) scratch.slot[static_cast<std::size_t>(inner[k])] = -1;
 }
 
 } // namespace
@@ -137,28 +137,44 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     const auto n = static_cast<std::int64_t>(mesh.vertex_count());
     SparseMatrix matrix(static_cast<int>(n), static_cast<int>(n));
     std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);
+    bool too_large = false;
+    // Each thread gathers the sorted columns of one contiguous block of rows once, keeps them until the
+    // row offsets are known, copies them in and then sums its rows.
 #pragma omp parallel
     {
+        const auto threads = static_cast<std::int64_t>(omp_get_num_threads());
+        const auto thread = static_cast<std::int64_t>(omp_get_thread_num());
+        const std::int64_t first = n * thread / threads, last = n * (thread + 1) / threads;
         RowScratch scratch(static_cast<std::size_t>(n));
-#pragma omp for schedule(static)
-        for (std::int64_t v = 0; v < n; ++v) {
+        std::vector<int> block_columns;
+        for (std::int64_t v = first; v < last; ++v) {
             gather_columns(mesh, incidence, static_cast<std::size_t>(v), scratch);
+            std::sort(scratch.columns.begin(), scratch.columns.end());
+            block_columns.insert(block_columns.end(), scratch.columns.begin(), scratch.columns.end());
             row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(scratch.columns.size());
             release_columns(scratch);
         }
+#pragma omp barrier
+#pragma omp single
+        {
+            for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
+            too_large = row_start.back() > std::numeric_limits<int>::max();
+            if (!too_large) {
+                matrix.resizeNonZeros(static_cast<Eigen::Index>(row_start.back()));
+                for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v)
+                    matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
+            }
+        }
+        if (!too_large) {
+            std::copy(block_columns.begin(), block_columns.end(),
+                      matrix.innerIndexPtr() + row_start[static_cast<std::size_t>(first)]);
+            for (std::int64_t v = first; v < last; ++v)
+                fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, scratch);
+        }
     }
-    for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
-    if (row_start.back() > std::numeric_limits<int>::max())
+    if (too_large)
         throw InputError(concat("mesh: ", row_start.back(), " matrix entries exceed the 32-bit index range; split the ",
                                 "mesh or coarsen it"));
-    matrix.resizeNonZeros(static_cast<Eigen::Index>(row_start.back()));
-    for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v) matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
-#pragma omp parallel
-    {
-        RowScratch scratch(static_cast<std::size_t>(n));
-#pragma omp for schedule(static)
-        for (std::int64_t v = 0; v < n; ++v) fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, scratch);
-    }
     return matrix;
 }
 
