@@ -10,33 +10,15 @@ namespace tissuemesh::fem::detail {
 NodeTets node_tets(const TetMesh& mesh)
 {
     NodeTets incidence;
-    const std::size_t nodes = mesh.vertex_count();
-    const auto tets = static_cast<std::int64_t>(mesh.tet_count());
-    incidence.offsets.assign(nodes + 1, 0);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t t = 0; t < tets; ++t)
-        for (std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)]) {
-#pragma omp atomic
-            ++incidence.offsets[v + 1];
-        }
-    for (std::size_t v = 0; v < nodes; ++v) incidence.offsets[v + 1] += incidence.offsets[v];
+    incidence.offsets.assign(mesh.vertex_count() + 1, 0);
+    for (const Tet& tet : mesh.tets)
+        for (std::uint32_t v : tet) ++incidence.offsets[v + 1];
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) incidence.offsets[v + 1] += incidence.offsets[v];
     incidence.tets.resize(incidence.offsets.back());
-    // Parallel filling leaves a node's tets in any order; sorting each short list restores the increasing
-    // order (the same for any thread count).
+    // Filling in tet order leaves every node's list sorted.
     std::vector<std::size_t> next(incidence.offsets.begin(), incidence.offsets.end() - 1);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t t = 0; t < tets; ++t)
-        for (std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)]) {
-            std::size_t at = 0;
-#pragma omp atomic capture
-            at = next[v]++;
-            incidence.tets[at] = static_cast<std::uint32_t>(t);
-        }
-    const auto count = static_cast<std::int64_t>(nodes);
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (std::int64_t v = 0; v < count; ++v)
-        std::sort(incidence.tets.begin() + static_cast<std::ptrdiff_t>(incidence.offsets[static_cast<std::size_t>(v)]),
-                  incidence.tets.begin() + static_cast<std::ptrdiff_t>(incidence.offsets[static_cast<std::size_t>(v) + 1]));
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
+        for (std::uint32_t v : mesh.tets[t]) incidence.tets[next[v]++] = static_cast<std::uint32_t>(t);
     return incidence;
 }
 
