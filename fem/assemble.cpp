@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include <omp.h>
+
 #include "core/error.h"
 #include "fem/detail/incidence.h"
 
@@ -76,36 +78,53 @@ std::vector<ElementMatrix> element_matrices(const TetMesh& mesh, const Conductiv
     return matrices;
 }
 
-// Sorted distinct nodes of the tets around `node` (the columns of its row) into `columns`.
-void row_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, std::vector<int>& columns)
+// Per-thread scratch of the row loops. `slot[v]` is the position of column v in the current row, -1 when
+// v is not in it: a mark array instead of sorting the 4 x (tets around the node) repeated nodes of a row
+// (about 100 for ~15 distinct columns), which made the row loops the bulk of the assembly time.
+struct RowScratch {
+    explicit RowScratch(std::size_t nodes) : slot(nodes, -1) {}
+    std::vector<int> slot;
+    std::vector<int> columns;
+};
+
+// The distinct nodes of the tets around `node` (the columns of its row) into `scratch.columns`, unsorted;
+// their slots are left marked (0) until release_columns().
+void gather_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, RowScratch& scratch)
 {
-    columns.clear();
+    scratch.columns.clear();
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i)
-        for (std::uint32_t v : mesh.tets[incidence.tets[i]]) columns.push_back(static_cast<int>(v));
-    std::sort(columns.begin(), columns.end());
-    columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+        for (std::uint32_t v : mesh.tets[incidence.tets[i]])
+            if (scratch.slot[v] < 0) {
+                scratch.slot[v] = 0;
+                scratch.columns.push_back(static_cast<int>(v));
+            }
 }
 
-// Row `node` of K: its columns, then the sum of its tets' element rows in increasing tet order (so the
-// bytes do not depend on how rows are shared among threads).
-void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
-              std::size_t node, SparseMatrix& matrix, std::vector<int>& columns)
+void release_columns(RowScratch& scratch)
 {
-    row_columns(mesh, incidence, node, columns);
+    for (int column : scratch.columns) scratch.slot[static_cast<std::size_t>(column)] = -1;
+}
+
+// Row `node` of K, whose sorted columns are already in `matrix`: the sum of its tets' element rows in
+// increasing tet order (so the bytes do not depend on how rows are shared among threads).
+void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
+              std::size_t node, SparseMatrix& matrix, RowScratch& scratch)
+{
     const auto begin = static_cast<std::size_t>(matrix.outerIndexPtr()[node]);
-    int* inner = matrix.innerIndexPtr() + begin;
+    const auto size = static_cast<std::size_t>(matrix.outerIndexPtr()[node + 1]) - begin;
+    const int* inner = matrix.innerIndexPtr() + begin;
     double* values = matrix.valuePtr() + begin;
-    std::copy(columns.begin(), columns.end(), inner);
-    std::fill(values, values + columns.size(), 0.0);
+    for (std::size_t k = 0; k < size; ++k) {
+        values[k] = 0.0;
+        scratch.slot[static_cast<std::size_t>(inner[k])] = static_cast<int>(k);
+    }
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i) {
         const std::uint32_t t = incidence.tets[i];
         const Tet& tet = mesh.tets[t];
         const int local = static_cast<int>(std::find(tet.begin(), tet.end(), node) - tet.begin());
-        for (int j = 0; j < 4; ++j) {
-            const auto at = std::lower_bound(inner, inner + columns.size(), static_cast<int>(tet[j])) - inner;
-            values[at] += elements[t][packed(local, j)];
-        }
+        for (int j = 0; j < 4; ++j) values[scratch.slot[tet[j]]] += elements[t][packed(local, j)];
     }
+    for (std::size_t k = 0; k < size; ++k) scratch.slot[static_cast<std::size_t>(inner[k])] = -1;
 }
 
 } // namespace
@@ -118,27 +137,44 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     const auto n = static_cast<std::int64_t>(mesh.vertex_count());
     SparseMatrix matrix(static_cast<int>(n), static_cast<int>(n));
     std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);
+    bool too_large = false;
+    // Each thread gathers the sorted columns of one contiguous block of rows once, keeps them until the
+    // row offsets are known, copies them in and then sums its rows.
 #pragma omp parallel
     {
-        std::vector<int> columns;
-#pragma omp for schedule(static)
-        for (std::int64_t v = 0; v < n; ++v) {
-            row_columns(mesh, incidence, static_cast<std::size_t>(v), columns);
-            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(columns.size());
+        const auto threads = static_cast<std::int64_t>(omp_get_num_threads());
+        const auto thread = static_cast<std::int64_t>(omp_get_thread_num());
+        const std::int64_t first = n * thread / threads, last = n * (thread + 1) / threads;
+        RowScratch scratch(static_cast<std::size_t>(n));
+        std::vector<int> block_columns;
+        for (std::int64_t v = first; v < last; ++v) {
+            gather_columns(mesh, incidence, static_cast<std::size_t>(v), scratch);
+            std::sort(scratch.columns.begin(), scratch.columns.end());
+            block_columns.insert(block_columns.end(), scratch.columns.begin(), scratch.columns.end());
+            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(scratch.columns.size());
+            release_columns(scratch);
+        }
+#pragma omp barrier
+#pragma omp single
+        {
+            for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
+            too_large = row_start.back() > std::numeric_limits<int>::max();
+            if (!too_large) {
+                matrix.resizeNonZeros(static_cast<Eigen::Index>(row_start.back()));
+                for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v)
+                    matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
+            }
+        }
+        if (!too_large) {
+            std::copy(block_columns.begin(), block_columns.end(),
+                      matrix.innerIndexPtr() + row_start[static_cast<std::size_t>(first)]);
+            for (std::int64_t v = first; v < last; ++v)
+                fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, scratch);
         }
     }
-    for (std::size_t v = 0; v < static_cast<std::size_t>(n); ++v) row_start[v + 1] += row_start[v];
-    if (row_start.back() > std::numeric_limits<int>::max())
+    if (too_large)
         throw InputError(concat("mesh: ", row_start.back(), " matrix entries exceed the 32-bit index range; split the ",
                                 "mesh or coarsen it"));
-    matrix.resizeNonZeros(static_cast<Eigen::Index>(row_start.back()));
-    for (std::size_t v = 0; v <= static_cast<std::size_t>(n); ++v) matrix.outerIndexPtr()[v] = static_cast<int>(row_start[v]);
-#pragma omp parallel
-    {
-        std::vector<int> columns;
-#pragma omp for schedule(static)
-        for (std::int64_t v = 0; v < n; ++v) fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, columns);
-    }
     return matrix;
 }
 
