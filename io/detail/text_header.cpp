@@ -69,6 +69,13 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
             throw IoError(concat(path.string(), ": header line ", line_number, " (\"", text.substr(0, 40),
                                  "\") is not \"Key = Value\"; the header is damaged. Export the image again"));
         if (colon == std::string::npos || (nrrd && text.compare(colon, 2, ":=") == 0)) continue;
+        // MetaIO copies a key into a 255-byte field name unchecked (a longer one overruns it); real keys
+        // are single words like "ElementSpacing".
+        constexpr std::size_t max_key = 64;
+        if (!nrrd && trim(text.substr(0, colon)).size() > max_key)
+            throw IoError(concat(path.string(), ": header line ", line_number, " has a key of ",
+                                 trim(text.substr(0, colon)).size(), " characters (at most ", max_key,
+                                 " in a MetaImage header); the header is damaged. Export the image again"));
         const std::string key = normal_key(text.substr(0, colon));
         header.fields[key] = trim(text.substr(colon + 1));
         if (!nrrd && key == "elementdatafile") break;

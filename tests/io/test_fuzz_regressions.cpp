@@ -57,5 +57,11 @@ TEST(FuzzRegressions, MetaimageZlibPresetDictionaryHangs)
                             "metaimage-zlib-preset-dictionary-hangs.mha: its compressed voxel data is not one whole zlib stream");
 }
 
+// fuzz_metaimage: a header key of hundreds of bytes overran MetaIO's 255-byte field name (strcpy): an abort.
+TEST(FuzzRegressions, MetaimageLongKeyOverflows)
+{
+    expect_refused<IoError>("metaimage-long-key-overflows.mha", "metaimage-long-key-overflows.mha: header line 15 has a key of 345 characters");
+}
+
 } // namespace
 } // namespace tissuemesh
