@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
 #include "surface/detail/mesh_measures.h"
+#include "surface/detail/label_field.h"
 #include "surface/detail/voxel_evidence.h"
 
 namespace tissuemesh::surface {
@@ -24,6 +25,8 @@ void validate(const SmoothOptions& options)
         throw InputError(concat("smooth: max depth ", options.max_depth_voxels, " voxels is outside (0, 1]"));
     if (!(options.min_gap_voxels >= 0 && options.min_gap_voxels < 1))
         throw InputError(concat("smooth: min gap ", options.min_gap_voxels, " voxels is outside [0, 1)"));
+    if (!(options.fit_sigma_voxels > 0 && options.fit_sigma_voxels <= 1))
+        throw InputError(concat("smooth: fit sigma ", options.fit_sigma_voxels, " voxels is outside (0, 1]"));
 }
 
 /// The vertices each vertex is smoothed towards (its neighbours; its two curve neighbours on a junction
@@ -90,31 +93,12 @@ std::optional<Vec3> allowed_target(const Vec3& p, const Vec3& shift, const detai
     return std::nullopt;
 }
 
-/// One Taubin pair: the lambda and the mu Jacobi step computed together, then only the net move of each
-/// vertex is held to the image and checked (the intermediate, shrunk surface is never kept, so it need
-/// not be valid): all moves are made at once by the editor, which puts back the ones that would break
-/// the complex; those are tried once more at half length.
-void step_pair(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvidence& evidence,
-               const std::vector<std::vector<Label>>& tissues, const SmoothOptions& options, SmoothReport& report)
+/// Moves `vertices` to `targets` all at once; the editor puts back those that would break the complex,
+/// which are tried once more at half length (where the image allows). Returns the moves made.
+std::size_t move_checked(ComplexEditor& editor, const detail::VoxelEvidence& evidence,
+                         const std::vector<std::vector<Label>>& tissues, const std::vector<std::uint32_t>& vertices,
+                         const std::vector<Vec3>& targets, SmoothReport& report)
 {
-    const std::vector<Vec3>& now = editor.positions();
-    const std::vector<Vec3> after = jacobi_step(editor, rings, jacobi_step(editor, rings, now, options.lambda), options.mu);
-    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
-    std::vector<std::optional<Vec3>> target(editor.vertex_slots());
-    std::vector<char> refused(editor.vertex_slots(), 0);
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (std::int64_t i = 0; i < slots; ++i) {
-        const auto v = static_cast<std::uint32_t>(i);
-        const Vec3 shift = after[v] - now[v];
-        if (dot(shift, shift) < 1e-20) continue;  // flat here (or a corner): nothing to do
-        target[v] = allowed_target(now[v], shift, evidence, tissues[v]);
-        refused[v] = target[v] ? 0 : 1;
-    }
-    report.refused_by_image += static_cast<std::size_t>(std::count(refused.begin(), refused.end(), 1));
-    std::vector<std::uint32_t> vertices;
-    std::vector<Vec3> targets;
-    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
-        if (target[v]) vertices.push_back(v), targets.push_back(*target[v]);
     const std::vector<char> moved = editor.move_together(vertices, targets);
     std::vector<std::uint32_t> again;
     std::vector<Vec3> halves;
@@ -127,8 +111,65 @@ void step_pair(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvi
     }
     const std::vector<char> moved_again = editor.move_together(again, halves);
     const auto made = [](const std::vector<char>& m) { return static_cast<std::size_t>(std::count(m.begin(), m.end(), 1)); };
-    report.moves += made(moved) + made(moved_again);
     report.refused_by_checks += again.size() - made(moved_again);
+    report.moves += made(moved) + made(moved_again);
+    return made(moved) + made(moved_again);
+}
+
+/// Moves each vertex by its `shift` (none where it has none), held to the image and then checked.
+std::size_t move_held(ComplexEditor& editor, const detail::VoxelEvidence& evidence,
+                      const std::vector<std::vector<Label>>& tissues, const std::vector<std::optional<Vec3>>& shift,
+                      SmoothReport& report)
+{
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
+    std::vector<std::optional<Vec3>> target(editor.vertex_slots());
+    std::vector<char> refused(editor.vertex_slots(), 0);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < slots; ++i) {
+        const auto v = static_cast<std::uint32_t>(i);
+        if (!shift[v]) continue;
+        target[v] = allowed_target(editor.position(v), *shift[v], evidence, tissues[v]);
+        refused[v] = target[v] ? 0 : 1;
+    }
+    report.refused_by_image += static_cast<std::size_t>(std::count(refused.begin(), refused.end(), 1));
+    std::vector<std::uint32_t> vertices;
+    std::vector<Vec3> targets;
+    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
+        if (target[v]) vertices.push_back(v), targets.push_back(*target[v]);
+    return move_checked(editor, evidence, tissues, vertices, targets, report);
+}
+
+/// One Taubin pair: the lambda and the mu Jacobi step computed together, then only the net move of each
+/// vertex is held to the image and checked (the intermediate, shrunk surface is never kept, so it need
+/// not be valid).
+void step_pair(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvidence& evidence,
+               const std::vector<std::vector<Label>>& tissues, const SmoothOptions& options, SmoothReport& report)
+{
+    const std::vector<Vec3>& now = editor.positions();
+    const std::vector<Vec3> after = jacobi_step(editor, rings, jacobi_step(editor, rings, now, options.lambda), options.mu);
+    std::vector<std::optional<Vec3>> shift(editor.vertex_slots());
+    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
+        const Vec3 s = after[v] - now[v];
+        if (dot(s, s) >= 1e-20) shift[v] = s;  // else flat here (or a corner): nothing to do
+    }
+    move_held(editor, evidence, tissues, shift, report);
+}
+
+/// One fit pass: every patch vertex (two tissues around it) steps towards the zero level of the two
+/// tissues' blurred indicators, at most half a voxel; steps under 1% of a voxel are not taken.
+void fit_pass(ComplexEditor& editor, const detail::LabelField& field, const detail::VoxelEvidence& evidence,
+              const std::vector<std::vector<Label>>& tissues, double voxel_mm, SmoothReport& report)
+{
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
+    std::vector<std::optional<Vec3>> shift(editor.vertex_slots());
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < slots; ++i) {
+        const auto v = static_cast<std::uint32_t>(i);
+        if (!editor.vertex_alive(v) || editor.kind(v) != VertexKind::patch || tissues[v].size() != 2) continue;
+        const std::optional<Vec3> step = field.step_to_interface(editor.position(v), tissues[v][0], tissues[v][1], 0.5);
+        if (step && norm(*step) > 0.01 * voxel_mm) shift[v] = step;
+    }
+    report.fit_moves += move_held(editor, evidence, tissues, shift, report);
 }
 
 } // namespace
@@ -156,10 +197,16 @@ SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const Sm
         if (editor.vertex_alive(v) && editor.kind(v) == VertexKind::corner) ++report.fixed_vertices;
     }
     const Rings rings(editor);
+    const auto steps = static_cast<double>(options.iterations + options.fit_passes);
     for (std::size_t i = 0; i < options.iterations; ++i) {
         step_pair(editor, rings, evidence, tissues, options, report);
         ++report.iterations;
-        progress.update("smooth", static_cast<double>(i + 1) / static_cast<double>(options.iterations));
+        progress.update("smooth", static_cast<double>(i + 1) / steps);
+    }
+    const detail::LabelField field(image, background, options.fit_sigma_voxels);
+    for (std::size_t i = 0; i < options.fit_passes; ++i) {
+        fit_pass(editor, field, evidence, tissues, voxel, report);
+        progress.update("smooth", static_cast<double>(options.iterations + i + 1) / steps);
     }
     complex = editor.result();
     std::size_t counted = 0;

@@ -21,7 +21,9 @@ int main(int argc, char** argv)
          "their neighbours, vertices on a junction curve along the curve, corners stay (Taubin lambda|mu, so "
          "volumes keep). No vertex leaves the voxels of its tissues by more than --max-depth-voxels, and no move "
          "may fold or cross a triangle or close the gap between layers: the output passes tm-check-surface "
-         "whenever the input does (both are checked).",
+         "whenever the input does (both are checked). Then --fit-passes pull every patch vertex onto the image's "
+         "own sub-voxel estimate of its interface (the zero level of its two tissues' blurred indicators), "
+         "which removes the voxel terraces Taubin's filter keeps.",
          "Examples:\n  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply\n"
          "  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply --iterations 20 --json smooth.json\n"},
         [&](CLI::App& app) {
@@ -31,6 +33,12 @@ int main(int argc, char** argv)
             app.add_option("--iterations", options.iterations, "Taubin step pairs")->check(CLI::NonNegativeNumber)->capture_default_str();
             app.add_option("--max-depth-voxels", options.max_depth_voxels,
                            "How far (voxels) a vertex may sit from the voxels of each of its tissues")
+                ->capture_default_str();
+            app.add_option("--fit-passes", options.fit_passes, "Passes pulling vertices onto the image's interface (0: none)")
+                ->check(CLI::NonNegativeNumber)
+                ->capture_default_str();
+            app.add_option("--fit-sigma-voxels", options.fit_sigma_voxels,
+                           "Blur (voxels, in (0, 1]) of the tissue indicators the fit follows")
                 ->capture_default_str();
             app.add_option("--min-gap-voxels", options.min_gap_voxels,
                            "Distance (voxels) kept between different patches that were not closer")
@@ -52,6 +60,7 @@ int main(int argc, char** argv)
                            {"triangles", complex.triangle_count()},
                            {"iterations", report.iterations},
                            {"moves", report.moves},
+                           {"fit_moves", report.fit_moves},
                            {"refused_by_image", report.refused_by_image},
                            {"refused_by_checks", report.refused_by_checks},
                            {"fixed_vertices", report.fixed_vertices},
