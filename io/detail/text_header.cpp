@@ -72,11 +72,19 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         // MetaIO copies a key into a 255-byte field name unchecked (a longer one overruns it); real keys
         // are single words like "ElementSpacing".
         constexpr std::size_t max_key = 64;
+        if (!nrrd && trim(text.substr(0, colon)).empty())
+            throw IoError(concat(path.string(), ": header line ", line_number,
+                                 " has no key before its '='; the header is damaged. Export the image again"));
         if (!nrrd && trim(text.substr(0, colon)).size() > max_key)
             throw IoError(concat(path.string(), ": header line ", line_number, " has a key of ",
                                  trim(text.substr(0, colon)).size(), " characters (at most ", max_key,
                                  " in a MetaImage header); the header is damaged. Export the image again"));
         const std::string key = normal_key(text.substr(0, colon));
+        // Our checks read one value per key; MetaIO acts on every repeat in turn ("NDims = 444...3" then
+        // "NDims = 3" passed our check and had MetaIO read billions of numbers): a key may come once.
+        if (!nrrd && header.fields.count(key))
+            throw IoError(concat(path.string(), ": header line ", line_number, " repeats the key '",
+                                 trim(text.substr(0, colon)), "'; the header is damaged. Export the image again"));
         header.fields[key] = trim(text.substr(colon + 1));
         if (!nrrd && key == "elementdatafile") break;
     }

@@ -57,10 +57,21 @@ TEST(FuzzRegressions, MetaimageZlibPresetDictionaryHangs)
                             "metaimage-zlib-preset-dictionary-hangs.mha: its compressed voxel data is not one whole zlib stream");
 }
 
-// fuzz_metaimage: a header key of hundreds of bytes overran MetaIO's 255-byte field name (strcpy): an abort.
+// fuzz_metaimage: a header key of 345 bytes overran MetaIO's 255-byte field name (strcpy): an abort. The file
+// is a valid 2x2x2 image with such a key added by hand (the fuzzer's input now fails an earlier check).
 TEST(FuzzRegressions, MetaimageLongKeyOverflows)
 {
-    expect_refused<IoError>("metaimage-long-key-overflows.mha", "metaimage-long-key-overflows.mha: header line 15 has a key of 345 characters");
+    expect_refused<IoError>("metaimage-long-key-overflows.mha",
+                            "metaimage-long-key-overflows.mha: header line 3 has a key of 345 characters");
+}
+
+// fuzz_metaimage: "NDims = 444...3" followed later by "NDims = 3": our check read the last one, MetaIO acted on
+// the first and read billions of numbers per field (a hang). A MetaImage key may now come only once. The file
+// is a valid 2x2x2 image with the two NDims lines, made by hand (the fuzzer's input fails an earlier check).
+TEST(FuzzRegressions, MetaimageRepeatedNdimsHangs)
+{
+    expect_refused<IoError>("metaimage-repeated-ndims-hangs.mha",
+                            "metaimage-repeated-ndims-hangs.mha: header line 3 repeats the key 'NDims'");
 }
 
 } // namespace
