@@ -71,14 +71,16 @@ static FieldSample sample_field(const Vec3& x, Label a, Label b, double sigma,
 }
 
 /// Where a third tissue lies within the blur (a thin layer, a junction nearby), it counts for neither side
-/// and pulls the level: the narrow blur is used there instead.
+/// and pulls the level: the narrow blur is used there instead, and where even that one reaches a third
+/// tissue (a layer one voxel thick) the field has no answer.
 std::optional<Vec3> LabelField::step_to_interface(const Vec3& position_mm, Label a, Label b,
                                                   double max_step_voxels) const
 {
     const Vec3 x = image_.world_to_index(position_mm);
     const auto label_at = [this](std::int64_t i, std::int64_t j, std::int64_t k) { return this->label_at(i, j, k); };
     FieldSample sample = sample_field(x, a, b, sigma_, label_at);
-    if (sample.other_weight > 0.01) sample = sample_field(x, a, b, narrow_sigma, label_at);
+    if (sample.other_weight > third_tissue_share) sample = sample_field(x, a, b, narrow_sigma, label_at);
+    if (sample.other_weight > third_tissue_share) return std::nullopt;
     const double g2 = dot(sample.gradient, sample.gradient);
     if (!(g2 > 1e-6)) return std::nullopt;
     Vec3 step = (-sample.value / g2) * sample.gradient;  // index space
