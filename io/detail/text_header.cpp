@@ -75,6 +75,11 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         if (!nrrd && trim(text.substr(0, colon)).empty())
             throw IoError(concat(path.string(), ": header line ", line_number,
                                  " has no key before its '='; the header is damaged. Export the image again"));
+        // MetaIO matches keys as written: "ElementDat aFile" is no ElementDataFile to it, so a later line could
+        // name its data file (a '%' pattern it overran a buffer on) while this check read the first one.
+        if (!nrrd && trim(text.substr(0, colon)).find_first_of(" \t") != std::string::npos)
+            throw IoError(concat(path.string(), ": header line ", line_number, " has a key with a space in it ('",
+                                 trim(text.substr(0, colon)).substr(0, 40), "'); the header is damaged. Export the image again"));
         if (!nrrd && trim(text.substr(0, colon)).size() > max_key)
             throw IoError(concat(path.string(), ": header line ", line_number, " has a key of ",
                                  trim(text.substr(0, colon)).size(), " characters (at most ", max_key,
