@@ -21,9 +21,10 @@ int main(int argc, char** argv)
          "their neighbours, vertices on a junction curve along the curve, corners stay (Taubin lambda|mu, so "
          "volumes keep). No vertex leaves the voxels of its tissues by more than --max-depth-voxels, and no move "
          "may fold or cross a triangle or close the gap between layers: the output passes tm-check-surface "
-         "whenever the input does (both are checked). Then --fit-passes pull every patch vertex onto the image's "
-         "own sub-voxel estimate of its interface (the zero level of its two tissues' blurred indicators), "
-         "which removes the voxel terraces Taubin's filter keeps.",
+         "whenever the input does (both are checked). Optionally (--fit-passes N, off by default) every patch vertex "
+         "is then pulled onto the image's own sub-voxel estimate of its interface (the zero level of its two "
+         "tissues' blurred indicators), which removes the voxel terraces Taubin's filter keeps on smooth shapes "
+         "(spheres at 1 mm); on folded anatomy at 2 mm it lowered the Dice against the voxels.",
          "Examples:\n  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply\n"
          "  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply --iterations 20 --json smooth.json\n"},
         [&](CLI::App& app) {

@@ -54,7 +54,7 @@ TEST(SurfaceChain, LongSpheres4At1mmMeetsTheIssueFigures)
     ASSERT_TRUE(before.ok());
 
     start = std::chrono::steady_clock::now();
-    surface::smooth(complex, phantom.image);
+    surface::smooth(complex, phantom.image, {.fit_passes = 3});  // Taubin alone ends 0.54 voxel off
     report_stage("smoothed", phantom, complex, seconds_since(start));
     start = std::chrono::steady_clock::now();
     // A quarter voxel from the smoothed surface: that surface is within 0.34 voxel of the exact spheres, and
