@@ -55,6 +55,12 @@ public:
     }
     Label at(std::size_t i, std::size_t j, std::size_t k) const { return labels_[linear_index(i, j, k)]; }
     Label& at(std::size_t i, std::size_t j, std::size_t k) { return labels_[linear_index(i, j, k)]; }
+    /// The label at `index`, or `outside` where the index lies beyond the image.
+    Label at_or(const Index3& index, Label outside) const
+    {
+        if (!contains(index)) return outside;
+        return at(static_cast<std::size_t>(index[0]), static_cast<std::size_t>(index[1]), static_cast<std::size_t>(index[2]));
+    }
 
     const std::vector<Label>& labels() const { return labels_; }
     std::vector<Label>& labels() { return labels_; }

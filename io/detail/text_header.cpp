@@ -69,27 +69,28 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
             throw IoError(concat(path.string(), ": header line ", line_number, " (\"", text.substr(0, 40),
                                  "\") is not \"Key = Value\"; the header is damaged. Export the image again"));
         if (colon == std::string::npos || (nrrd && text.compare(colon, 2, ":=") == 0)) continue;
+        const std::string written_key = trim(text.substr(0, colon));
         // MetaIO copies a key into a 255-byte field name unchecked (a longer one overruns it); real keys
         // are single words like "ElementSpacing".
         constexpr std::size_t max_key = 64;
-        if (!nrrd && trim(text.substr(0, colon)).empty())
+        if (!nrrd && written_key.empty())
             throw IoError(concat(path.string(), ": header line ", line_number,
                                  " has no key before its '='; the header is damaged. Export the image again"));
         // MetaIO matches keys as written: "ElementDat aFile" is no ElementDataFile to it, so a later line could
         // name its data file (a '%' pattern it overran a buffer on) while this check read the first one.
-        if (!nrrd && trim(text.substr(0, colon)).find_first_of(" \t") != std::string::npos)
+        if (!nrrd && written_key.find_first_of(" \t") != std::string::npos)
             throw IoError(concat(path.string(), ": header line ", line_number, " has a key with a space in it ('",
-                                 trim(text.substr(0, colon)).substr(0, 40), "'); the header is damaged. Export the image again"));
-        if (!nrrd && trim(text.substr(0, colon)).size() > max_key)
-            throw IoError(concat(path.string(), ": header line ", line_number, " has a key of ",
-                                 trim(text.substr(0, colon)).size(), " characters (at most ", max_key,
+                                 written_key.substr(0, 40), "'); the header is damaged. Export the image again"));
+        if (!nrrd && written_key.size() > max_key)
+            throw IoError(concat(path.string(), ": header line ", line_number, " has a key of ", written_key.size(),
+                                 " characters (at most ", max_key,
                                  " in a MetaImage header); the header is damaged. Export the image again"));
         const std::string key = normal_key(text.substr(0, colon));
         // Our checks read one value per key; MetaIO acts on every repeat in turn ("NDims = 444...3" then
         // "NDims = 3" passed our check and had MetaIO read billions of numbers): a key may come once.
         if (!nrrd && header.fields.count(key))
             throw IoError(concat(path.string(), ": header line ", line_number, " repeats the key '",
-                                 trim(text.substr(0, colon)), "'; the header is damaged. Export the image again"));
+                                 written_key, "'; the header is damaged. Export the image again"));
         header.fields[key] = trim(text.substr(colon + 1));
         if (!nrrd && key == "elementdatafile") break;
     }

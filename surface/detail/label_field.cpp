@@ -2,19 +2,12 @@
 
 #include <array>
 #include <cmath>
-#include <functional>
 
 namespace tissuemesh::surface::detail {
 
 LabelField::LabelField(const LabelImage& image, Label background, double sigma_voxels)
     : image_(image), background_(background), sigma_(sigma_voxels)
 {
-}
-
-Label LabelField::label_at(std::int64_t i, std::int64_t j, std::int64_t k) const
-{
-    if (!image_.contains({i, j, k})) return background_;
-    return image_.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j), static_cast<std::size_t>(k));
 }
 
 namespace {
@@ -28,13 +21,10 @@ struct FieldSample {
 
 int radius_for(double sigma) { return static_cast<int>(std::ceil(3 * sigma)); }
 
-} // namespace
-
 /// In index space x, with voxel weights w(n) = prod_axes g(x_a - n_a), g the Gaussian: the field is
 /// f = sum_n w(n) s(n) / sum_n w(n), s = +1 in tissue a, -1 in b, 0 elsewhere (normalised, so that a
 /// truncated kernel stays unbiased), and its gradient follows from dg/dx = -(x - n) g / sigma^2.
-static FieldSample sample_field(const Vec3& x, Label a, Label b, double sigma,
-                                const std::function<Label(std::int64_t, std::int64_t, std::int64_t)>& label_at)
+FieldSample sample_field(const LabelImage& image, Label background, const Vec3& x, Label a, Label b, double sigma)
 {
     constexpr int max_taps = 7;  // 2 * radius + 1 for sigma <= 1
     const int radius = radius_for(sigma);
@@ -56,7 +46,7 @@ static FieldSample sample_field(const Vec3& x, Label a, Label b, double sigma,
             for (int i = 0; i < taps; ++i) {
                 const double w = g[0][i] * g[1][j] * g[2][k];
                 const Vec3 dw{dg[0][i] * g[1][j] * g[2][k], g[0][i] * dg[1][j] * g[2][k], g[0][i] * g[1][j] * dg[2][k]};
-                const Label label = label_at(low[0] + i, low[1] + j, low[2] + k);
+                const Label label = image.at_or({low[0] + i, low[1] + j, low[2] + k}, background);
                 sum += w;
                 grad_sum = grad_sum + dw;
                 if (label == a) signed_sum += w, grad_signed = grad_signed + dw;
@@ -70,6 +60,8 @@ static FieldSample sample_field(const Vec3& x, Label a, Label b, double sigma,
     return sample;
 }
 
+} // namespace
+
 /// Where a third tissue lies within the blur (a thin layer, a junction nearby), it counts for neither side
 /// and pulls the level: the narrow blur is used there instead, and where even that one reaches a third
 /// tissue (a layer one voxel thick) the field has no answer.
@@ -77,9 +69,8 @@ std::optional<Vec3> LabelField::step_to_interface(const Vec3& position_mm, Label
                                                   double max_step_voxels) const
 {
     const Vec3 x = image_.world_to_index(position_mm);
-    const auto label_at = [this](std::int64_t i, std::int64_t j, std::int64_t k) { return this->label_at(i, j, k); };
-    FieldSample sample = sample_field(x, a, b, sigma_, label_at);
-    if (sample.other_weight > third_tissue_share) sample = sample_field(x, a, b, narrow_sigma, label_at);
+    FieldSample sample = sample_field(image_, background_, x, a, b, sigma_);
+    if (sample.other_weight > third_tissue_share) sample = sample_field(image_, background_, x, a, b, narrow_sigma);
     if (sample.other_weight > third_tissue_share) return std::nullopt;
     const double g2 = dot(sample.gradient, sample.gradient);
     if (!(g2 > 1e-6)) return std::nullopt;

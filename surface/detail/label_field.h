@@ -30,8 +30,6 @@ private:
     static constexpr double narrow_sigma = 0.6;
     static constexpr double third_tissue_share = 0.01;
 
-    Label label_at(std::int64_t i, std::int64_t j, std::int64_t k) const;
-
     const LabelImage& image_;
     Label background_;
     double sigma_;  ///< voxels summed per axis: 3 sigma on either side (the Gaussian beyond is about 1%)

@@ -10,12 +10,6 @@ VoxelEvidence::VoxelEvidence(const LabelImage& image, Label background, double d
 {
 }
 
-Label VoxelEvidence::label_at(std::int64_t i, std::int64_t j, std::int64_t k) const
-{
-    if (!image_.contains({i, j, k})) return background_;
-    return image_.at(static_cast<std::size_t>(i), static_cast<std::size_t>(j), static_cast<std::size_t>(k));
-}
-
 /// Voxel n's cell is [n - 1/2, n + 1/2] per axis (index space). The cells within `depth` of x (at most
 /// the 2 x 2 x 2 nearest for depth <= 1) are the voxels x is "near"; x may hold a vertex between
 /// `tissues` when it is near all of them (three of them on a junction of more): within `depth` of every
@@ -39,7 +33,7 @@ bool VoxelEvidence::allows(const Vec3& position_mm, const std::vector<Label>& ti
                     const double d = std::max(0.0, std::abs(x[a] - static_cast<double>(n[a])) - 0.5);
                     d2 += d * d;
                 }
-                if (d2 < depth_ * depth_ && count < near.size()) near[count++] = label_at(i, j, k);
+                if (d2 < depth_ * depth_ && count < near.size()) near[count++] = image_.at_or({i, j, k}, background_);
             }
     std::size_t own = 0;
     for (const Label tissue : tissues)

@@ -19,8 +19,6 @@ public:
     bool allows(const Vec3& position_mm, const std::vector<Label>& tissues) const;
 
 private:
-    Label label_at(std::int64_t i, std::int64_t j, std::int64_t k) const;
-
     const LabelImage& image_;
     Label background_;
     double depth_;
