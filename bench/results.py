@@ -43,6 +43,7 @@ def figures(case, mesher, steps, measures):
     tissues = {k: t for k, t in check["tissues"].items() if k != "0" and t["voxel_volume_mm3"] > 0}
     errors = [abs(t["volume_mm3"] / t["voxel_volume_mm3"] - 1) * 100 for t in tissues.values()]
     d = m.get("distance")
+    e = m.get("eeg")
     return {"wall": wall, "cpu": cpu, "rss": rss, "tets": check["tets"], "nodes": check["nodes"],
             "dihedral": check["min_dihedral_deg"], "radius_edge": check["max_radius_edge_ratio"],
             "volume_error": max(errors) if errors else float("nan"),
@@ -50,35 +51,39 @@ def figures(case, mesher, steps, measures):
             "pieces": "/".join(str(t["components"]) for t in tissues.values()),
             "fit": "yes" if check["ok"] else "no",
             "distance": f"{d['mean_mm']:.3f} / {d['p95_mm']:.3f} / {d['max_mm']:.2f}" if d else "-",
-            "mean_distance": d["mean_mm"] if d else None}
+            "mean_distance": d["mean_mm"] if d else None,
+            "eeg": f"{e['worst_rdm']:.4f} / {e['worst_mag_error']:.4f}" if e else "-",
+            "rdm": e["worst_rdm"] if e else None}
 
 
 def main_table(cases, steps, measures):
     print("| case | mesher | wall s | CPU s | peak MiB | tets | nodes | min dihedral | max radius-edge | "
-          "worst volume error % | worst Dice | pieces per tissue | FEM-fit | interface distance mm (mean / p95 / max) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|")
+          "worst volume error % | worst Dice | pieces per tissue | FEM-fit | interface distance mm (mean / p95 / max) | "
+          "EEG worst RDM / abs(MAG - 1) |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|")
     for case in cases:
         for mesher, title in MESHERS.items():
             f = figures(case, mesher, steps, measures)
             if f:
                 print(f"| {case} | {title} | {f['wall']:.1f} | {f['cpu']:.1f} | {f['rss']:.0f} | {f['tets']} | {f['nodes']} | "
                       f"{f['dihedral']:.1f} | {f['radius_edge']:.1f} | {f['volume_error']:.2f} | {f['dice']:.4f} | "
-                      f"{f['pieces']} | {f['fit']} | {f['distance']} |")
+                      f"{f['pieces']} | {f['fit']} | {f['distance']} | {f['eeg']} |")
 
 
 def ratio_table(cases, steps, measures):
-    print("| case | wall | CPU | peak memory | tets | mean interface distance | "
+    print("| case | wall | CPU | peak memory | tets | mean interface distance | EEG worst RDM | "
           "wall vs accuracy-matched CGAL | tets vs accuracy-matched CGAL |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for case in cases:
         o, c, a = (figures(case, m, steps, measures) for m in MESHERS)
         if not (o and c):
             continue
         dist = f"{o['mean_distance'] / c['mean_distance']:.2f}" if o["mean_distance"] and c["mean_distance"] else "-"
+        rdm = f"{o['rdm'] / c['rdm']:.2f}" if o["rdm"] and c["rdm"] else "-"
         acc_wall = f"{o['wall'] / a['wall']:.2f}" if a else "-"
         acc_tets = f"{o['tets'] / a['tets']:.2f}" if a else "-"
         print(f"| {case} | {o['wall'] / c['wall']:.2f} | {o['cpu'] / c['cpu']:.2f} | {o['rss'] / c['rss']:.2f} | "
-              f"{o['tets'] / c['tets']:.2f} | {dist} | {acc_wall} | {acc_tets} |")
+              f"{o['tets'] / c['tets']:.2f} | {dist} | {rdm} | {acc_wall} | {acc_tets} |")
 
 
 def stage_table(cases, steps):
@@ -114,6 +119,7 @@ def closing_note(cases, steps, measures):
         losses = [what for what, lost in (("CPU time", o["cpu"] > c["cpu"]), ("peak memory", o["rss"] > c["rss"]),
                                           ("min dihedral", o["dihedral"] < c["dihedral"]),
                                           ("interface distance", (o["mean_distance"] or 0) > (c["mean_distance"] or 0)),
+                                          ("EEG RDM", (o["rdm"] or 0) > (c["rdm"] or 0)),
                                           ("worst Dice", o["dice"] < c["dice"])) if lost]
         print(f"- {case}: we lose on {', '.join(losses) if losses else 'nothing measured here'}; "
               f"our costliest step is {worst} ({share:.0f}% of our CPU time).")
@@ -157,7 +163,9 @@ def main():
           "CGAL: `tm-bench-cgal-mesh3`, Mesh_3 with 2 TBB threads and perturb only. Both from the same `tm-prep` "
           "clean image and judged by the same `tm-check-mesh --image` and `tm-bench-interface-distance`. "
           "Volume error and Dice against the voxels, worst tissue; interface distance to the exact phantom surfaces "
-          "(area-weighted over face centroids; max over centroids and vertices).\n")
+          "(area-weighted over face centroids; max over centroids and vertices). EEG (spheres4 only, `tm-bench-eeg`): "
+          "radial and tangential dipoles at eccentricities 0.5 and 0.9 of the brain, subtraction approach, against the "
+          "4-shell series on the mesh's outer surface nodes; RDM on the 0..2 scale, average reference; worst of the four.\n")
     main_table(cases, steps, measures)
     print("\n## Ratios ours / CGAL (pair by pair, same run)\n")
     print("Below 1: we are faster, smaller or closer. Count-matched pairs unless said otherwise.\n")
@@ -169,10 +177,8 @@ def main():
     if a.micro:
         print("\n## Stage micro-benchmarks (`tm-bench-stages`, Google Benchmark)\n")
         micro_table(a.micro)
-
-
     print("\n## Reproduce\n")
-    print("```\nTM_BUILD_DIR=build scripts/build -DTM_BENCH=ON     # tm-bench-cgal-mesh3, tm-bench-interface-distance, tm-bench-stages")
+    print("```\nTM_BUILD_DIR=build scripts/build -DTM_BENCH=ON     # tm-bench-cgal-mesh3, tm-bench-interface-distance, tm-bench-eeg, tm-bench-stages")
     print(f"bench/run --skip-build --repeats {a.repeats} --jobs {a.jobs} --cases \"{a.cases}\"{' --micro' if a.micro else ''}")
     print("```\n\nThe CGAL runs the searches settled on:\n")
     cgal_commands(cases, measures)

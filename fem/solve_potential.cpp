@@ -18,28 +18,40 @@ namespace {
 
 constexpr double unset = std::numeric_limits<double>::quiet_NaN();
 
-void fix_node(std::vector<double>& fixed, std::uint32_t node, double value, const std::string& what)
+// Fixes node `node` (numbered as in `mesh`) of the renumbered mesh to `value`; messages name the caller's
+// node numbers.
+void fix_node(const detail::LocalMesh& mesh, std::vector<double>& fixed, std::uint32_t node, double value,
+              const std::string& what)
 {
-    if (node >= fixed.size())
-        throw InputError(concat(what, ": node ", node, " is out of range (the mesh has ", fixed.size(), " nodes)"));
-    if (!std::isfinite(value)) throw InputError(concat(what, ": potential of node ", node, " is not finite"));
+    const std::uint32_t shown = mesh.original[node];
+    if (!std::isfinite(value)) throw InputError(concat(what, ": potential of node ", shown, " is not finite"));
     if (!std::isnan(fixed[node]) && fixed[node] != value)
-        throw InputError(concat(what, ": node ", node, " is fixed at both ", fixed[node], " V and ", value,
+        throw InputError(concat(what, ": node ", shown, " is fixed at both ", fixed[node], " V and ", value,
                                 " V; electrodes and fixed potentials must not overlap"));
     fixed[node] = value;
 }
 
+// The renumbered index of the caller's node `node`.
+std::uint32_t local_node(const detail::LocalMesh& mesh, std::uint32_t node, const std::string& what)
+{
+    if (node >= mesh.local.size())
+        throw InputError(concat(what, ": node ", node, " is out of range (the mesh has ", mesh.local.size(), " nodes)"));
+    return mesh.local[node];
+}
+
 // Loads (A) of current electrodes and dipoles; fixed potentials (NaN: free) of the others.
-Eigen::VectorXd build_loads(const TetMesh& mesh, const Conductivities& conductivities, const PotentialProblem& problem,
-                            std::vector<double>& fixed, PotentialReport& report,
+Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities& conductivities,
+                            const PotentialProblem& problem, std::vector<double>& fixed, PotentialReport& report,
                             std::vector<detail::SubtractionSource>& subtracted)
 {
+    const TetMesh& mesh = local.mesh;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(mesh.vertex_count()));
     if (problem.fixed.nodes.size() != problem.fixed.values_v.size())
         throw InputError(concat("fixed potentials: ", problem.fixed.nodes.size(), " nodes but ",
                                 problem.fixed.values_v.size(), " values; give one value per node"));
     for (std::size_t k = 0; k < problem.fixed.nodes.size(); ++k)
-        fix_node(fixed, problem.fixed.nodes[k], problem.fixed.values_v[k], "fixed potentials");
+        fix_node(local, fixed, local_node(local, problem.fixed.nodes[k], "fixed potentials"), problem.fixed.values_v[k],
+                 "fixed potentials");
     const OuterBoundary boundary = outer_boundary(mesh);
     double injected = 0;
     double injected_magnitude = 0;
@@ -50,7 +62,7 @@ Eigen::VectorXd build_loads(const TetMesh& mesh, const Conductivities& conductiv
         report.electrode_area_mm2.push_back(patch.area_mm2);
         for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
             if (electrode.mode == Electrode::Mode::potential)
-                fix_node(fixed, patch.nodes[k], electrode.potential_v, concat("electrode ", e + 1));
+                fix_node(local, fixed, patch.nodes[k], electrode.potential_v, concat("electrode ", e + 1));
             else
                 rhs[patch.nodes[k]] += electrode.current_a * patch.node_area_mm2[k] / patch.area_mm2;
         }
@@ -148,35 +160,48 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
 {
     auto start = std::chrono::steady_clock::now();
     PotentialReport local;
-    // Assembly first: it checks every tet and tissue, which the parallel source loops rely on.
-    SparseMatrix stiffness = assemble_stiffness(mesh, conductivities);
+    validate_indices(mesh, "mesh");
+    // Everything runs on a copy numbered for locality; the potentials go back to the caller's numbering.
+    const detail::LocalMesh renumbered = detail::renumber_for_locality(mesh);
+    // Assembly first: it checks every tet and tissue, which the parallel source loops rely on. A bad tet
+    // is reported as the caller numbers it: the original mesh is assembled again to throw its message.
+    SparseMatrix stiffness;
+    try {
+        stiffness = assemble_stiffness(renumbered.mesh, conductivities);
+    } catch (const InputError&) {
+        assemble_stiffness(mesh, conductivities);
+        throw;
+    }
     local.assembly_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     std::vector<double> fixed(mesh.vertex_count(), unset);
     std::vector<detail::SubtractionSource> subtracted;
-    const Eigen::VectorXd rhs = build_loads(mesh, conductivities, problem, fixed, local, subtracted);
+    const Eigen::VectorXd rhs = build_loads(renumbered, conductivities, problem, fixed, local, subtracted);
     const bool anything_fixed = std::any_of(fixed.begin(), fixed.end(), [](double v) { return !std::isnan(v); });
     // Pure Neumann: the loads sum to zero, so fixing one node to 0 V picks one solution out of the
     // constants; zero_mean then shifts it.
     if (!anything_fixed && !fixed.empty()) {
         const std::uint32_t node = problem.reference == Reference::node ? problem.reference_node : 0;
-        fix_node(fixed, node, 0.0, "reference node");
+        fix_node(renumbered, fixed, local_node(renumbered, node, "reference node"), 0.0, "reference node");
     }
     // With subtraction the unknown is the correction: fixed nodes hold their potential minus phi_inf.
     std::vector<double> singular(subtracted.empty() ? 0 : fixed.size(), 0.0);
     for (const detail::SubtractionSource& source : subtracted)
-        for (std::size_t i = 0; i < singular.size(); ++i) singular[i] += detail::unbounded_potential(source, mesh.vertices[i]);
+        for (std::size_t i = 0; i < singular.size(); ++i)
+            singular[i] += detail::unbounded_potential(source, renumbered.mesh.vertices[i]);
     std::vector<double> fixed_correction(fixed);
     for (std::size_t i = 0; i < singular.size(); ++i) fixed_correction[i] -= singular[i];
     local.loads_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    ReducedSystem system = reduce(stiffness, rhs, fixed_correction, mesh.vertices);
+    ReducedSystem system = reduce(stiffness, rhs, fixed_correction, renumbered.mesh.vertices);
     stiffness = SparseMatrix();
     local.reduction_seconds = seconds_since(start);
     const Eigen::VectorXd solution = solve_spd(system.matrix, system.rhs, options, progress, &local.solver);
-    std::vector<double> potential(fixed);
-    for (std::size_t i = 0; i < potential.size(); ++i)
-        if (system.free_index[i] >= 0) potential[i] = solution[system.free_index[i]] + (singular.empty() ? 0 : singular[i]);
+    std::vector<double> potential(fixed.size());
+    for (std::size_t i = 0; i < potential.size(); ++i) {
+        const std::uint32_t k = renumbered.local[i];
+        potential[i] = system.free_index[k] < 0 ? fixed[k] : solution[system.free_index[k]] + (singular.empty() ? 0 : singular[k]);
+    }
     local.unknowns = static_cast<std::size_t>(system.matrix.rows());
     local.fixed_nodes = fixed.size() - local.unknowns;
     if (!anything_fixed && problem.reference == Reference::zero_mean && !potential.empty()) {

@@ -75,7 +75,7 @@ struct PotentialReport {
     std::vector<std::size_t> electrode_nodes;  ///< boundary nodes per electrode
     std::vector<double> electrode_area_mm2;    ///< patch area per electrode (faces with 3 nodes inside)
     double loads_seconds = 0;      ///< outer boundary, electrode patches, dipole location, fixed nodes
-    double assembly_seconds = 0;   ///< stiffness matrix
+    double assembly_seconds = 0;   ///< renumbering for locality and the stiffness matrix
     double reduction_seconds = 0;  ///< the system on the free nodes (the solver's times are in `solver`)
 };
 

@@ -48,4 +48,37 @@ std::vector<std::uint32_t> locality_order(const std::vector<Vec3>& nodes, const 
     return order;
 }
 
+LocalMesh renumber_for_locality(const TetMesh& mesh)
+{
+    LocalMesh result;
+    result.original = locality_order(mesh.vertices, std::vector<bool>(mesh.vertex_count(), true));
+    result.local.resize(mesh.vertex_count());
+    for (std::size_t k = 0; k < result.original.size(); ++k) result.local[result.original[k]] = static_cast<std::uint32_t>(k);
+    TetMesh& out = result.mesh;
+    out.vertices.resize(mesh.vertex_count());
+    for (std::size_t k = 0; k < result.original.size(); ++k) out.vertices[k] = mesh.vertices[result.original[k]];
+    // Counting sort of the tets by their smallest new node (stable: ties keep their order).
+    std::vector<std::uint32_t> first(mesh.tet_count());
+    std::vector<std::size_t> start(mesh.vertex_count() + 1, 0);
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+        const Tet& tet = mesh.tets[t];
+        first[t] = std::min({result.local[tet[0]], result.local[tet[1]], result.local[tet[2]], result.local[tet[3]]});
+        ++start[first[t] + 1];
+    }
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) start[v + 1] += start[v];
+    out.tets.resize(mesh.tet_count());
+    out.tet_labels.resize(mesh.tet_count());
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
+        const std::size_t at = start[first[t]]++;
+        const Tet& tet = mesh.tets[t];
+        out.tets[at] = {result.local[tet[0]], result.local[tet[1]], result.local[tet[2]], result.local[tet[3]]};
+        out.tet_labels[at] = mesh.tet_labels[t];
+    }
+    out.faces.reserve(mesh.faces.size());
+    for (const Triangle& face : mesh.faces) out.faces.push_back({result.local[face[0]], result.local[face[1]], result.local[face[2]]});
+    out.face_sides = mesh.face_sides;
+    out.names = mesh.names;
+    return result;
+}
+
 } // namespace tissuemesh::fem::detail

@@ -121,7 +121,7 @@ SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& 
     for (int k = 0; k < 4; ++k) corners[k] = mesh.vertices[mesh.tets[t][k]];
     for (int k = 0; k < 4; ++k)
         if (distance(corners[k], dipole.position_mm) <= 1e-6 * longest_edge(corners.data(), 4))
-            throw InputError(concat(where(), " lies on mesh node ", mesh.tets[t][k], ", where the unbounded-medium ",
+            throw InputError(concat(where(), " lies on a mesh node, where the unbounded-medium ",
                                     "potential of the subtraction approach is infinite: move the dipole off the node ",
                                     "or use partial integration"));
     // Tets of another conductivity may touch the source's tet: their volume integrals are near-singular

@@ -9,8 +9,8 @@
 #include "core/error.h"
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
+#include "fem/sphere_series.h"
 #include "fem_meshes.h"
-#include "sphere_series.h"
 
 namespace tissuemesh::fem {
 namespace {
@@ -35,7 +35,7 @@ TEST(Dipole, CentredDipoleInAHomogeneousSphere)
         numeric.push_back(phi[node]);
         analytic.push_back(3 * dot(moment, (1 / norm(x)) * x) / (4 * std::numbers::pi * 0.33 * r_m * r_m));
     }
-    const auto [rdm, mag] = testing::compare_potentials(numeric, analytic);
+    const auto [rdm, mag] = compare_potentials(numeric, analytic);
     std::printf("[dipole] %zu nodes, %zu surface nodes: RDM %.4f, MAG %.4f, %d AMG-CG iterations\n",
                 mesh.vertex_count(), surface.size(), rdm, mag, report.solver.iterations);
     // Measured: RDM 0.035, MAG 1.003. Partial integration reproduces the dipole moment exactly (sum of
@@ -61,9 +61,9 @@ TEST(Dipole, OffCentreDipoleBySubtraction)
     std::vector<double> numeric, analytic;
     for (std::uint32_t node : outer_boundary(mesh).nodes) {
         numeric.push_back(phi[node]);
-        analytic.push_back(testing::sphere_surface_potential({{50}, {0.33}}, position, moment, mesh.vertices[node]));
+        analytic.push_back(sphere_surface_potential({{50}, {0.33}}, position, moment, mesh.vertices[node]));
     }
-    const auto [rdm, mag] = testing::compare_potentials(numeric, analytic);
+    const auto [rdm, mag] = compare_potentials(numeric, analytic);
     std::printf("[dipole] subtraction: RDM %.4f, MAG %.4f\n", rdm, mag);
     EXPECT_LT(rdm, 0.01);
     EXPECT_NEAR(mag, 1.0, 0.01);

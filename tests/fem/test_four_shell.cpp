@@ -8,29 +8,26 @@
 
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
+#include "fem/sphere_series.h"
 #include "fem_meshes.h"
-#include "sphere_series.h"
 
 namespace tissuemesh::fem {
 namespace {
 
-using testing::Agreement;
-using testing::compare_potentials;
-
-const testing::LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
+const LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
 TEST(SphereSeries, MatchesTheClosedFormsItReducesTo)
 {
     // One homogeneous sphere, centred dipole: 3 p . r_hat / (4 pi sigma R^2) (see test_dipole.cpp).
-    const testing::LayeredSphere ball{{50}, {0.33}};
+    const LayeredSphere ball{{50}, {0.33}};
     const Vec3 p{0, 0.6e-8, 0.8e-8}, point{30, 0, 40};
     const double closed = 3 * dot(p, Vec3{0.6, 0, 0.8}) / (4 * std::numbers::pi * 0.33 * 0.05 * 0.05);
-    EXPECT_NEAR(testing::sphere_surface_potential(ball, {0, 0, 0}, p, point), closed, 1e-12 * std::abs(closed));
+    EXPECT_NEAR(sphere_surface_potential(ball, {0, 0, 0}, p, point), closed, 1e-12 * std::abs(closed));
     // Four layers of one conductivity are one sphere, also for an eccentric oblique dipole.
-    const testing::LayeredSphere same{{78, 80, 86, 92}, {0.33, 0.33, 0.33, 0.33}}, one{{92}, {0.33}};
+    const LayeredSphere same{{78, 80, 86, 92}, {0.33, 0.33, 0.33, 0.33}}, one{{92}, {0.33}};
     const Vec3 position{10, -20, 40}, moment{1e-8, 2e-8, -0.5e-8}, surface{0, 92 * 0.6, 92 * 0.8};
-    const double layered = testing::sphere_surface_potential(same, position, moment, surface);
-    EXPECT_NEAR(layered, testing::sphere_surface_potential(one, position, moment, surface), 1e-10 * std::abs(layered));
+    const double layered = sphere_surface_potential(same, position, moment, surface);
+    EXPECT_NEAR(layered, sphere_surface_potential(one, position, moment, surface), 1e-10 * std::abs(layered));
 }
 
 void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Vec3& moment, double max_rdm,
@@ -45,7 +42,7 @@ void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Ve
     std::vector<double> numeric, analytic;
     for (std::uint32_t node : outer_boundary(mesh).nodes) {
         numeric.push_back(phi[node]);
-        analytic.push_back(testing::sphere_surface_potential(head, position, moment, mesh.vertices[node]));
+        analytic.push_back(sphere_surface_potential(head, position, moment, mesh.vertices[node]));
     }
     const Agreement a = compare_potentials(numeric, analytic);
     std::printf("[4-shell] %s dipole at (%.0f, %.0f, %.0f) mm moment (%.0e, %.0e, %.0e): %zu nodes, RDM %.4f, MAG %.4f, "

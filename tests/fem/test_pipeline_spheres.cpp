@@ -6,8 +6,8 @@
 
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
+#include "fem/sphere_series.h"
 #include "image/phantom.h"
-#include "sphere_series.h"
 #include "surface/decimate.h"
 #include "surface/extract_interfaces.h"
 #include "surface/remesh.h"
@@ -17,7 +17,7 @@
 namespace tissuemesh::fem {
 namespace {
 
-const testing::LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
+const LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
 /// Worst RDM and |MAG - 1| over radial and tangential dipoles at `eccentricities` of the brain.
 std::pair<double, double> worst_agreement(const TetMesh& mesh, const char* what,
@@ -36,9 +36,9 @@ std::pair<double, double> worst_agreement(const TetMesh& mesh, const char* what,
             std::vector<double> numeric, analytic;
             for (const std::uint32_t node : outer_boundary(mesh).nodes) {
                 numeric.push_back(phi[node]);
-                analytic.push_back(testing::sphere_surface_potential(head, position, moment, mesh.vertices[node]));
+                analytic.push_back(sphere_surface_potential(head, position, moment, mesh.vertices[node]));
             }
-            const testing::Agreement a = testing::compare_potentials(numeric, analytic);
+            const Agreement a = compare_potentials(numeric, analytic);
             std::printf("[pipeline] %s: %s %s dipole at eccentricity %.2f: RDM %.4f MAG %.4f\n", what,
                         model == DipoleModel::subtraction ? "subtraction" : "partial integration",
                         moment[2] != 0 ? "radial" : "tangential", eccentricity, a.rdm, a.mag);

@@ -1,11 +1,11 @@
-#include "sphere_series.h"
+#include "fem/sphere_series.h"
 
 #include <cmath>
 #include <numbers>
 
 #include <Eigen/Dense>
 
-namespace tissuemesh::testing {
+namespace tissuemesh::fem {
 namespace {
 
 // Surface value f(1) of the radial function of degree n for a unit source term r^-(n+1) in the innermost
@@ -107,4 +107,4 @@ Agreement compare_potentials(std::vector<double> numeric, std::vector<double> an
     return {std::sqrt(rdm2), numeric_norm / analytic_norm};
 }
 
-} // namespace tissuemesh::testing
+} // namespace tissuemesh::fem

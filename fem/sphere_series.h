@@ -2,14 +2,15 @@
 // innermost sphere (insulated outer surface), by the Legendre series: in each layer the degree-n term is
 // (A r^n + B r^-(n+1)) times the angular function; the innermost layer adds the dipole's own expansion;
 // potential and normal current are continuous at every interface and the radial current vanishes
-// outside. Solved per degree as a small linear system (written for these tests from that definition).
+// outside. Solved per degree as a small linear system (written from that definition). The reference every
+// EEG accuracy figure of ours is measured against (tests/fem, bench/measure/tm_bench_eeg.cpp).
 #pragma once
 
 #include <vector>
 
 #include "core/vec3.h"
 
-namespace tissuemesh::testing {
+namespace tissuemesh::fem {
 
 struct LayeredSphere {
     std::vector<double> radii_mm;       ///< increasing; the last is the outer surface
@@ -29,4 +30,4 @@ struct Agreement {
 };
 Agreement compare_potentials(std::vector<double> numeric, std::vector<double> analytic);
 
-} // namespace tissuemesh::testing
+} // namespace tissuemesh::fem
