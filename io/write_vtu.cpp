@@ -69,19 +69,28 @@ private:
         constexpr std::size_t block = 1 << 20;  // fastest zlib level: 25x faster than 6 here, 8% larger
         const std::size_t blocks = bytes == 0 ? 0 : (bytes + block - 1) / block;
         std::vector<std::uint64_t> header{blocks, block, blocks == 0 ? 0 : bytes - (blocks - 1) * block};
-        std::string streams;
+        // The blocks are independent zlib streams: compressed in parallel, appended in order (the same
+        // bytes whatever the thread count).
+        std::vector<std::string> streams(blocks);
         const auto* source = static_cast<const Bytef*>(data);
-        for (std::size_t b = 0; b < blocks; ++b) {
+        const auto count = static_cast<std::int64_t>(blocks);
+        bool failed = false;
+#pragma omp parallel for schedule(dynamic, 1) reduction(|| : failed)
+        for (std::int64_t i = 0; i < count; ++i) {
+            const auto b = static_cast<std::size_t>(i);
             const std::size_t size = std::min(block, bytes - b * block);
             uLongf packed = compressBound(static_cast<uLong>(size));
-            std::string out(packed, '\0');
-            if (compress2(reinterpret_cast<Bytef*>(out.data()), &packed, source + b * block, static_cast<uLong>(size), Z_BEST_SPEED) != Z_OK)
-                throw IoError("zlib could not compress a .vtu array (out of memory?)");
-            streams.append(out.data(), packed);
-            header.push_back(packed);
+            std::string& out = streams[b];
+            out.assign(packed, '\0');
+            if (compress2(reinterpret_cast<Bytef*>(out.data()), &packed, source + b * block, static_cast<uLong>(size),
+                          Z_BEST_SPEED) != Z_OK)
+                failed = true;
+            out.resize(packed);
         }
+        if (failed) throw IoError("zlib could not compress a .vtu array (out of memory?)");
+        for (const std::string& stream : streams) header.push_back(stream.size());
         appended_.append(reinterpret_cast<const char*>(header.data()), header.size() * sizeof(std::uint64_t));
-        appended_ += streams;
+        for (const std::string& stream : streams) appended_ += stream;
     }
 
     std::string& xml_;

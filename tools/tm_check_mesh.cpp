@@ -15,7 +15,8 @@ int main(int argc, char** argv)
     return tools::run_tool(
         argc, argv,
         {"tm-check-mesh",
-         "Checks a labelled tet mesh: conformity (faces shared by two tets on opposite sides), no inverted tets, closed "
+         "Checks a labelled tet mesh: conformity (faces shared by two tets on opposite sides), no inverted or flat tets "
+         "(volume under 1e-9 of the longest edge cubed: four coplanar nodes), closed "
          "outer boundary, every interface face a tet face with the right tissues on both sides, per-tissue volumes and "
          "connected pieces, quality (dihedral angles, radius-edge ratio), and with --image the voxel agreement per tissue "
          "(Dice). Exit 0 when fit for FEM, 1 when defects were found, 2 when the input cannot be read.",
@@ -46,7 +47,8 @@ int main(int argc, char** argv)
             for (const std::string& problem : report.problems) std::printf("defect: %s\n", problem.c_str());
             std::printf("%s\n", report.ok() ? "fit for FEM" : "NOT fit for FEM: see the defects above");
             context.summary = {{"ok", report.ok()}, {"nodes", report.nodes}, {"tets", report.tets}, {"faces", report.faces},
-                               {"inverted_tets", report.inverted_tets}, {"nonconforming_faces", report.nonconforming_faces},
+                               {"inverted_tets", report.inverted_tets}, {"flat_tets", report.flat_tets},
+                               {"nonconforming_faces", report.nonconforming_faces},
                                {"open_boundary_edges", report.open_boundary_edges}, {"unused_nodes", report.unused_nodes},
                                {"missing_interface_faces", report.missing_interface_faces},
                                {"mislabelled_interface_faces", report.mislabelled_interface_faces},

@@ -1,6 +1,7 @@
 // tm-solve: stationary current / electrostatics on a labelled tet mesh (P1 FEM, CG with BoomerAMG).
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 #include <map>
 #include <cstdio>
@@ -161,7 +162,10 @@ private:
 double min_dihedral_deg(const TetMesh& mesh)
 {
     double smallest = 180;
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t) smallest = std::min(smallest, volume::tet_shape(mesh, t).min_dihedral_deg);
+    const auto count = static_cast<std::int64_t>(mesh.tet_count());
+#pragma omp parallel for schedule(static) reduction(min : smallest)
+    for (std::int64_t t = 0; t < count; ++t)
+        smallest = std::min(smallest, volume::tet_shape(mesh, static_cast<std::size_t>(t)).min_dihedral_deg);
     return smallest;
 }
 

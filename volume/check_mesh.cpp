@@ -47,6 +47,14 @@ std::size_t find(std::vector<std::size_t>& parent, std::size_t x)
     return x;
 }
 
+double longest_edge(const TetMesh& mesh, const Tet& tet)
+{
+    double longest = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) longest = std::max(longest, distance(mesh.vertices[tet[i]], mesh.vertices[tet[j]]));
+    return longest;
+}
+
 } // namespace
 
 TetShape tet_shape(const TetMesh& mesh, std::size_t t)
@@ -95,10 +103,16 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         const double volume = signed_volume(mesh, t);
         TissueMeshStats& tissue = report.tissues[mesh.tet_labels[t]];
         ++tissue.tets, tissue.volume_mm3 += volume;
+        const std::string tissue_name = mesh.names.count(mesh.tet_labels[t]) ? mesh.names.at(mesh.tet_labels[t])
+                                                                               : std::to_string(mesh.tet_labels[t]);
         if (!(volume > 0)) {
             ++report.inverted_tets;
-            note(report, concat("tetrahedron ", t, " (", mesh.names.count(mesh.tet_labels[t]) ? mesh.names.at(mesh.tet_labels[t])
-                                : std::to_string(mesh.tet_labels[t]), ") has volume ", volume, " mm^3 at ", where(mesh.vertices[tet[0]])));
+            note(report, concat("tetrahedron ", t, " (", tissue_name, ") has volume ", volume, " mm^3 at ",
+                                where(mesh.vertices[tet[0]])));
+        } else if (const double edge = longest_edge(mesh, tet); volume < flat_volume_ratio * edge * edge * edge) {
+            ++report.flat_tets;
+            note(report, concat("tetrahedron ", t, " (", tissue_name, ") is flat: volume ", volume, " mm^3 with edges up to ",
+                                edge, " mm at ", where(mesh.vertices[tet[0]]), "; its four nodes are coplanar"));
         }
         const TetShape shape = tet_shape(mesh, t);
         report.quality.min_dihedral_deg = std::min(report.quality.min_dihedral_deg, shape.min_dihedral_deg);

@@ -32,6 +32,9 @@ struct QualityStats {
 struct MeshCheckReport {
     std::size_t nodes = 0, tets = 0, faces = 0;
     std::size_t inverted_tets = 0;          ///< signed volume <= 0
+    /// Positive volume under flat_volume_ratio times the cube of the longest edge: four (nearly) coplanar
+    /// nodes. Such a tet's P1 gradients grow as 1/volume and its stiffness entries swamp the rest.
+    std::size_t flat_tets = 0;
     std::size_t nonconforming_faces = 0;    ///< faces shared by more than two tets
     std::size_t open_boundary_edges = 0;    ///< edges of the outer boundary not matched by a reverse edge
     std::size_t unused_nodes = 0;
@@ -45,10 +48,14 @@ struct MeshCheckReport {
     /// True when the mesh is fit for FEM: conforming, no inverted tets, closed boundary, interfaces right.
     bool ok() const
     {
-        return inverted_tets == 0 && nonconforming_faces == 0 && open_boundary_edges == 0 && unused_nodes == 0 &&
+        return inverted_tets == 0 && flat_tets == 0 && nonconforming_faces == 0 && open_boundary_edges == 0 && unused_nodes == 0 &&
                missing_interface_faces == 0 && mislabelled_interface_faces == 0 && unmarked_interfaces == 0;
     }
 };
+
+/// Volume over the cube of the longest edge below which a tet counts as flat. A regular tet has
+/// 1 / (6 sqrt 2) = 0.118; slivers of a few tenths of a degree, bad as they are, stay above 1e-5.
+inline constexpr double flat_volume_ratio = 1e-9;
 
 /// Checks `mesh`; with a non-empty `image`, also each tissue's voxel agreement (Dice), by rasterize_tets().
 MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image = nullptr, const Progress& progress = {});

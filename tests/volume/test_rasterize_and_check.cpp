@@ -100,6 +100,17 @@ TEST(CheckMesh, FindsInvertedMissingAndUnmarkedFaces)
     std::swap(cube.tets[0][0], cube.tets[0][1]);
     EXPECT_EQ(check_mesh(cube).inverted_tets, 1u);
 
+    // Four nodes 1e-12 mm off one plane: positive volume, but flat (and not counted as inverted).
+    TetMesh flat;
+    flat.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 0.5, 1e-12}};
+    flat.tets = {{0, 1, 2, 3}};
+    flat.tet_labels = {1};
+    const MeshCheckReport flat_report = check_mesh(flat);
+    EXPECT_EQ(flat_report.flat_tets, 1u);
+    EXPECT_EQ(flat_report.inverted_tets, 0u);
+    EXPECT_FALSE(flat_report.ok());
+    EXPECT_EQ(check_mesh(kuhn_cube(4)).flat_tets, 0u);
+
     TetMesh doubled = kuhn_cube(4);
     doubled.tets.push_back(doubled.tets[0]);
     doubled.tet_labels.push_back(1);
