@@ -53,8 +53,8 @@ double surface_factor(const LayeredSphere& sphere, int n, double source)
 
 } // namespace
 
-double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
-                                const Vec3& surface_point_mm, int terms)
+std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
+                                              const std::vector<Vec3>& surface_points_mm, int terms)
 {
     // Frame: z along the dipole position (or along the surface point for a centred dipole), x along the
     // moment's tangential part. The potential is linear in the moment: radial + tangential parts.
@@ -65,25 +65,41 @@ double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& positio
     const Vec3 tangential = moment_am - p_radial * ez;
     const double p_tangential = norm(tangential);
     const Vec3 ex = p_tangential > 0 ? (1 / p_tangential) * tangential : Vec3{1, 0, 0};
-    const Vec3 u = (1 / norm(surface_point_mm)) * surface_point_mm;
-    const double x = dot(u, ez);
-    const double sin_theta = std::sqrt(std::max(0.0, 1 - x * x));
-    const double cos_phi = sin_theta > 1e-12 ? dot(u, ex) / sin_theta : 0.0;
-    // P_n (x) and P_n^1 (x) = sin(theta) P_n'(x) by the three-term recurrences.
-    double p_prev = 1, p_cur = x, q_prev = 0, q_cur = sin_theta, sum = 0;
+    // The radial solution of each degree depends on the layers and the source depth only: once for all points.
+    std::vector<double> radial(static_cast<std::size_t>(terms) + 1), tangential_part(radial.size());
     for (int n = 1; n <= terms; ++n) {
-        if (n > 1) {
-            const double p_next = ((2 * n - 1) * x * p_cur - (n - 1) * p_prev) / n;
-            const double q_next = n == 2 ? 3 * x * sin_theta : ((2 * n - 1) * x * q_cur - n * q_prev) / (n - 1);
-            p_prev = p_cur, p_cur = p_next, q_prev = q_cur, q_cur = q_next;
-        }
-        const double radial_source = n * std::pow(r0, n - 1) / sphere.sigma_s_per_m[0];
-        const double tangential_source = std::pow(r0, n - 1) / sphere.sigma_s_per_m[0];
         const double factor = surface_factor(sphere, n, 1.0);
-        sum += factor * (p_radial * radial_source * p_cur + p_tangential * tangential_source * q_cur * cos_phi);
+        radial[static_cast<std::size_t>(n)] = factor * n * std::pow(r0, n - 1) / sphere.sigma_s_per_m[0];
+        tangential_part[static_cast<std::size_t>(n)] = factor * std::pow(r0, n - 1) / sphere.sigma_s_per_m[0];
     }
     const double outer_m = outer * 1e-3;
-    return sum / (4 * std::numbers::pi * outer_m * outer_m);
+    std::vector<double> potentials;
+    potentials.reserve(surface_points_mm.size());
+    for (const Vec3& point : surface_points_mm) {
+        const Vec3 u = (1 / norm(point)) * point;
+        const double x = dot(u, ez);
+        const double sin_theta = std::sqrt(std::max(0.0, 1 - x * x));
+        const double cos_phi = sin_theta > 1e-12 ? dot(u, ex) / sin_theta : 0.0;
+        // P_n (x) and P_n^1 (x) = sin(theta) P_n'(x) by the three-term recurrences.
+        double p_prev = 1, p_cur = x, q_prev = 0, q_cur = sin_theta, sum = 0;
+        for (int n = 1; n <= terms; ++n) {
+            if (n > 1) {
+                const double p_next = ((2 * n - 1) * x * p_cur - (n - 1) * p_prev) / n;
+                const double q_next = n == 2 ? 3 * x * sin_theta : ((2 * n - 1) * x * q_cur - n * q_prev) / (n - 1);
+                p_prev = p_cur, p_cur = p_next, q_prev = q_cur, q_cur = q_next;
+            }
+            const auto k = static_cast<std::size_t>(n);
+            sum += p_radial * radial[k] * p_cur + p_tangential * tangential_part[k] * q_cur * cos_phi;
+        }
+        potentials.push_back(sum / (4 * std::numbers::pi * outer_m * outer_m));
+    }
+    return potentials;
+}
+
+double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
+                                const Vec3& surface_point_mm, int terms)
+{
+    return sphere_surface_potentials(sphere, position_mm, moment_am, {surface_point_mm}, terms).front();
 }
 
 Agreement compare_potentials(std::vector<double> numeric, std::vector<double> analytic)

@@ -22,6 +22,11 @@ struct LayeredSphere {
 double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
                                 const Vec3& surface_point_mm, int terms = 150);
 
+/// The same at many points (one per surface point, in order): the series' radial factors, which do not
+/// depend on the point, are solved for once.
+std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
+                                              const std::vector<Vec3>& surface_points_mm, int terms = 150);
+
 /// How numeric surface potentials agree with analytic ones, both average-referenced: the relative
 /// difference measure RDM (0..2: the distance between the two unit-norm patterns) and the magnitude
 /// ratio MAG (numeric norm / analytic norm).

@@ -73,12 +73,11 @@ int main(int argc, char** argv)
                     const std::vector<double> phi =
                         fem::solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-10}, context.progress);
                     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-                    std::vector<double> numeric, analytic;
-                    for (const std::uint32_t node : surface) {
-                        numeric.push_back(phi[node]);
-                        analytic.push_back(fem::sphere_surface_potential(head_series, position, moment, mesh.vertices[node]));
-                    }
-                    const fem::Agreement a = fem::compare_potentials(numeric, analytic);
+                    std::vector<double> numeric;
+                    std::vector<Vec3> points;
+                    for (const std::uint32_t node : surface) numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
+                    const fem::Agreement a = fem::compare_potentials(
+                        numeric, fem::sphere_surface_potentials(head_series, position, moment, points));
                     context.log(concat(radial ? "radial" : "tangential", " dipole at eccentricity ", eccentricity,
                                        ": RDM ", a.rdm, ", MAG ", a.mag));
                     dipoles.push_back({{"eccentricity", eccentricity}, {"radial", radial}, {"rdm", a.rdm}, {"mag", a.mag}});

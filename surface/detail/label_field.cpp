@@ -3,11 +3,16 @@
 #include <array>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace tissuemesh::surface::detail {
 
 LabelField::LabelField(const LabelImage& image, Label background, double sigma_voxels)
     : image_(image), background_(background), sigma_(sigma_voxels)
 {
+    // sample_field() holds its taps on the stack: 2 ceil(3 sigma) + 1 of them, at most 7.
+    if (!(sigma_voxels > 0 && sigma_voxels <= 1))
+        throw InputError(concat("label field: blur ", sigma_voxels, " voxels is outside (0, 1]"));
 }
 
 namespace {

@@ -39,11 +39,11 @@ void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Ve
     PotentialReport report;
     const std::vector<double> phi =
         solve_potential(mesh, resolve_conductivities(mesh, {}), problem, {.relative_tolerance = 1e-10}, {}, &report);
-    std::vector<double> numeric, analytic;
-    for (std::uint32_t node : outer_boundary(mesh).nodes) {
-        numeric.push_back(phi[node]);
-        analytic.push_back(sphere_surface_potential(head, position, moment, mesh.vertices[node]));
-    }
+    std::vector<double> numeric;
+    std::vector<Vec3> points;
+    for (std::uint32_t node : outer_boundary(mesh).nodes)
+        numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
+    const std::vector<double> analytic = sphere_surface_potentials(head, position, moment, points);
     const Agreement a = compare_potentials(numeric, analytic);
     std::printf("[4-shell] %s dipole at (%.0f, %.0f, %.0f) mm moment (%.0e, %.0e, %.0e): %zu nodes, RDM %.4f, MAG %.4f, "
                 "%d AMG-CG iterations\n", model == DipoleModel::subtraction ? "subtraction" : "partial integration", position[0], position[1], position[2], moment[0], moment[1], moment[2],
