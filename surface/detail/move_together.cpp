@@ -13,7 +13,7 @@
 namespace tissuemesh::surface::detail {
 namespace {
 
-enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule };
+enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule, wedge_rule };
 
 TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t)
 {
@@ -51,6 +51,8 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
         else if (gap > 0 && !shares_vertex(tri, b) && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
                  closes_gap(now, before, other, corners_at(start, b), gap))
             broken = gap_rule;
+        else if (shares_vertex(tri, b) && closes_wedge(tri, now, &before, b, other, corners_at(start, b), limits_.min_wedge_deg))
+            broken = wedge_rule;
         if (broken == none) continue;
         if (!partners) return broken;
         if (found == none) found = broken;
@@ -108,7 +110,8 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
             ++(verdict[i] == shape_rule ? counters_.shape
                : verdict[i] == normal_rule ? counters_.normal
                : verdict[i] == intersection_rule ? counters_.intersection
-                                                 : counters_.gap);
+               : verdict[i] == gap_rule        ? counters_.gap
+                                                 : counters_.wedge);
             for (const std::uint32_t p : partners)
                 for (const std::uint32_t v : triangles_[p])
                     if (moved[v]) moved[v] = 0, positions_[v] = start[v], back.push_back(v);
