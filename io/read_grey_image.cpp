@@ -6,6 +6,9 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "io/detail/inrimage.h"
+#include "io/detail/itk_image_io.h"
+#include "io/detail/nifti_header.h"
+#include "io/detail/text_header.h"
 #include "io/detail/voxel_decode.h"
 
 namespace tissuemesh::io {
@@ -14,30 +17,27 @@ GreyImage read_grey_image(const std::filesystem::path& path)
 {
     const std::string name = path.string();
     require_readable_file(path);
+    if (std::filesystem::file_size(path) == 0) throw IoError(concat(name, ": the file is empty; write or copy it again"));
     const std::string extension = full_extension(path);
+    if (extension == ".nii" || extension == ".nii.gz") {
+        const detail::NiftiHeader header = detail::check_nifti_header(path);
+        if (header.version == 2)
+            throw IoError(concat(name, ": NIfTI-2 grey images are not read yet; save it as NIfTI-1 (e.g. with "
+                                       "nibabel or 3D Slicer), or as .nrrd or .mha"));
+        return detail::read_itk_grey_image(path, header.max_buffer_bytes);
+    }
+    if (extension == ".nrrd" || extension == ".nhdr" || extension == ".mha" || extension == ".mhd")
+        return detail::read_itk_grey_image(path, detail::text_header_payload_bound(path));
     if (extension != ".inr" && extension != ".inr.gz")
-        throw IoError(concat(name, ": grey-level images are read from Inrimage (.inr, .inr.gz) only; convert it "
-                                   "(e.g. with ITK or 3D Slicer) or use a label image with --tissue"));
+        throw IoError(concat(name, ": unknown grey image format '", extension, "'; use NIfTI-1 (.nii, .nii.gz), "
+                                   "NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd) or Inrimage (.inr, .inr.gz)"));
     const detail::InrimageLayout layout = detail::read_inrimage_layout(path);
     const std::uint64_t needed = detail::checked_voxel_bytes(name, layout.dims, detail::voxel_type_size(layout.type));
     const std::uint64_t size = detail::uncompressed_size(path);
     detail::require_payload(name, needed, size > layout.header_bytes ? size - layout.header_bytes : 0);
     const std::vector<unsigned char> bytes = detail::read_payload(path, layout.header_bytes, needed);
     GreyImage image{LabelImage(layout.dims, layout.spacing_mm, layout.origin_mm), {}};
-    const std::size_t count = image.grid.voxel_count();
-    const std::vector<unsigned char> doubles =
-        detail::rescale_to_float64(bytes.data(), layout.type, layout.big_endian, count, 1, 0);
-    image.values.resize(count);
-    for (std::size_t v = 0; v < count; ++v) {
-        double value = 0;
-        std::memcpy(&value, doubles.data() + 8 * v, sizeof value);
-        if (!std::isfinite(value)) {
-            const Dims& d = layout.dims;
-            throw InputError(concat(name, ": voxel (", v % d[0], ", ", (v / d[0]) % d[1], ", ", v / (d[0] * d[1]),
-                                    ") holds ", value, "; grey values must be finite numbers"));
-        }
-        image.values[v] = static_cast<float>(value);
-    }
+    image.values = detail::to_finite_floats(name, bytes.data(), layout.type, layout.big_endian, image.grid);
     return image;
 }
 

@@ -15,8 +15,12 @@ struct GreyImage {
     std::vector<float> values;  ///< grid.voxel_count() values, x fastest
 };
 
-/// Reads a grey-level image. Formats: Inrimage (`.inr`, `.inr.gz`) of any voxel type (integers are
-/// converted to float); identity direction, origin from TX/TY/TZ. Other formats are not read yet.
+/// Reads a grey-level image of any scalar voxel type (integers are converted to float). Formats: NIfTI-1
+/// (`.nii`, `.nii.gz`; scl_slope/scl_inter applied, geometry as for label images: RAS mm from the
+/// sform/qform), NRRD (`.nrrd`, `.nhdr`), MetaImage (`.mha`, `.mhd`) and Inrimage (`.inr`, `.inr.gz`;
+/// identity direction, origin from TX/TY/TZ). Headers are checked as for label images before anything
+/// is allocated. NIfTI-2 is not read yet. NIfTI values that are not finite come back as 0 (niftilib's
+/// convention under ITK, as FSL and ITK tools read them); in the other formats they are an error.
 /// @throws IoError when the file is missing, truncated, of an unknown extension or a wrong magic
 /// @throws InputError on invalid geometry or several values per voxel, or a value that is not finite
 GreyImage read_grey_image(const std::filesystem::path& path);

@@ -73,7 +73,7 @@ int main(int argc, char** argv)
          "Active contours: closed triangle surfaces move under tension, rigidity and an image force until they "
          "settle on a boundary. Label images: the boundary of a tissue and everything it encloses (--tissue), or "
          "of several nested tissues at once (--nested, outermost first), from the tissue indicator smoothed by a "
-         "Gaussian. Grey images (--grey, Inrimage): the iso-surface at --iso. The surfaces are refined and "
+         "Gaussian. Grey images (--grey: CT, MRI values in NIfTI-1, NRRD, MetaImage or Inrimage): the iso-surface at --iso. The surfaces are refined and "
          "coarsened as they move, never intersect, and nested ones keep --min-separation-voxels apart; the output "
          "is one interface complex fit for tm-tetra.",
          "Examples:\n  tm-snake -i head.nii.gz --labels head.json --tissue brain -o brain.ply\n"
@@ -81,7 +81,7 @@ int main(int argc, char** argv)
          "  tm-snake -i skull_2.9.inr --grey --iso 2.9 --tension 0.5 --rigidity 0.2 --max-step-voxels 0.25 -o skull.ply\n"
          "  tm-snake -i head.nii.gz --tissue 4 --init sphere --centre 0,0,10 --radius 60 -o brain.vtp\n"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Label image, or grey image (.inr, .inr.gz) with --grey")->required();
+            app.add_option("-i,--input", input, "Label image, or grey image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .inr, .inr.gz) with --grey")->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
             app.add_option("--labels", names_json, "Tissue names JSON ({\"1\": \"scalp\"})");
             app.add_option("--tissue", tissue, "One snake: this tissue (name or label) and what it encloses");

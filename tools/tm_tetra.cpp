@@ -67,8 +67,9 @@ int main(int argc, char** argv)
             app.add_option("--min-dihedral-deg", options.min_dihedral_deg, "Bound on the smallest dihedral angle")->capture_default_str();
             app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->capture_default_str();
             app.add_flag("--no-quality", no_quality, "Do not refine for the radius-edge and dihedral bounds");
-            app.add_flag("--allow-steiner", allow_steiner, "Let TetGen split interface triangles (bounds met everywhere; "
-                                                           "interfaces kept as surfaces, not as the input triangles)");
+            app.add_flag("--allow-steiner", allow_steiner, "Let TetGen split interface triangles for the bounds (it still "
+                                                           "misses them next to small input angles); interfaces kept "
+                                                           "as surfaces, not as the input triangles");
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
         },
         [&](tools::ToolContext& context) {

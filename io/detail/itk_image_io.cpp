@@ -157,7 +157,14 @@ itk::MetaDataDictionary segment_dictionary(const LabelImage& image)
     return dictionary;
 }
 
-LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes)
+/// An image's geometry (on a LabelImage whose labels are still 0), its stored voxel bytes and their type.
+struct StoredVoxels {
+    LabelImage grid;
+    std::vector<unsigned char> bytes;
+    VoxelType type = VoxelType::u8;
+};
+
+StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes)
 {
     io.ReadImageInformation();
     Dims dims{1, 1, 1};
@@ -188,17 +195,13 @@ LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_
     }
     io.SetIORegion(region);
     io.Read(bytes.data());
-
-    LabelImage image(dims, spacing, origin, direction);
-    const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
-    decode_labels(name, bytes.data(), type, big_endian, image);
-    image.names() = read_segment_names(name, io.GetMetaDataDictionary());
-    return image;
+    return {LabelImage(dims, spacing, origin, direction), std::move(bytes), type};
 }
 
-} // namespace
-
-LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes)
+/// Opens `path` with the ITK ImageIO its content calls for and reads it with read_with(); ITK's
+/// exceptions become IoError. `use` gets the ImageIO and the stored voxels.
+template <typename Use>
+auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, Use use)
 {
     const std::string name = path.string();
     const QuietItk quiet;
@@ -209,11 +212,34 @@ LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_
             throw IoError(concat(name, ": not a readable ", full_extension(path), " image (wrong magic or "
                                  "corrupt header); check that the file is not renamed or damaged"));
         io->SetFileName(path.string());
-        return read_with(*io, name, max_payload_bytes);
+        return use(*io, read_with(*io, name, max_payload_bytes));
     } catch (const itk::ExceptionObject& e) {
         throw IoError(concat(name, ": cannot be read (", one_line(e.GetDescription()),
                              "); the file is damaged or truncated, copy or export it again"));
     }
+}
+
+} // namespace
+
+LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes)
+{
+    const std::string name = path.string();
+    return read_through_itk(path, max_payload_bytes, [&](itk::ImageIOBase& io, StoredVoxels stored) {
+        const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
+        decode_labels(name, stored.bytes.data(), stored.type, big_endian, stored.grid);
+        stored.grid.names() = read_segment_names(name, io.GetMetaDataDictionary());
+        return std::move(stored.grid);
+    });
+}
+
+GreyImage read_itk_grey_image(const fs::path& path, std::uint64_t max_payload_bytes)
+{
+    return read_through_itk(path, max_payload_bytes, [&](itk::ImageIOBase&, StoredVoxels stored) {
+        const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
+        GreyImage image{std::move(stored.grid), {}};
+        image.values = to_finite_floats(path.string(), stored.bytes.data(), stored.type, big_endian, image.grid);
+        return image;
+    });
 }
 
 void write_itk_label_image(const LabelImage& image, const fs::path& path, const std::string& name,

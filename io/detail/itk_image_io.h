@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/label_image.h"
+#include "io/read_grey_image.h"
 
 namespace tissuemesh::io::detail {
 
@@ -16,6 +17,11 @@ namespace tissuemesh::io::detail {
 ///        rejected as truncated before anything is allocated
 /// @throws IoError when ITK cannot read the file, InputError on invalid content
 LabelImage read_itk_label_image(const std::filesystem::path& path, std::uint64_t max_payload_bytes);
+
+/// Reads a scalar image through ITK like read_itk_label_image(), keeping the values as floats (grey
+/// levels: CT, MRI). NIfTI's scl_slope/scl_inter are applied by ITK.
+/// @throws IoError when ITK cannot read the file, InputError on invalid geometry or a value that is not finite
+GreyImage read_itk_grey_image(const std::filesystem::path& path, std::uint64_t max_payload_bytes);
 
 /// Writes `image` to `path` through ITK (the format follows `path`'s extension), uint8 when every
 /// label fits, else uint16; compressed where the format allows. With `slicer_segments`, tissue names

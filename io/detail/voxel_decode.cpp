@@ -256,4 +256,23 @@ void decode_labels(const std::string& file, const unsigned char* bytes, VoxelTyp
     }
 }
 
+std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
+                                    const LabelImage& grid)
+{
+    const std::size_t count = grid.voxel_count();
+    const std::vector<unsigned char> doubles = rescale_to_float64(bytes, type, big_endian, count, 1, 0);
+    std::vector<float> values(count);
+    for (std::size_t v = 0; v < count; ++v) {
+        double value = 0;
+        std::memcpy(&value, doubles.data() + 8 * v, sizeof value);
+        if (!std::isfinite(value)) {
+            const Dims& d = grid.dims();
+            throw InputError(concat(file, ": voxel (", v % d[0], ", ", (v / d[0]) % d[1], ", ", v / (d[0] * d[1]),
+                                    ") holds ", value, "; grey values must be finite numbers"));
+        }
+        values[v] = static_cast<float>(value);
+    }
+    return values;
+}
+
 } // namespace tissuemesh::io::detail

@@ -52,6 +52,12 @@ bool is_gzip_file(const std::filesystem::path& path);
 void decode_labels(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
                    LabelImage& image);
 
+/// The voxels of `grid` (its dims give the count), stored as `type` in `bytes`, as floats (grey values),
+/// x fastest.
+/// @throws InputError naming `file` and the first voxel (i, j, k) whose value is not finite
+std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
+                                    const LabelImage& grid);
+
 /// The `count` values stored as `type` in `bytes`, times `slope` plus `intercept`, as float64 in host
 /// byte order (NIfTI's scl_slope/scl_inter), ready for decode_labels(..., VoxelType::f64, host order).
 std::vector<unsigned char> rescale_to_float64(const unsigned char* bytes, VoxelType type, bool big_endian,

@@ -1,5 +1,7 @@
 // tm-snake as a user runs it: nested snakes through tm-check-surface and tm-tetra, summaries, refusals.
+#include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -8,6 +10,7 @@
 #include "io/surface_io.h"
 #include "io/write_label_image.h"
 #include "surface/check_complex.h"
+#include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 #include "tests/support/phantom_distance.h"
 
@@ -82,6 +85,47 @@ TEST(SnakeCli, SphereStartAndIterationCapAreReported)
     InterfaceComplex settled = io::read_surface((dir / "r.ply").string());
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 4.0});
     EXPECT_LT(testing::phantom_distances(phantom, settled).mean_voxels, 0.3);
+}
+
+/// A grey image in NIfTI as a scanner writes it: int16 values with scl_slope 0.01 (so the stored integers
+/// carry fractions), 28^3 voxels of 1.5 mm centred on the origin, value 20 - r (r in mm from the centre): the
+/// iso-surface at 8 is the sphere of radius 12 mm.
+TEST(SnakeCli, GreyNiftiSettlesOnItsIsoSphere)
+{
+    const TempDir dir;
+    testing::NiftiSpec spec;
+    spec.dims[1] = spec.dims[2] = spec.dims[3] = 28;
+    spec.spacing[0] = spec.spacing[1] = spec.spacing[2] = 1.5f;
+    spec.datatype = 4;
+    spec.bitpix = 16;
+    spec.scale_slope = 0.01f;
+    for (int axis = 0; axis < 3; ++axis) spec.quatern[3 + axis] = -13.5f * 1.5f;
+    std::vector<std::int16_t> stored;
+    for (int k = 0; k < 28; ++k)
+        for (int j = 0; j < 28; ++j)
+            for (int i = 0; i < 28; ++i) {
+                const double r = 1.5 * std::sqrt((i - 13.5) * (i - 13.5) + (j - 13.5) * (j - 13.5) + (k - 13.5) * (k - 13.5));
+                stored.push_back(static_cast<std::int16_t>(std::lround((20 - r) / 0.01)));
+            }
+    testing::write_nifti(dir / "ball.nii", spec, testing::voxel_bytes(stored));
+    const auto run = run_cli("tm-snake", {"-i", (dir / "ball.nii").string(), "--grey", "--iso", "8", "--init", "sphere",
+                                          "--centre", "0,0,0", "--radius", "16", "-o", (dir / "ball.ply").string(),
+                                          "--json", (dir / "ball.json").string()});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_TRUE(testing::read_json(dir / "ball.json").at("converged").get<bool>());
+    const InterfaceComplex surface = io::read_surface((dir / "ball.ply").string());
+    ASSERT_TRUE(surface::check_complex(surface).ok());
+    // Trilinear interpolation of 20 - r bends the level set by at most a few hundredths of a voxel here.
+    double mean = 0, largest = 0;
+    for (const Vec3& p : surface.vertices) {
+        const double off = std::abs(norm(p) - 12.0) / 1.5;
+        mean += off;
+        largest = std::max(largest, off);
+    }
+    mean /= static_cast<double>(surface.vertices.size());
+    std::cout << "[ figures  ] grey NIfTI ball: " << surface.vertices.size() << " vertices, mean " << mean << " max " << largest << " voxel from r = 12 mm\n";
+    EXPECT_LT(mean, 0.1) << "voxels";
+    EXPECT_LT(largest, 0.3) << "voxels";
 }
 
 TEST(SnakeCli, RefusalsNameTheProblemAndLeaveNothing)

@@ -168,13 +168,20 @@ TEST(Tetrahedralize, PerTissueVolumeBoundHoldsInThatTissueOnly)
     EXPECT_GT(largest_outer, 0.5) << "the bound must not spread to the other tissue";
 }
 
-TEST(Tetrahedralize, QualityBoundsHoldAwayFromFixedInterfaces)
+TEST(Tetrahedralize, QualityBoundsHoldWhereInterfacesMaySplit)
 {
-    // Without -Y TetGen may split interface triangles, so it can meet the radius-edge bound everywhere.
-    const TetMesh mesh = tetrahedralize(nested_boxes(), {.preserve_interfaces = false, .max_radius_edge_ratio = 1.5});
+    // Without -Y TetGen may split interface triangles, so on boxes (no input angle under 90 degrees) it refines
+    // every tet towards the radius-edge bound; the tissue volumes stay exact. TetGen does not meet its bound
+    // exactly: measured 1.576 against 1.5 (with or without its -O optimisation), so 10% over it is allowed.
+    TetrahedralizeReport report;
+    const TetMesh mesh =
+        tetrahedralize(nested_boxes(), {.preserve_interfaces = false, .max_radius_edge_ratio = 1.5}, {}, &report);
     const auto volumes = volumes_by_tissue(mesh);
     EXPECT_NEAR(volumes.at(2), 64.0, 1e-9);
+    EXPECT_NEAR(volumes.at(1), 1000.0 - 64.0, 1e-9);
     EXPECT_GT(mesh.vertices.size(), nested_boxes().vertices.size());
+    EXPECT_LE(report.max_radius_edge_ratio, 1.1 * 1.5);
+    EXPECT_GE(report.min_dihedral_deg, 5.0);
 }
 
 TEST(Tetrahedralize, IntersectingBoxesAreRejectedNamingTissues)
