@@ -11,6 +11,7 @@
 #include "fem/detail/locality_order.h"
 #include "fem/detail/sources.h"
 #include "fem/detail/subtraction.h"
+#include "fem/detail/venant.h"
 #include "fem/outer_boundary.h"
 
 namespace tissuemesh::fem {
@@ -74,6 +75,8 @@ Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities
     for (std::size_t d = 0; d < problem.dipoles.size(); ++d) {
         if (problem.dipole_model == DipoleModel::partial_integration) {
             detail::add_dipole_load(mesh, problem.dipoles[d], d, rhs);
+        } else if (problem.dipole_model == DipoleModel::venant) {
+            detail::add_venant_load(mesh, conductivities, problem.dipoles[d], d, problem.venant, rhs);
         } else {
             subtracted.push_back(detail::subtraction_source(mesh, conductivities, problem.dipoles[d], d));
             detail::add_subtraction_load(mesh, conductivities, boundary, subtracted.back(), rhs);

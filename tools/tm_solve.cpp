@@ -219,7 +219,7 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-solve",
          "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
-         "dipoles (subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
+         "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
          "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
          "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
          "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
@@ -234,10 +234,13 @@ int main(int argc, char** argv)
             app.add_option("--sensors", sensors_path, "CSV with header x,y,z (mm)");
             app.add_option("--sensor-potentials", sensor_output, "CSV out: x,y,z,potential (V) at the nearest surface node");
             app.add_option("--dipole-model", dipole_model,
-                           "Dipole singularity: partial-integration (any tissue), or subtraction (exact unbounded-medium "
-                           "potential plus a smooth correction: far more accurate near interfaces; needs an isotropic "
-                           "tissue at the source)")
-                ->check(CLI::IsMember({"subtraction", "partial-integration"}));
+                           "Dipole singularity: venant (monopoles on the nearest node and its neighbours with the dipole's "
+                           "moments; any tissue, accurate up to the interfaces: the EEG choice), subtraction (exact "
+                           "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
+                           "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
+                           "load of the one tet that holds the dipole: several times less accurate, its error depends on "
+                           "that tet)")
+                ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
             app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
             app.add_flag("--error-indicator", error_indicator,
@@ -252,7 +255,9 @@ int main(int argc, char** argv)
             clock.lap("read");
             const fem::Conductivities sigma = resolve_from_file(mesh, conductivity);
             fem::PotentialProblem problem = parse_problem(dipoles, electrodes);
-            problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction : fem::DipoleModel::partial_integration;
+            problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
+                                   : dipole_model == "venant"    ? fem::DipoleModel::venant
+                                                                 : fem::DipoleModel::partial_integration;
             const std::vector<Vec3> sensors = sensors_path.empty() ? std::vector<Vec3>{} : read_sensors(sensors_path);
             clock.lap("inputs");
             fem::PotentialReport report;

@@ -115,7 +115,7 @@ SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& 
     };
     if (sigma != isotropic(sigma[0]))
         throw InputError(concat(where(), " lies in an anisotropic tissue; the subtraction approach needs an isotropic ",
-                                "one around the source: use partial integration"));
+                                "one around the source: use the Venant model or partial integration"));
     // phi_inf is infinite at the source: it must not sit on a node (1e-6 of the tet's size: round-off).
     std::array<Vec3, 4> corners{};
     for (int k = 0; k < 4; ++k) corners[k] = mesh.vertices[mesh.tets[t][k]];
@@ -123,7 +123,7 @@ SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& 
         if (distance(corners[k], dipole.position_mm) <= 1e-6 * longest_edge(corners.data(), 4))
             throw InputError(concat(where(), " lies on a mesh node, where the unbounded-medium ",
                                     "potential of the subtraction approach is infinite: move the dipole off the node ",
-                                    "or use partial integration"));
+                                    "or use the Venant model or partial integration"));
     // Tets of another conductivity may touch the source's tet: their volume integrals are near-singular
     // but finite, and the splitting in tet_integral resolves them (measured on the 1 mm pipeline head at
     // eccentricity 0.95, 3.9 mm from the CSF: RDM 0.022 with them, against 0.039 by partial integration).

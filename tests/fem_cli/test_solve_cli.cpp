@@ -133,6 +133,41 @@ TEST(SolveCli, ErrorIndicatorAndPhaseTimesInTheSummary)
         EXPECT_GE(summary["phase_seconds"][phase].get<double>(), 0.0) << phase;
 }
 
+// The box is symmetric under the inversion x -> (20, 20, 20) - x (each cube's six tets run along its
+// diagonal both ways), and a dipole at the centre node turns into its negative under it: the potential is
+// odd. Venant's monopoles on the centre node's star keep that symmetry; subtraction refuses a dipole on a
+// node and says what to use instead.
+TEST(SolveCli, VenantDipoleOnTheCentreNodeGivesAnOddPotential)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    write(dir / "sensors.csv", "x,y,z\n0,10,10\n20,10,10\n10,0,10\n10,20,10\n");
+    CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                            "--dipole", "10,10,10,1e-8,0,0", "--dipole-model", "venant",
+                                            "--sensors", (dir / "sensors.csv").string(),
+                                            "--sensor-potentials", (dir / "eeg.csv").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    std::stringstream text(read_file(dir / "eeg.csv"));
+    std::string line;
+    std::getline(text, line);
+    std::vector<double> potential;
+    while (std::getline(text, line)) potential.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+    ASSERT_EQ(potential.size(), 4u);
+    // x = 0 is behind the dipole (pointing to +x), x = 20 ahead of it; y = 0 and y = 20 are mirror images
+    // of each other under the inversion, so they are opposite too (the 1e-8 relative: the CG tolerance).
+    EXPECT_LT(potential[0], 0.0);
+    EXPECT_NEAR(potential[0], -potential[1], 1e-8 * std::abs(potential[0]));
+    EXPECT_NEAR(potential[2], -potential[3], 1e-8 * std::abs(potential[0]));
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "sub.vtu").string(),
+                                  "--dipole", "10,10,10,1e-8,0,0", "--dipole-model", "subtraction"});
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_NE(result.err.find("lies on a mesh node"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("use the Venant model"), std::string::npos) << result.err;
+    result = run_cli("tm-solve", {"--help"});
+    EXPECT_EQ(result.exit_code, 0);
+    EXPECT_NE(result.out.find("venant"), std::string::npos) << result.out;
+}
+
 TEST(SolveCli, BadInputExitsTwoWithTheReason)
 {
     TempDir dir;
