@@ -160,6 +160,20 @@ fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, con
     return problem;
 }
 
+// Memory of a solve, the mesh it read included: 2.9-3.0 kB per node on TetGen meshes of spheres4 (0.23 and
+// 0.56 M nodes, 5.5-6.1 tets per node; the matrix, its reduction, BoomerAMG's hierarchy, fields and .vtu),
+// 2.1-2.3 kB on structured boxes (README, "Resource limits").
+constexpr double bytes_per_node = 3000;
+
+/// Refuses a solve that would need more memory than --max-memory allows, before the assembly.
+void check_memory(const tools::ToolContext& context, const std::string& input, const TetMesh& mesh)
+{
+    const double nodes = static_cast<double>(mesh.vertex_count());
+    tools::require_memory(context.memory, input, nodes * bytes_per_node,
+                          concat(tools::format_count(nodes), " nodes x ", tools::format_bytes(bytes_per_node)),
+                          "mesh it coarser (tm-tetra --max-volume)");
+}
+
 /// The solver's own phases (assembly, loads, AMG setup, CG) into `clock`.
 void record_solver_phases(const fem::PotentialReport& report, PhaseClock& clock)
 {
@@ -186,17 +200,19 @@ int main(int argc, char** argv)
          "dipoles (subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
          "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
          "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
-         "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m, at most 1 MiB). "
-         "--sensors is CSV with the header x,y,z (mm) and --electrodes CSV with x,y,z,radius_mm,current_a (mm, mm, A), both "
-         "optionally with a name column, in any order; '#' lines are comments; at most 100 000 sensors, 10 000 electrodes. "
-         "--electrodes and --electrode add up; the currents must sum to zero.\n"
+         "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m; names "
+         "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV with "
+         "x,y,z,radius_mm,current_a (mm, mm, A), both optionally with a name column, columns in any order, '#' lines "
+         "comments; at most 100 000 sensors and 10 000 electrodes. --electrodes and --electrode add up; with no fixed "
+         "potential the currents must sum to zero. Before the solve, a mesh that would need more than --max-memory "
+         "(about 3 kB per node) is refused.\n"
          "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
          "      --sensors electrodes.csv --sensor-potentials eeg.csv\n"
          "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3\n"
-         "  tm-solve -i head.msh -o hd-tdcs.vtu --electrodes montage.csv    # montage.csv:\n"
+         "  tm-solve -i head.msh -o tdcs.vtu --electrodes montage.csv      # 2 mA from C3 to Fp2; montage.csv:\n"
          "      name,x,y,z,radius_mm,current_a\n"
-         "      C3,-52.1,-18.9,96.4,6,+0.002\n"
-         "      FC3,-49.8,12.2,88.0,6,-0.0005    (and three more returns of -0.0005)"},
+         "      C3,-52.1,-18.9,96.4,12.5,+0.002\n"
+         "      Fp2,27.3,88.1,29.0,12.5,-0.002"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh), mm")->required()->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
@@ -230,6 +246,7 @@ int main(int argc, char** argv)
             clock.lap("inputs");
             const TetMesh mesh = io::read_tet_mesh(input);
             clock.lap("read");
+            check_memory(context, input, mesh);
             const fem::Conductivities sigma = resolve_from_file(mesh, table, conductivity);
             fem::PotentialProblem problem = parse_problem(dipoles, electrodes, montage, montage_rows);
             problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction : fem::DipoleModel::partial_integration;

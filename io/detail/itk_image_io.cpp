@@ -157,7 +157,8 @@ itk::MetaDataDictionary segment_dictionary(const LabelImage& image)
     return dictionary;
 }
 
-LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes)
+LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes,
+                     const BeforeVoxels& before_voxels)
 {
     io.ReadImageInformation();
     Dims dims{1, 1, 1};
@@ -179,6 +180,7 @@ LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_
     const std::uint64_t needed = checked_voxel_bytes(name, dims, voxel_type_size(type));
     validate_geometry(name, dims, spacing, direction);
     require_payload(name, needed, max_payload_bytes);
+    if (before_voxels) before_voxels(dims, spacing, voxel_type_size(type));
 
     std::vector<unsigned char> bytes(static_cast<std::size_t>(needed));
     itk::ImageIORegion region(io.GetNumberOfDimensions());
@@ -198,7 +200,7 @@ LabelImage read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_
 
 } // namespace
 
-LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes)
+LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes, const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
     const QuietItk quiet;
@@ -209,7 +211,7 @@ LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_
             throw IoError(concat(name, ": not a readable ", full_extension(path), " image (wrong magic or "
                                  "corrupt header); check that the file is not renamed or damaged"));
         io->SetFileName(path.string());
-        return read_with(*io, name, max_payload_bytes);
+        return read_with(*io, name, max_payload_bytes, before_voxels);
     } catch (const itk::ExceptionObject& e) {
         throw IoError(concat(name, ": cannot be read (", one_line(e.GetDescription()),
                              "); the file is damaged or truncated, copy or export it again"));
