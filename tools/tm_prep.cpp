@@ -1,6 +1,7 @@
 // tm-prep: cleans a label image before meshing: relabel/merge, resample, keep the largest pieces,
 // remove islands, fill holes, crop and pad, in that fixed order; each step logs what it changed.
 #include <charconv>
+#include <cmath>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -106,9 +107,11 @@ tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::s
 {
     return [=](const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel) {
         const double voxels = static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
+        // A bad --spacing-mm (0, negative, not finite) is left to prepare_image() and its message.
         double scale = 1;
         if (options.spacing_mm)
             for (int axis = 0; axis < 3; ++axis) scale *= spacing_mm[axis] / (*options.spacing_mm)[axis];
+        if (!std::isfinite(scale) || !(scale > 0)) return;
         const bool cleans = !options.keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes;
         const double in = static_cast<double>(file_bytes_per_voxel) +
                           (cleans && !options.spacing_mm ? bytes_per_cleaned_voxel : bytes_per_label);
