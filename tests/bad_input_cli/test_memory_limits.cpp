@@ -18,6 +18,14 @@
 namespace tissuemesh::testing {
 namespace {
 
+// Under AddressSanitizer (scripts/sanitize) redzones and the quarantine of freed blocks raise the real peak, not
+// the estimate: there the refusals use a fixed small limit instead of half the measured peak.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool sanitized = true;
+#else
+constexpr bool sanitized = false;
+#endif
+
 /// A `n`^3 uint8 NIfTI of 1 mm voxels: a ball of tissue 1 with a shell of tissue 2, on background.
 void write_ball_image(const std::filesystem::path& path, std::int16_t n)
 {
@@ -97,7 +105,7 @@ TEST(MemoryLimits, ExtractionRefusesAnImageOverTheLimitAndRunsUnderAFairOne)
                                  dir / "run.json");
     std::filesystem::remove(dir / "first.ply");
     std::filesystem::remove(dir / "run.json");
-    expect_refused(run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(peak / 2)}), dir,
+    expect_refused(run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(sanitized ? 20 : peak / 2)}), dir,
                    {"tm-extract: error: " + input + ": needs about", "4.1 M voxels x", "more than --max-memory",
                     "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2) or raise --max-memory"});
     const CliResult fair = run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(3 * peak)});
@@ -157,7 +165,7 @@ TEST(MemoryLimits, SolveRefusesAMeshOverTheLimitAndRunsUnderAFairOne)
     const double peak = peak_mib(solve((dir / "first.vtu").string(), {"--json", (dir / "run.json").string()}), dir / "run.json");
     std::filesystem::remove(dir / "first.vtu");
     std::filesystem::remove(dir / "run.json");
-    expect_refused(solve((dir / "out.vtu").string(), {"--max-memory", std::to_string(peak / 2)}), dir,
+    expect_refused(solve((dir / "out.vtu").string(), {"--max-memory", std::to_string(sanitized ? 30 : peak / 2)}), dir,
                    {input + ": needs about", "69 k nodes x 2.9 KiB", "mesh it coarser (tm-tetra --max-volume)"});
     const CliResult fair = solve((dir / "out.vtu").string(), {"--max-memory", std::to_string(3 * peak)});
     EXPECT_EQ(fair.exit_code, 0) << fair.err;
