@@ -70,6 +70,7 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
 {
     const std::set<Label> present(mesh.tet_labels.begin(), mesh.tet_labels.end());
     Conductivities result;
+    std::map<Label, std::string> key_of;  // a tissue named twice ("brain" and "4") would keep one value silently
     for (const auto& [key, tensor] : table) {
         check_tensor(tensor, key);
         std::optional<Label> label = parse_label(key);
@@ -79,6 +80,9 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
         if (!label || !present.count(*label))
             throw InputError(concat("conductivity table: '", key, "' is no tissue of the mesh (tissues: ",
                                     known_tissues(mesh, present), "); use a label number or one of these names"));
+        if (const auto [first, inserted] = key_of.emplace(*label, key); !inserted)
+            throw InputError(concat("conductivity table: '", first->second, "' and '", key, "' both name tissue ", *label,
+                                    " (", name_of(mesh, *label), "); give it once"));
         result.by_label[*label] = tensor;
     }
     for (Label label : present) {

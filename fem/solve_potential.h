@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/progress.h"
@@ -24,6 +25,7 @@ struct Electrode {
     double current_a = 0;         ///< total current into the body, A (Mode::current), spread over the patch
                                   ///< area: uniform normal current density
     double potential_v = 0;       ///< patch potential, V (Mode::potential)
+    std::string name;             ///< how messages call it ("C3 (montage.csv line 4)"); empty: "electrode <n>"
 };
 
 /// A current dipole: primary current p * delta(x - position). See DipoleModel for its treatment.

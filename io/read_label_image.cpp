@@ -54,15 +54,15 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     LabelImage image;
     if (extension == ".nii" || extension == ".nii.gz") {
         const detail::NiftiHeader header = detail::check_nifti_header(path);
-        image = header.version == 2 ? detail::read_nifti2(path, header)
-                                    : detail::read_itk_label_image(path, header.max_buffer_bytes);
+        image = header.version == 2 ? detail::read_nifti2(path, header, options.before_voxels)
+                                    : detail::read_itk_label_image(path, header.max_buffer_bytes, options.before_voxels);
     } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||
                extension == ".mhd") {
-        image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path));
+        image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path), options.before_voxels);
     } else if (extension == ".inr" || extension == ".inr.gz") {
-        image = detail::read_inrimage(path);
+        image = detail::read_inrimage(path, options.before_voxels);
     } else if (extension == ".json") {
-        image = detail::read_raw_json_image(path);
+        image = detail::read_raw_json_image(path, options.before_voxels);
     } else {
         throw IoError(concat(name, ": unknown image format '", extension, "'; use one of ", extension_list()));
     }

@@ -1,7 +1,9 @@
 // Reading label images: NIfTI-1/2, NRRD (and 3D Slicer .seg.nrrd), MetaImage, Inrimage, raw + JSON.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,11 @@ namespace tissuemesh::io {
 /// Options for read_label_image().
 struct ReadImageOptions {
     std::filesystem::path names_json;  ///< optional {"1": "scalp", ...}; overrides names from the file
+    /// Optional: called once the header is checked (dimensions, spacing, and that the file holds the voxels),
+    /// before any voxel is allocated, with the dimensions, the spacing (mm) and the bytes per voxel of the
+    /// file's type. It may throw to refuse the image: tools refuse images that need more memory than they
+    /// may use (tools/memory_limit.h).
+    std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)> before_voxels;
 };
 
 /// Reads a label image; the format is chosen by the file name's extension:

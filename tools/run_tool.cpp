@@ -1,5 +1,6 @@
 #include "tools/run_tool.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -68,12 +69,15 @@ private:
     std::map<std::string, StageState> stages_;
 };
 
-/// Peak resident memory of this process so far, in MiB.
+/// Peak resident memory of this process so far, or of a child it waited for (TetGen runs in one) when that
+/// was larger, in MiB. A forked child's pages are shared with the parent until written, so the larger of
+/// the two peaks is the better guess of what the machine had to hold.
 double peak_memory_mb()
 {
-    rusage usage{};
-    ::getrusage(RUSAGE_SELF, &usage);
-    return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+    rusage self{}, children{};
+    ::getrusage(RUSAGE_SELF, &self);
+    ::getrusage(RUSAGE_CHILDREN, &children);
+    return static_cast<double>(std::max(self.ru_maxrss, children.ru_maxrss)) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
 void write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
@@ -103,6 +107,10 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
         ->type_name("FILE");
     app.add_flag("-v,--verbose", verbose, "More detail on stderr");
     app.add_flag("-q,--quiet", quiet, "Only errors on stderr");
+    double max_memory_mib = 0;
+    app.add_option("--max-memory", max_memory_mib,
+                   "Refuse inputs that would need more than MIB MiB (default: the memory available at the start)")
+        ->type_name("MIB")->check(CLI::PositiveNumber);
     add_options(app);
 
     try {
@@ -122,6 +130,11 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
     ToolContext context;
     context.tool = spec.name;
     context.verbosity = quiet ? 0 : (verbose ? 2 : 1);
+    // The default: what the machine has available, plus what this program already holds of it.
+    const std::uint64_t program_bytes = resident_memory_bytes(), available = available_memory_bytes();
+    context.memory = max_memory_mib > 0
+                         ? MemoryLimit{static_cast<std::uint64_t>(max_memory_mib * 1048576.0), true, program_bytes}
+                         : MemoryLimit{available > 0 ? available + program_bytes : 0, false, program_bytes};
     auto printer = std::make_shared<StderrProgress>(context.verbosity);
     context.progress = Progress(
         [printer](std::string_view stage, double fraction) { printer->fraction(stage, fraction); },
@@ -141,7 +154,7 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
     } catch (const AlgorithmError& e) {
         code = 1, message = e.what();
     } catch (const std::bad_alloc&) {
-        code = 1, message = "out of memory; try a coarser spacing (tm-prep --spacing) or a smaller crop";
+        code = 1, message = "out of memory; try a coarser spacing (tm-prep --spacing-mm) or a smaller crop";
     } catch (const std::exception& e) {
         code = 1, message = concat("internal error: ", e.what(), "; please report it with the input");
     }

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/progress.h"
+#include "tools/memory_limit.h"
 
 namespace tissuemesh::tools {
 
@@ -23,6 +24,9 @@ struct ToolContext {
     std::string tool;
     /// A checker that ran to the end but found the input unfit sets 1 here (errors still throw).
     int exit_code = 0;
+    /// --max-memory MIB, else the memory available when the tool started: steps whose needs follow from
+    /// their input check it before their big allocations (require_memory, image_memory_check).
+    MemoryLimit memory;
 
     /// Prints "[tool] text" on stderr unless quiet.
     void log(std::string_view text) const;
@@ -46,7 +50,7 @@ struct ToolSpec {
     std::string examples;     ///< shown at the end of --help
 };
 
-/// Parses the command line (adding -v/-q/--json/--version to the tool's own options), runs `body`,
+/// Parses the command line (adding -v/-q/--json/--version/--max-memory to the tool's own options), runs `body`,
 /// writes the summary, and maps exceptions to exit codes with one line on stderr:
 ///     tm-info: error: head.nii: spacing along axis 2 is 0 mm; ...
 int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<void(CLI::App&)>& add_options,

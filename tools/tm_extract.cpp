@@ -101,6 +101,40 @@ nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceS
     return tissues;
 }
 
+// Memory of an extraction, measured on spheres4 at 1 and 2 mm, the thin phantom and the 1 mm usc19-5 head
+// (README, "Resource limits"): reading holds the file's voxels and 14 B more per voxel; extracting holds the
+// labels and about 65 B per triangle, and marching cubes on Freudenthal's tets makes 6-8 triangles per voxel
+// face between two labels, so about 500 B per such face.
+constexpr double read_bytes_per_voxel = 14;
+constexpr double bytes_per_voxel = 3;
+constexpr double bytes_per_label_face = 500;
+
+/// Voxel faces between two different labels, the outside of the image counting as `background`.
+double label_faces(const LabelImage& image, Label background)
+{
+    const Dims& d = image.dims();
+    std::size_t faces = 0;
+    for (std::size_t k = 0; k < d[2]; ++k)
+        for (std::size_t j = 0; j < d[1]; ++j)
+            for (std::size_t i = 0; i < d[0]; ++i) {
+                const Label label = image.at(i, j, k);
+                faces += (i + 1 < d[0] ? label != image.at(i + 1, j, k) : label != background) + (i == 0 && label != background);
+                faces += (j + 1 < d[1] ? label != image.at(i, j + 1, k) : label != background) + (j == 0 && label != background);
+                faces += (k + 1 < d[2] ? label != image.at(i, j, k + 1) : label != background) + (k == 0 && label != background);
+            }
+    return static_cast<double>(faces);
+}
+
+/// Refuses an extraction that would need more memory than --max-memory allows, before it starts.
+void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image, Label background)
+{
+    const double voxels = static_cast<double>(image.voxel_count()), faces = label_faces(image, background);
+    tools::require_memory(context.memory, input, voxels * bytes_per_voxel + faces * bytes_per_label_face,
+                          concat(tools::format_count(faces), " voxel faces between tissues x ",
+                                 tools::format_bytes(bytes_per_label_face), " for the triangles"),
+                          "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -144,7 +178,10 @@ int main(int argc, char** argv)
                 throw InputError(concat(output, ": the interface complex is written as .ply or .vtp (label pairs "
                                         "per triangle); use --per-tissue for .stl/.off"));
             auto start = std::chrono::steady_clock::now();
+            read_options.before_voxels = tools::image_memory_check(ctx.memory, input, read_bytes_per_voxel,
+                                                                   "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
+            check_memory(ctx, input, image, options.background);
             const double read_seconds = seconds_since(start);
             options.priority = parse_priority(priority, image);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's

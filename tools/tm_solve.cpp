@@ -5,7 +5,6 @@
 #include <ctime>
 #include <map>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -15,8 +14,11 @@
 #include "fem/estimate_error.h"
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
-#include "io/write_vtu.h"
+#include "io/read_conductivity_table.h"
+#include "io/read_electrodes.h"
+#include "io/read_sensors.h"
 #include "io/tet_mesh_io.h"
+#include "io/write_vtu.h"
 #include "tools/run_tool.h"
 #include "volume/check_mesh.h"
 
@@ -41,66 +43,20 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
     return values;
 }
 
-/// {"skull": 0.01, "3": 1.79, "white": [[...],[...],[...]] or [9 numbers]} in S/m.
-fem::ConductivityTable read_conductivity_table(const std::string& path)
-{
-    require_readable_file(path);
-    std::ifstream in(path);
-    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
-    if (json.is_discarded() || !json.is_object())
-        throw IoError(concat(path, ": not a JSON object; write {\"scalp\": 0.43, \"skull\": 0.01, ...} in S/m"));
-    fem::ConductivityTable table;
-    for (const auto& [key, value] : json.items()) {
-        const nlohmann::json flat = value.is_array() ? value.flatten() : value;
-        if (value.is_number()) {
-            if (!(value.get<double>() > 0))
-                throw InputError(concat(path, ": \"", key, "\" is ", value.dump(), " S/m; conductivities are positive numbers"));
-            table[key] = fem::isotropic(value.get<double>());
-        } else if (value.is_array() && flat.size() == 9) {
-            Mat3 tensor{};
-            std::size_t k = 0;
-            for (const auto& entry : flat.items()) {
-                if (!entry.value().is_number()) break;
-                tensor[k++] = entry.value().get<double>();
-            }
-            if (k != 9) throw IoError(concat(path, ": \"", key, "\" has a non-number in its tensor"));
-            table[key] = tensor;
-        } else {
-            throw IoError(concat(path, ": \"", key, "\" must be a number (S/m) or a 3x3 tensor (9 numbers)"));
-        }
-    }
-    return table;
-}
-
-/// Sensors CSV "x,y,z" (mm) -> positions.
-std::vector<Vec3> read_sensors(const std::string& path)
-{
-    require_readable_file(path);
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
-    if (line.rfind("x,y,z", 0) != 0) throw IoError(concat(path, ": the first line must be the header x,y,z (mm)"));
-    std::vector<Vec3> sensors;
-    for (std::size_t row = 2; std::getline(in, line); ++row) {
-        if (line.empty() || line == "\r") continue;
-        if (line.back() == '\r') line.pop_back();
-        const std::vector<double> v = parse_numbers(line, 3, concat(path, " line ", row), "x,y,z in mm");
-        sensors.push_back({v[0], v[1], v[2]});
-    }
-    return sensors;
-}
-
-/// Potential at each sensor: the value at the nearest outer-boundary node.
-std::string sensor_csv(const TetMesh& mesh, const std::vector<Vec3>& sensors, const std::vector<double>& phi)
+/// Potential at each sensor: the value at the nearest outer-boundary node. Named sensors keep their names.
+std::string sensor_csv(const TetMesh& mesh, const std::vector<io::SensorRow>& sensors, const std::vector<double>& phi)
 {
     const std::vector<std::uint32_t> surface = fem::outer_boundary(mesh).nodes;
+    const bool named = !sensors.empty() && !sensors.front().name.empty();
     std::ostringstream out;
     out.precision(12);
-    out << "x,y,z,potential\n";
-    for (const Vec3& s : sensors) {
+    out << (named ? "name," : "") << "x,y,z,potential\n";
+    for (const io::SensorRow& sensor : sensors) {
+        const Vec3& s = sensor.position_mm;
         std::uint32_t best = surface.front();
         for (std::uint32_t node : surface)
             if (distance(mesh.vertices[node], s) < distance(mesh.vertices[best], s)) best = node;
+        if (named) out << sensor.name << ',';
         out << s[0] << ',' << s[1] << ',' << s[2] << ',' << phi[best] << '\n';
     }
     return out.str();
@@ -169,17 +125,18 @@ double min_dihedral_deg(const TetMesh& mesh)
     return smallest;
 }
 
-/// The conductivities of the mesh's tissues from the table at `path` (empty: the head defaults); errors about
-/// the table's contents name the file.
-fem::Conductivities resolve_from_file(const TetMesh& mesh, const std::string& path)
+/// The conductivities of the mesh's tissues from `table`, read from `path` (empty: the head defaults); errors
+/// about the table's contents name the file.
+fem::Conductivities resolve_from_file(const TetMesh& mesh, const fem::ConductivityTable& table, const std::string& path)
 {
     if (path.empty()) return fem::resolve_conductivities(mesh, {});
-    const fem::ConductivityTable table = read_conductivity_table(path);
     return tools::with_source(path, [&] { return fem::resolve_conductivities(mesh, table); });
 }
 
-/// The sources given on the command line.
-fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, const std::vector<std::string>& electrodes)
+/// The sources given on the command line: --dipole and --electrode flags, then the rows of --electrodes FILE
+/// (each named in messages by its name and line).
+fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, const std::vector<std::string>& electrodes,
+                                    const std::string& montage, const std::vector<io::ElectrodeRow>& montage_rows)
 {
     fem::PotentialProblem problem;
     for (const std::string& text : dipoles) {
@@ -188,12 +145,33 @@ fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, con
     }
     for (const std::string& text : electrodes) {
         const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
-        problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4]});
+        if (!(v[3] > 0))
+            throw InputError(concat("--electrode ", text, ": RADIUS ", v[3], " mm is not a positive length; write X,Y,Z,RADIUS,CURRENT_A (mm, A)"));
+        problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4],
+                                      .name = concat("--electrode ", text)});
     }
+    for (const io::ElectrodeRow& row : montage_rows)
+        problem.electrodes.push_back({.centre_mm = row.centre_mm, .radius_mm = row.radius_mm, .current_a = row.current_a,
+                                      .name = concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ",
+                                                     row.line, ")")});
     if (problem.dipoles.empty() && problem.electrodes.empty())
-        throw InputError("no source: without --dipole or --electrode no current flows and the potential is zero "
-                         "everywhere; give at least one");
+        throw InputError("no source: without --dipole, --electrode or --electrodes no current flows and the potential is "
+                         "zero everywhere; give at least one");
     return problem;
+}
+
+// Memory of a solve, the mesh it read included: 2.9-3.0 kB per node on TetGen meshes of spheres4 (0.23 and
+// 0.56 M nodes, 5.5-6.1 tets per node; the matrix, its reduction, BoomerAMG's hierarchy, fields and .vtu),
+// 2.1-2.3 kB on structured boxes (README, "Resource limits").
+constexpr double bytes_per_node = 3000;
+
+/// Refuses a solve that would need more memory than --max-memory allows, before the assembly.
+void check_memory(const tools::ToolContext& context, const std::string& input, const TetMesh& mesh)
+{
+    const double nodes = static_cast<double>(mesh.vertex_count());
+    tools::require_memory(context.memory, input, nodes * bytes_per_node,
+                          concat(tools::format_count(nodes), " nodes x ", tools::format_bytes(bytes_per_node)),
+                          "mesh it coarser (tm-tetra --max-volume)");
 }
 
 /// The solver's own phases (assembly, loads, AMG setup, CG) into `clock`.
@@ -211,7 +189,7 @@ void record_solver_phases(const fem::PotentialReport& report, PhaseClock& clock)
 
 int main(int argc, char** argv)
 {
-    std::string input, output, conductivity, sensors_path, sensor_output, solver = "amg", dipole_model = "partial-integration";
+    std::string input, output, conductivity, sensors_path, sensor_output, montage, solver = "amg", dipole_model = "partial-integration";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     bool error_indicator = false, vtu_ascii = false;
@@ -222,17 +200,30 @@ int main(int argc, char** argv)
          "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
          "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
          "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
+         "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m; names "
+         "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV with "
+         "x,y,z,radius_mm,current_a (mm, mm, A), both optionally with a name column, columns in any order, '#' lines "
+         "comments; at most 100 000 sensors and 10 000 electrodes. --electrodes and --electrode add up; with no fixed "
+         "potential the currents must sum to zero. Before the solve, a mesh that would need more than --max-memory "
+         "(about 3 kB per node) is refused.\n"
          "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
          "      --sensors electrodes.csv --sensor-potentials eeg.csv\n"
-         "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3"},
+         "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3\n"
+         "  tm-solve -i head.msh -o tdcs.vtu --electrodes montage.csv      # 2 mA from C3 to Fp2; montage.csv:\n"
+         "      name,x,y,z,radius_mm,current_a\n"
+         "      C3,-52.1,-18.9,96.4,12.5,+0.002\n"
+         "      Fp2,27.3,88.1,29.0,12.5,-0.002"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh), mm")->required()->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
             app.add_option("--conductivity", conductivity, "JSON {tissue name or label: S/m or 3x3 tensor}");
             app.add_option("--dipole", dipoles, "X,Y,Z,PX,PY,PZ: position mm, moment A*m (repeatable)");
             app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
-            app.add_option("--sensors", sensors_path, "CSV with header x,y,z (mm)");
-            app.add_option("--sensor-potentials", sensor_output, "CSV out: x,y,z,potential (V) at the nearest surface node");
+            app.add_option("--electrodes", montage, "Montage CSV: x,y,z,radius_mm,current_a[,name] per electrode (mm, A)")
+                ->type_name("FILE");
+            app.add_option("--sensors", sensors_path, "CSV with header x,y,z[,name] (mm)")->type_name("FILE");
+            app.add_option("--sensor-potentials", sensor_output,
+                           "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
             app.add_option("--dipole-model", dipole_model,
                            "Dipole singularity: venant (monopoles on the nearest node and its neighbours with the dipole's "
                            "moments; any tissue, accurate up to the interfaces: the EEG choice), subtraction (exact "
@@ -251,15 +242,19 @@ int main(int argc, char** argv)
             if (sensors_path.empty() != sensor_output.empty())
                 throw InputError("--sensors and --sensor-potentials go together; give both or neither");
             PhaseClock clock;
+            // The small files first: a mistake in them is reported before the mesh is read.
+            const fem::ConductivityTable table = conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(conductivity);
+            const std::vector<io::ElectrodeRow> montage_rows = montage.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrodes(montage);
+            const std::vector<io::SensorRow> sensors = sensors_path.empty() ? std::vector<io::SensorRow>{} : io::read_sensors(sensors_path);
+            clock.lap("inputs");
             const TetMesh mesh = io::read_tet_mesh(input);
             clock.lap("read");
-            const fem::Conductivities sigma = resolve_from_file(mesh, conductivity);
-            fem::PotentialProblem problem = parse_problem(dipoles, electrodes);
+            check_memory(context, input, mesh);
+            const fem::Conductivities sigma = resolve_from_file(mesh, table, conductivity);
+            fem::PotentialProblem problem = parse_problem(dipoles, electrodes, montage, montage_rows);
             problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
                                    : dipole_model == "venant"    ? fem::DipoleModel::venant
                                                                  : fem::DipoleModel::partial_integration;
-            const std::vector<Vec3> sensors = sensors_path.empty() ? std::vector<Vec3>{} : read_sensors(sensors_path);
-            clock.lap("inputs");
             fem::PotentialReport report;
             const std::vector<double> phi = fem::solve_potential(
                 mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,

@@ -1,5 +1,8 @@
 // tm-tetra: interface complex -> labelled tetrahedral mesh (TetGen), every interface kept.
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <sstream>
 
 #include "core/error.h"
@@ -38,6 +41,72 @@ void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool 
             options.max_volume_per_tissue_mm3[static_cast<Label>(std::stoul(tissue))] = to_volume(value), found = true;
         if (!found) throw InputError(concat("unknown tissue \"", tissue, "\" in the sizes; use a tissue name or label of the surface"));
     }
+}
+
+/// A tissue's extent, from the interfaces around it.
+struct TissueExtent {
+    double volume_mm3 = 0;   ///< enclosed volume (divergence theorem over the oriented interfaces)
+    double area_mm2 = 0;     ///< area of its interfaces
+    double triangles = 0;    ///< interface triangles around it
+};
+
+/// Extent per tissue, the background left out (its volume is negative).
+std::map<Label, TissueExtent> tissue_extents(const InterfaceComplex& complex)
+{
+    std::map<Label, TissueExtent> extents;
+    for (std::size_t t = 0; t < complex.triangle_count(); ++t) {
+        const Vec3& a = complex.vertices[complex.triangles[t][0]];
+        const Vec3& b = complex.vertices[complex.triangles[t][1]];
+        const Vec3& c = complex.vertices[complex.triangles[t][2]];
+        const double six_v = dot(a, cross(b, c)), area = 0.5 * norm(cross(b - a, c - a));
+        for (const auto& [label, sign] : {std::pair{complex.sides[t].from, 1.0}, std::pair{complex.sides[t].to, -1.0}}) {
+            TissueExtent& extent = extents[label];
+            extent.volume_mm3 += sign * six_v / 6;  // the normal points out of `from`
+            extent.area_mm2 += area;
+            extent.triangles += 1;
+        }
+    }
+    extents.erase(complex.background);
+    return extents;
+}
+
+// Memory of a TetGen run (the child process's peak), fitted to runs on the thin phantom and spheres4 at 3 mm with
+// and without a volume bound, and matching the README's 2 mm sphere head and 1 mm usc19-5 head within 2% (README,
+// "Resource limits"): about bytes_per_triangle per interface triangle (TetGen's subfaces, segments and its
+// constrained recovery) and bytes_per_tet per tet. TetGen made 2.3-3.4 tets per triangle under the quality
+// bounds alone, and about 2.1 tets per bound's volume of tissue where a volume bound acts. With the interfaces
+// kept as they are (no Steiner point on them), the bound acts only farther than about a triangle's edge from
+// them: a 10 mm box of 12 triangles stays 6 tets whatever the bound.
+constexpr double tets_per_triangle = 3.4;
+constexpr double tets_per_bound = 2.5;
+constexpr double bytes_per_triangle = 1900;
+constexpr double bytes_per_tet = 165;
+
+/// About how many tets TetGen will make.
+double expected_tets(const InterfaceComplex& complex, const volume::TetrahedralizeOptions& options)
+{
+    double bounded = 0;
+    for (const auto& [label, extent] : tissue_extents(complex)) {
+        const auto own = options.max_volume_per_tissue_mm3.find(label);
+        const double bound = own != options.max_volume_per_tissue_mm3.end() ? own->second : options.max_volume_mm3;
+        if (!(bound > 0) || !(extent.volume_mm3 > 0)) continue;
+        // The edge of an equilateral triangle of the tissue's mean triangle area.
+        const double edge_mm = std::sqrt(4 / std::sqrt(3.0) * extent.area_mm2 / extent.triangles);
+        const double refinable = options.preserve_interfaces ? extent.volume_mm3 - extent.area_mm2 * edge_mm : extent.volume_mm3;
+        bounded += tets_per_bound * std::max(refinable, 0.0) / bound;
+    }
+    return std::max(tets_per_triangle * static_cast<double>(complex.triangle_count()), bounded);
+}
+
+/// Refuses a run that would need more memory than --max-memory allows, before TetGen starts.
+void check_memory(const tools::ToolContext& context, const std::string& input, const InterfaceComplex& complex,
+                  const volume::TetrahedralizeOptions& options)
+{
+    const double tets = expected_tets(complex, options), triangles = static_cast<double>(complex.triangle_count());
+    tools::require_memory(context.memory, input, tets * bytes_per_tet + bytes_per_triangle * triangles,
+                          concat(tools::format_count(triangles), " triangles x ", tools::format_bytes(bytes_per_triangle),
+                                 " and about ", tools::format_count(tets), " tets x ", tools::format_bytes(bytes_per_tet)),
+                          "give larger tets (--max-volume, --max-edge-mm) or fewer triangles (tm-decimate, tm-remesh --edge-mm)");
 }
 
 } // namespace
@@ -79,6 +148,7 @@ int main(int argc, char** argv)
             options.mesh_background_cavities = !drop_cavities;
             if (!max_volume.empty()) parse_sizes(max_volume, complex, false, options);
             if (!max_edge.empty()) parse_sizes(max_edge, complex, true, options);
+            check_memory(context, input, complex, options);
             volume::TetrahedralizeReport report;
             const TetMesh mesh =
                 tools::with_source(input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });

@@ -136,13 +136,14 @@ InrimageLayout read_inrimage_layout(const fs::path& path)
     return layout;
 }
 
-LabelImage read_inrimage(const fs::path& path)
+LabelImage read_inrimage(const fs::path& path, const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
     const InrimageLayout layout = read_inrimage_layout(path);
     const std::uint64_t needed = checked_voxel_bytes(name, layout.dims, voxel_type_size(layout.type));
     const std::uint64_t size = uncompressed_size(path);
     require_payload(name, needed, size > layout.header_bytes ? size - layout.header_bytes : 0);
+    if (before_voxels) before_voxels(layout.dims, layout.spacing_mm, voxel_type_size(layout.type));
     const std::vector<unsigned char> bytes = read_payload(path, layout.header_bytes, needed);
     LabelImage image(layout.dims, layout.spacing_mm, layout.origin_mm);
     decode_labels(name, bytes.data(), layout.type, layout.big_endian, image);

@@ -37,7 +37,7 @@ InrimageLayout read_inrimage_layout(const std::filesystem::path& path);
 /// Reads a .inr or .inr.gz file (gzip detected by content).
 /// @throws IoError on a wrong magic, an unreadable header or truncated data; InputError on invalid
 ///         content (vector images, bad spacing, non-integer or out-of-range labels)
-LabelImage read_inrimage(const std::filesystem::path& path);
+LabelImage read_inrimage(const std::filesystem::path& path, const BeforeVoxels& before_voxels = {});
 
 /// Writes `image` (uint8 when every label fits, else uint16, little endian) to `path`, gzip-compressed
 /// when `compress`. `name` is the file name for messages.

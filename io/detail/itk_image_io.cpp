@@ -164,7 +164,8 @@ struct StoredVoxels {
     VoxelType type = VoxelType::u8;
 };
 
-StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes)
+StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes,
+                        const BeforeVoxels& before_voxels)
 {
     io.ReadImageInformation();
     Dims dims{1, 1, 1};
@@ -186,6 +187,7 @@ StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint6
     const std::uint64_t needed = checked_voxel_bytes(name, dims, voxel_type_size(type));
     validate_geometry(name, dims, spacing, direction);
     require_payload(name, needed, max_payload_bytes);
+    if (before_voxels) before_voxels(dims, spacing, voxel_type_size(type));
 
     std::vector<unsigned char> bytes(static_cast<std::size_t>(needed));
     itk::ImageIORegion region(io.GetNumberOfDimensions());
@@ -201,7 +203,7 @@ StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint6
 /// Opens `path` with the ITK ImageIO its content calls for and reads it with read_with(); ITK's
 /// exceptions become IoError. `use` gets the ImageIO and the stored voxels.
 template <typename Use>
-auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, Use use)
+auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, const BeforeVoxels& before_voxels, Use use)
 {
     const std::string name = path.string();
     const QuietItk quiet;
@@ -212,7 +214,7 @@ auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, Use
             throw IoError(concat(name, ": not a readable ", full_extension(path), " image (wrong magic or "
                                  "corrupt header); check that the file is not renamed or damaged"));
         io->SetFileName(path.string());
-        return use(*io, read_with(*io, name, max_payload_bytes));
+        return use(*io, read_with(*io, name, max_payload_bytes, before_voxels));
     } catch (const itk::ExceptionObject& e) {
         throw IoError(concat(name, ": cannot be read (", one_line(e.GetDescription()),
                              "); the file is damaged or truncated, copy or export it again"));
@@ -221,10 +223,10 @@ auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, Use
 
 } // namespace
 
-LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes)
+LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes, const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
-    return read_through_itk(path, max_payload_bytes, [&](itk::ImageIOBase& io, StoredVoxels stored) {
+    return read_through_itk(path, max_payload_bytes, before_voxels, [&](itk::ImageIOBase& io, StoredVoxels stored) {
         const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
         decode_labels(name, stored.bytes.data(), stored.type, big_endian, stored.grid);
         stored.grid.names() = read_segment_names(name, io.GetMetaDataDictionary());
@@ -234,7 +236,7 @@ LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_
 
 GreyImage read_itk_grey_image(const fs::path& path, std::uint64_t max_payload_bytes)
 {
-    return read_through_itk(path, max_payload_bytes, [&](itk::ImageIOBase&, StoredVoxels stored) {
+    return read_through_itk(path, max_payload_bytes, {}, [&](itk::ImageIOBase&, StoredVoxels stored) {
         const bool big_endian = itk::ByteSwapper<std::uint16_t>::SystemIsBigEndian();
         GreyImage image{std::move(stored.grid), {}};
         image.values = to_finite_floats(path.string(), stored.bytes.data(), stored.type, big_endian, image.grid);

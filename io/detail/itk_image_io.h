@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/label_image.h"
+#include "io/detail/voxel_decode.h"
 #include "io/read_grey_image.h"
 
 namespace tissuemesh::io::detail {
@@ -15,8 +16,10 @@ namespace tissuemesh::io::detail {
 /// Slicer segment names (Segment{N}_Name / Segment{N}_LabelValue) become tissue names.
 /// @param max_payload_bytes  the most voxel-data bytes the file can hold; a header asking for more is
 ///        rejected as truncated before anything is allocated
+/// @param before_voxels  called (when set) after those checks, before the voxels are allocated
 /// @throws IoError when ITK cannot read the file, InputError on invalid content
-LabelImage read_itk_label_image(const std::filesystem::path& path, std::uint64_t max_payload_bytes);
+LabelImage read_itk_label_image(const std::filesystem::path& path, std::uint64_t max_payload_bytes,
+                                const BeforeVoxels& before_voxels = {});
 
 /// Reads a scalar image through ITK like read_itk_label_image(), keeping the values as floats (grey
 /// levels: CT, MRI). NIfTI's scl_slope/scl_inter are applied by ITK.

@@ -97,13 +97,14 @@ bool host_is_big_endian()
 
 } // namespace
 
-LabelImage read_nifti2(const fs::path& path, const NiftiHeader& h)
+LabelImage read_nifti2(const fs::path& path, const NiftiHeader& h, const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
     const VoxelType type = nifti_voxel_type(name, h.datatype);
     const Geometry g = nifti_geometry(h);
     validate_geometry(name, h.dims, g.spacing, g.direction);
     const std::uint64_t needed = checked_voxel_bytes(name, h.dims, voxel_type_size(type));
+    if (before_voxels) before_voxels(h.dims, g.spacing, voxel_type_size(type));
     std::vector<unsigned char> bytes = read_payload(path, static_cast<std::uint64_t>(h.vox_offset), needed);
     const bool big_endian = h.swapped != host_is_big_endian();
     LabelImage image(h.dims, g.spacing, g.origin, g.direction);

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/label_image.h"
+#include "io/detail/voxel_decode.h"
 
 namespace tissuemesh::io::detail {
 
@@ -39,6 +40,6 @@ NiftiHeader check_nifti_header(const std::filesystem::path& path);
 /// Geometry from the sform (when sform_code > 0 and orthogonal), else the qform (qform_code > 0),
 /// else pixdim alone; scl_slope/scl_inter are applied before the labels are checked.
 /// @throws IoError on unsupported datatypes, InputError on invalid content
-LabelImage read_nifti2(const std::filesystem::path& path, const NiftiHeader& header);
+LabelImage read_nifti2(const std::filesystem::path& path, const NiftiHeader& header, const BeforeVoxels& before_voxels = {});
 
 } // namespace tissuemesh::io::detail

@@ -62,7 +62,7 @@ Mat3 direction_of(const std::string& name, const json& document)
 
 } // namespace
 
-LabelImage read_raw_json_image(const fs::path& path)
+LabelImage read_raw_json_image(const fs::path& path, const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
     std::ifstream in(path, std::ios::binary);
@@ -93,6 +93,7 @@ LabelImage read_raw_json_image(const fs::path& path)
     validate_geometry(name, dims, spacing, direction);
     const std::uint64_t needed = checked_voxel_bytes(name, dims, voxel_type_size(*type));
     require_payload(raw.string(), needed, uncompressed_size(raw));
+    if (before_voxels) before_voxels(dims, spacing, voxel_type_size(*type));
     const std::vector<unsigned char> bytes = read_payload(raw, 0, needed);
     LabelImage image(dims, spacing, origin, direction);
     decode_labels(raw.string(), bytes.data(), *type, byte_order == "big", image);

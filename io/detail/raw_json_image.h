@@ -21,13 +21,14 @@
 #include <string>
 
 #include "core/label_image.h"
+#include "io/detail/voxel_decode.h"
 
 namespace tissuemesh::io::detail {
 
 /// Reads the sidecar at `path` and the raw file it names.
 /// @throws IoError on invalid JSON, a missing or truncated raw file; InputError on missing or invalid
 ///         keys and invalid voxel values
-LabelImage read_raw_json_image(const std::filesystem::path& path);
+LabelImage read_raw_json_image(const std::filesystem::path& path, const BeforeVoxels& before_voxels = {});
 
 /// Writes `<stem>.raw` (uint8 or uint16, little endian) next to `path`, then the sidecar `path`, both
 /// atomically; the sidecar holds the tissue names.

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ std::optional<VoxelType> parse_voxel_type(const std::string& name);
 /// Number of voxels of `dims`, checked: throws InputError naming `file` when a dimension is 0 or the
 /// product (times `bytes_per_voxel`) overflows 64 bits.
 std::uint64_t checked_voxel_bytes(const std::string& file, const Dims& dims, std::size_t bytes_per_voxel);
+
+/// ReadImageOptions::before_voxels: called before the voxels are allocated (may be empty).
+using BeforeVoxels = std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)>;
 
 /// Throws IoError ("truncated") naming `file` when `needed_bytes` > `available_bytes`. Readers call
 /// it before allocating, so a corrupt header cannot make them allocate more than the file holds.

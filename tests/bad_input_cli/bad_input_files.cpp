@@ -143,6 +143,27 @@ void write_tables(const std::filesystem::path& dir)
     write_text(dir / "sensors-header.csv", "a,b,c\n1,2,3\n");
     write_text(dir / "sensors-number.csv", "x,y,z\n1,two,3\n");
     write_text(dir / "names-broken.json", R"({"1": "scalp")");
+    write_text(dir / "cond-empty.json", "");
+    write_text(dir / "cond-twice.json", R"({"brain": 0.3, "BRAIN": 0.2})");
+    write_text(dir / "cond-name-and-label.json", R"({"brain": 0.3, "1": 0.2})");
+    write_text(dir / "cond-deep.json", R"({"brain": [[[0.3]]]})");
+    write_text(dir / "cond-overflow.json", R"({"brain": 1e999})");
+    // Montages for ok.msh (one tet with a corner at the origin and edges of 20 mm): a patch of radius 30 mm
+    // around a corner covers the whole tet.
+    const std::string header = "name,x,y,z,radius_mm,current_a\n";
+    write_text(dir / "montage-empty.csv", "");
+    write_text(dir / "montage-header-only.csv", header);
+    write_text(dir / "montage-ma.csv", "x,y,z,radius_mm,current_ma\n0,0,0,30,1\n20,0,0,30,-1\n");
+    write_text(dir / "montage-negative.csv", header + "Cz,0,0,0,-10,1e-3\nOz,20,0,0,30,-1e-3\n");
+    write_text(dir / "montage-nan.csv", header + "Cz,0,0,0,30,1e-3\nOz,20,0,0,30,nan\n");
+    write_text(dir / "montage-cut.csv", header + "Cz,0,0,0,30,1e-3\nOz,20,0");
+    write_text(dir / "montage-twice.csv", header + "Cz,0,0,0,30,1e-3\nCz,20,0,0,30,-1e-3\n");
+    write_text(dir / "montage-off.csv", header + "Cz,0,0,0,30,1e-3\nOz,100,100,100,2,-1e-3\n");
+    write_text(dir / "montage-unbalanced.csv", header + "Cz,0,0,0,30,1e-3\nOz,20,0,0,30,-2e-3\n");
+    write_text(dir / "sensors-empty.csv", "");
+    write_text(dir / "sensors-nan.csv", "x,y,z\n1,2,3\n1,inf,3\n");
+    write_text(dir / "sensors-no-z.csv", "x,y\n1,2\n");
+    write_text(dir / "sensors-twice.csv", "name,x,y,z\nCz,0,0,20\nCz,20,0,0\n");
 }
 
 } // namespace

@@ -14,7 +14,7 @@ namespace tissuemesh::testing {
 ///    counts.off, truncated.stl;
 ///  - meshes: ok.msh (one tet, tissue 1 "brain"), flat.msh (a tet of zero volume), dangling.msh, nan.msh,
 ///    truncated.msh, no-tets.msh, bad.mesh; ok.vtu (the same tet), triangle.vtu, dangling.vtu, truncated.vtu;
-///  - tables: conductivity, sensor and label files, valid and not.
+///  - tables: conductivity, sensor, electrode montage and label files, valid and not.
 void write_bad_input_files(const std::filesystem::path& dir);
 
 } // namespace tissuemesh::testing

@@ -167,12 +167,62 @@ const std::vector<BadCase> mesh_cases{
      {"missing"}},
 };
 
+/// tm-solve on ok.msh with `args` added (a dipole, or electrodes, plus the file under test).
+BadCase solve_case(std::string name, std::vector<std::string> args, std::vector<std::string> message)
+{
+    std::vector<std::string> all{"-i", "@ok.msh", "-o", "@out.vtu"};
+    all.insert(all.end(), args.begin(), args.end());
+    return {std::move(name), "tm-solve", all, 2, std::move(message)};
+}
+
+const std::vector<std::string> dipole{"--dipole", "5,5,5,0,0,1e-8"};
+
+std::vector<std::string> with_dipole(std::vector<std::string> args)
+{
+    args.insert(args.begin(), dipole.begin(), dipole.end());
+    return args;
+}
+
+// tm-solve's own files: conductivity tables, electrode montages (--electrodes) and sensors.
+const std::vector<BadCase> solver_file_cases{
+    solve_case("ConductivityEmptyFile", with_dipole({"--conductivity", "@cond-empty.json"}), {"cond-empty.json: the file is empty"}),
+    solve_case("ConductivityTissueTwice", with_dipole({"--conductivity", "@cond-twice.json"}),
+               {"cond-twice.json: \"brain\" and \"BRAIN\" name the same tissue"}),
+    solve_case("ConductivityNameAndLabelOfOneTissue", with_dipole({"--conductivity", "@cond-name-and-label.json"}),
+               {"cond-name-and-label.json", "'1' and 'brain' both name tissue 1 (brain)"}),
+    solve_case("ConductivityNestedTooDeep", with_dipole({"--conductivity", "@cond-deep.json"}), {"cond-deep.json line 1: nested 4 deep"}),
+    solve_case("ConductivityNumberOverflows", with_dipole({"--conductivity", "@cond-overflow.json"}),
+               {"cond-overflow.json: not valid JSON", "1e999"}),
+    solve_case("MontageEmptyFile", {"--electrodes", "@montage-empty.csv"}, {"montage-empty.csv: the file is empty"}),
+    solve_case("MontageHeaderOnly", {"--electrodes", "@montage-header-only.csv"}, {"montage-header-only.csv: no electrodes"}),
+    solve_case("MontageCurrentInMilliampere", {"--electrodes", "@montage-ma.csv"},
+               {"montage-ma.csv line 1: unknown column 'current_ma'", "current_a"}),
+    solve_case("MontageNegativeRadius", {"--electrodes", "@montage-negative.csv"}, {"montage-negative.csv line 2: radius_mm is -10"}),
+    solve_case("MontageNotANumber", {"--electrodes", "@montage-nan.csv"}, {"montage-nan.csv line 3, column current_a: 'nan'"}),
+    solve_case("MontageTruncatedRow", {"--electrodes", "@montage-cut.csv"}, {"montage-cut.csv line 3: 3 fields"}),
+    solve_case("MontageNameTwice", {"--electrodes", "@montage-twice.csv"}, {"montage-twice.csv line 3: name 'Cz' is also on line 2"}),
+    solve_case("MontageElectrodeOffTheScalp", {"--electrodes", "@montage-off.csv"},
+               {"Oz (", "montage-off.csv line 3) at (100, 100, 100) mm"}),
+    solve_case("MontageCurrentsDoNotSumToZero", {"--electrodes", "@montage-unbalanced.csv"}, {"electrode currents sum to"}),
+    solve_case("MontageWithoutRowsEvenWithAFlag", {"--electrodes", "@montage-header-only.csv", "--electrode", "0,0,0,30,1e-3"},
+               {"montage-header-only.csv: no electrodes"}),
+    solve_case("SensorsEmptyFile", with_dipole({"--sensors", "@sensors-empty.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-empty.csv: the file is empty"}),
+    solve_case("SensorsInfinite", with_dipole({"--sensors", "@sensors-nan.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-nan.csv line 3, column y: 'inf'"}),
+    solve_case("SensorsWithoutZ", with_dipole({"--sensors", "@sensors-no-z.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-no-z.csv line 1: the header has no column 'z'"}),
+    solve_case("SensorsNameTwice", with_dipole({"--sensors", "@sensors-twice.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-twice.csv line 3: name 'Cz' is also on line 2"}),
+};
+
 std::string case_name(const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; }
 
 INSTANTIATE_TEST_SUITE_P(Images, BadInput, ::testing::ValuesIn(image_cases), case_name);
 INSTANTIATE_TEST_SUITE_P(OddImages, BadInput, ::testing::ValuesIn(odd_image_cases), case_name);
 INSTANTIATE_TEST_SUITE_P(Surfaces, BadInput, ::testing::ValuesIn(surface_cases), case_name);
 INSTANTIATE_TEST_SUITE_P(Meshes, BadInput, ::testing::ValuesIn(mesh_cases), case_name);
+INSTANTIATE_TEST_SUITE_P(SolverFiles, BadInput, ::testing::ValuesIn(solver_file_cases), case_name);
 
 } // namespace
 } // namespace tissuemesh::testing

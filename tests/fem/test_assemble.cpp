@@ -50,6 +50,19 @@ TEST(Conductivities, UnknownAndMissingTissuesAreInputErrors)
     EXPECT_THROW(resolve_conductivities(mesh, {{"1", {1, 0.5, 0, 0, 1, 0, 0, 0, 1}}}), InputError);  // not symmetric
 }
 
+// A table that names one tissue twice, by number and by name, had one value win silently (the map's order).
+TEST(Conductivities, ATissueNamedTwiceIsAnInputError)
+{
+    const TetMesh mesh = two_tissue_box();
+    try {
+        resolve_conductivities(mesh, {{"2", isotropic(1.79)}, {"CSF", isotropic(0.3)}});
+        FAIL() << "csf named twice must be refused";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("'2' and 'CSF' both name tissue 2 (csf); give it once"), std::string::npos)
+            << error.what();
+    }
+}
+
 TEST(Assemble, SymmetricRowsSumToZeroAndEnergyOfALinearField)
 {
     const TetMesh mesh = two_tissue_box();

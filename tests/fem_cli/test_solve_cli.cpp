@@ -89,6 +89,37 @@ TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
     EXPECT_LT(summary["error_indicator_total"].get<double>(), 1e-10);
 }
 
+// The same two electrodes, one from a montage file with names and one as a flag: the same drop, and the named
+// sensors keep their names in the output.
+TEST(SolveCli, MontageFileAndFlagsAddUp)
+{
+    TempDir dir;
+    io::write_tet_mesh(brain_box(), dir / "box.msh");
+    const std::string radius = std::to_string(std::sqrt(200.0 * 200.0 + 200.0) + 1e-6);
+    write(dir / "montage.csv", "# anode only; the cathode is a flag\nname,x,y,z,radius_mm,current_a\nanode,-200,10,10," + radius +
+                                   ",+0.002\n");
+    write(dir / "sensors.csv", "x,y,z,name\n0,10,10,left\n20,10,10,right\n");
+    write(dir / "cond.json", "{\"brain\": 0.5}");
+    const CliResult solved = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
+                                                  "--conductivity", (dir / "cond.json").string(), "--electrodes",
+                                                  (dir / "montage.csv").string(), "--electrode", "220,10,10," + radius + ",-0.002",
+                                                  "--sensors", (dir / "sensors.csv").string(), "--sensor-potentials",
+                                                  (dir / "eeg.csv").string(), "--json", (dir / "summary.json").string()});
+    ASSERT_EQ(solved.exit_code, 0) << solved.err;
+    EXPECT_EQ(read_json(dir / "summary.json")["electrode_nodes"].size(), 2u);
+    std::ifstream eeg(dir / "eeg.csv");
+    std::string header, left, right;
+    std::getline(eeg, header);
+    std::getline(eeg, left);
+    std::getline(eeg, right);
+    EXPECT_EQ(header, "name,x,y,z,potential");
+    // Drop I L / (sigma A) = 0.2 V centred on zero, as with two flags (1e-9: round-off).
+    ASSERT_TRUE(left.starts_with("left,0,10,10,")) << left;
+    ASSERT_TRUE(right.starts_with("right,20,10,10,")) << right;
+    EXPECT_NEAR(std::stod(left.substr(left.rfind(',') + 1)), 0.1, 1e-9);
+    EXPECT_NEAR(std::stod(right.substr(right.rfind(',') + 1)), -0.1, 1e-9);
+}
+
 std::string read_file(const std::filesystem::path& path)
 {
     std::ifstream in(path, std::ios::binary);

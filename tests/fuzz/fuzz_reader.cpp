@@ -12,7 +12,10 @@
 #include <string>
 
 #include "core/error.h"
+#include "io/read_conductivity_table.h"
+#include "io/read_electrodes.h"
 #include "io/read_label_image.h"
+#include "io/read_sensors.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 
@@ -44,8 +47,14 @@ void read_as_format(const fs::path& file)
     (void)tissuemesh::io::read_tet_mesh(file);
 #elif defined(TM_FUZZ_NAMES)
     (void)tissuemesh::io::read_tissue_names(file);
+#elif defined(TM_FUZZ_CONDUCTIVITY)
+    (void)tissuemesh::io::read_conductivity_table(file);
+#elif defined(TM_FUZZ_ELECTRODES)
+    (void)tissuemesh::io::read_electrodes(file);
+#elif defined(TM_FUZZ_SENSORS)
+    (void)tissuemesh::io::read_sensors(file);
 #else
-#error "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES"
+#error "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES, TM_FUZZ_CONDUCTIVITY, TM_FUZZ_ELECTRODES, TM_FUZZ_SENSORS"
 #endif
 }
 
