@@ -33,18 +33,16 @@ private:
     std::uint32_t triangle_;
 };
 
-/// Rotates `t` so that the vertices it shares with `other` come first; returns how many it shares.
+/// Rotates `t` so that the vertices it shares with `other` come first (one: it leads; two: the third is
+/// last; none or three: no turn); returns how many it shares.
 int shared_first(Triangle& t, const Triangle& other)
 {
-    const auto shared = [&](std::uint32_t v) { return std::find(other.begin(), other.end(), v) != other.end(); };
-    int count = 0;
-    for (const std::uint32_t v : t) count += shared(v) ? 1 : 0;
+    const auto shared = [&](std::uint32_t v) { return v == other[0] || v == other[1] || v == other[2]; };
+    const bool s0 = shared(t[0]), s1 = shared(t[1]), s2 = shared(t[2]);
+    const int count = int{s0} + int{s1} + int{s2};
     // Rotations keep the orientation; only the order of the shared vertices matters below.
-    for (int turn = 0; turn < 3; ++turn) {
-        const bool leading = count == 1 ? shared(t[0]) : (count == 2 ? shared(t[0]) && shared(t[1]) : true);
-        if (leading) break;
-        std::rotate(t.begin(), t.begin() + 1, t.end());
-    }
+    const int turn = count == 1 ? (s0 ? 0 : s1 ? 1 : 2) : count == 2 ? (!s0 ? 1 : !s1 ? 2 : 0) : 0;
+    if (turn != 0) t = {t[turn], t[(turn + 1) % 3], t[(turn + 2) % 3]};
     return count;
 }
 

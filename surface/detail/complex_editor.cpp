@@ -29,7 +29,7 @@ Triangle starting_at(const Triangle& t, std::uint32_t v)
 } // namespace
 
 ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm)
-    : limits_(limits), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
+    : limits_(limits), min_angle_(limits.min_angle_deg), max_tilt_(limits.max_normal_change_deg), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
       sides_(std::move(complex.sides)), alive_(triangles_.size(), 1), stars_(positions_.size()),
       kinds_(positions_.size(), VertexKind::corner), alive_triangles_(triangles_.size())
 {
@@ -48,6 +48,17 @@ ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits,
 
 void ComplexEditor::rebuild_grid(double cell_mm)
 {
+    grid_cell_mm_ = cell_mm;
+    grid_ = TriangleGrid();
+    grid_ready_ = false;
+    boxes_.assign(triangles_.size(), CompactBox{});
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) boxes_[t] = compact(bounding_box(corners(t)));
+}
+
+void ComplexEditor::ensure_grid()
+{
+    if (grid_ready_) return;
     Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
     for (std::uint32_t v = 0; v < positions_.size(); ++v) {
         if (!vertex_alive(v)) continue;
@@ -57,14 +68,10 @@ void ComplexEditor::rebuild_grid(double cell_mm)
         }
     }
     if (bounds.low[0] > bounds.high[0]) bounds = Box3{};
-    grid_ = TriangleGrid(bounds, cell_mm, triangles_.size());
-    boxes_.assign(triangles_.size(), CompactBox{});
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-        if (!alive_[t]) continue;
-        const Box3 box = bounding_box(corners(t));
-        grid_.insert(t, box);
-        boxes_[t] = compact(box);
-    }
+    grid_ = TriangleGrid(bounds, grid_cell_mm_, triangles_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) grid_.insert(t, bounding_box(corners(t)));
+    grid_ready_ = true;
 }
 
 TriangleCorners ComplexEditor::corners(std::uint32_t t) const
@@ -144,12 +151,11 @@ bool ComplexEditor::shape_ok(const Change& change)
         return false;
     }
     const TriangleCorners now{positions_[t[0]], positions_[t[1]], positions_[t[2]]};
-    const double angle = smallest_angle_deg(now);
-    if (angle < limits_.min_angle_deg && angle < smallest_angle_deg(change.before) - 1e-9) {
+    if (has_angle_below(now, min_angle_) && smallest_angle_deg(now) < smallest_angle_deg(change.before) - 1e-9) {
         ++counters_.shape;
         return false;
     }
-    if (angle_between_deg(normal_of(now), normal_of(change.before)) > limits_.max_normal_change_deg) {
+    if (tilts_beyond(normal_of(now), normal_of(change.before), max_tilt_)) {
         ++counters_.normal;
         return false;
     }
@@ -286,6 +292,7 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
 bool ComplexEditor::try_move(std::uint32_t v, const Vec3& p)
 {
     if (!vertex_alive(v)) return false;
+    ensure_grid();
     set_budget(stars_[v]);
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) changes.push_back({t, triangles_[t], corners(t)});
@@ -307,6 +314,7 @@ bool ComplexEditor::try_move_group(const std::vector<std::uint32_t>& vertices, c
     std::sort(slots.begin(), slots.end());
     slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
     if (slots.empty()) return false;
+    ensure_grid();
     set_budget(slots);
     std::vector<Change> changes;
     for (const std::uint32_t t : slots) changes.push_back({t, triangles_[t], corners(t)});
@@ -363,6 +371,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         ++counters_.topology;
         return false;
     }
+    ensure_grid();
     std::vector<std::uint32_t> removed;
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) {
@@ -406,6 +415,7 @@ std::optional<std::uint32_t> ComplexEditor::try_split(std::uint32_t v, std::uint
     for (const std::uint32_t t : stars_[v])
         if (contains(triangles_[t], w)) on_edge.push_back(t);
     if (on_edge.empty()) return std::nullopt;
+    ensure_grid();
     set_budget(on_edge);
     const std::uint32_t m = add_vertex(p);
     std::vector<Change> changes;
@@ -465,6 +475,7 @@ bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
         ++counters_.topology;
         return false;
     }
+    ensure_grid();
     set_budget(on_edge);
     const TriangleCorners before1 = corners(t1), before2 = corners(t2);
     std::vector<Change> changes{{t1, {v, b, a}, before1}, {t2, {w, a, b}, before2}};

@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "core/interface_complex.h"
+#include "surface/detail/box_index.h"
+#include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
 
 namespace tissuemesh::surface::detail {
@@ -80,7 +82,12 @@ public:
     /// Mean edge length over alive triangles (first edges), mm.
     double mean_edge_length() const;
     const EditLimits& limits() const { return limits_; }
-    void set_limits(const EditLimits& limits) { limits_ = limits; }
+    void set_limits(const EditLimits& limits)
+    {
+        limits_ = limits;
+        min_angle_ = AngleLimit(limits.min_angle_deg);
+        max_tilt_ = AngleLimit(limits.max_normal_change_deg);
+    }
     const EditCounters& counters() const { return counters_; }
 
     // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
@@ -103,7 +110,8 @@ public:
     std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
     /// Replaces edge vw (two triangles of one patch) by the edge between their opposite vertices.
     bool try_flip(std::uint32_t v, std::uint32_t w);
-    /// Rebuilds the neighbour grid with a new cell size (after triangles grew or shrank a lot).
+    /// Rebuilds the neighbour grid with a new cell size (after triangles grew or shrank a lot). The grid
+    /// is built when an edit first needs it.
     void rebuild_grid(double cell_mm);
 
     /// The edited complex, compacted (dead vertices and triangles dropped, order otherwise kept).
@@ -129,7 +137,11 @@ private:
     /// of them is judged by the smaller index only). With `partners`, collects every triangle t meets or
     /// crowds instead of stopping at the first.
     std::uint8_t judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                             std::vector<std::uint32_t>& nearby, std::vector<std::uint32_t>* partners) const;
+                             const BoxIndex& index, std::vector<std::uint32_t>& nearby,
+                             std::vector<std::uint32_t>* partners) const;
+    /// Builds the neighbour grid if an edit needs it and it is not built (after rebuild_grid() or
+    /// move_together(), which judges against its own index and leaves the grid to be rebuilt).
+    void ensure_grid();
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     void update_kinds(std::uint32_t v);
@@ -139,6 +151,8 @@ private:
     Label background_ = 0;
     TissueNames names_;
     EditLimits limits_;
+    AngleLimit min_angle_;  ///< limits_.min_angle_deg
+    AngleLimit max_tilt_;   ///< limits_.max_normal_change_deg
     std::vector<Vec3> positions_;
     std::vector<Triangle> triangles_;
     std::vector<LabelPair> sides_;
@@ -147,6 +161,8 @@ private:
     std::vector<VertexKind> kinds_;
     std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
+    double grid_cell_mm_ = 1;   ///< cell size asked of the grid
+    bool grid_ready_ = false;   ///< grid_ files every alive triangle under its current box
     std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)

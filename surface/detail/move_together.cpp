@@ -23,24 +23,23 @@ TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t
 } // namespace
 
 std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                                        std::vector<std::uint32_t>& nearby, std::vector<std::uint32_t>* partners) const
+                                        const BoxIndex& index, std::vector<std::uint32_t>& nearby,
+                                        std::vector<std::uint32_t>* partners) const
 {
     const Triangle& tri = triangles_[t];
     const TriangleCorners now = corners(t), before = corners_at(start, tri);
     if (are_collinear(now[0], now[1], now[2])) return shape_rule;
-    const double angle = smallest_angle_deg(now);
-    if (angle < limits_.min_angle_deg && angle < smallest_angle_deg(before) - 1e-9) return shape_rule;
-    if (angle_between_deg(normal_of(now), normal_of(before)) > limits_.max_normal_change_deg) return normal_rule;
+    if (has_angle_below(now, min_angle_) && smallest_angle_deg(now) < smallest_angle_deg(before) - 1e-9) return shape_rule;
+    if (tilts_beyond(normal_of(now), normal_of(before), max_tilt_)) return normal_rule;
     const double gap = limits_.min_gap_mm;
     const Box3 box = bounding_box(now, gap), tight = bounding_box(now);
     // Candidates: boxes overlapping, each once (sorted, so the first rule found does not depend on
-    // the grid's filing order).
+    // the index's filing order).
     nearby.clear();
-    grid_.visit(box, [&](std::uint32_t u) {
-        if (boxes_overlap(box, boxes_[u]) && u != t && !(judged[u] && u < t)) nearby.push_back(u);
+    index.visit(box, [&](std::uint32_t u) {
+        if (u != t && !(judged[u] && u < t)) nearby.push_back(u);
     });
     std::sort(nearby.begin(), nearby.end());
-    nearby.erase(std::unique(nearby.begin(), nearby.end()), nearby.end());
     std::uint8_t found = none;
     for (const std::uint32_t u : nearby) {
         const TriangleCorners other = corners(u);
@@ -77,15 +76,16 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
     round.erase(std::unique(round.begin(), round.end()), round.end());
     // While judged, a changed triangle is filed under the box of both its old and its new place, so that
     // a query finds it wherever its vertices are (each is either back at the start or at its target).
+    // The batch has its own index; the editor's grid is rebuilt when a single edit next needs it.
     const std::vector<std::uint32_t> changed = round;
-    std::vector<Box3> swept(changed.size());
-    for (std::size_t i = 0; i < changed.size(); ++i) {
-        const Box3 old_box = bounding_box(corners_at(start, triangles_[changed[i]]));
-        swept[i] = box_union(old_box, bounding_box(corners(changed[i])));
-        grid_.erase(changed[i], old_box);
-        grid_.insert(changed[i], swept[i]);
-        boxes_[changed[i]] = compact(swept[i]);
-    }
+    for (const std::uint32_t t : changed)
+        boxes_[t] = compact(box_union(bounding_box(corners_at(start, triangles_[t])), bounding_box(corners(t))));
+    grid_ = TriangleGrid();
+    grid_ready_ = false;
+    std::vector<std::uint32_t> alive;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) alive.push_back(t);
+    const BoxIndex index(boxes_, alive);
     std::vector<std::uint8_t> verdict;
     while (!round.empty()) {
         verdict.assign(round.size(), none);
@@ -96,7 +96,7 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
             std::vector<std::uint32_t> nearby;
 #pragma omp for schedule(dynamic, 512)
             for (std::int64_t i = 0; i < count; ++i)
-                verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, nearby, nullptr);
+                verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, index, nearby, nullptr);
         }
         // Sequential, in index order: which vertices go back does not depend on the threads.
         std::vector<std::uint32_t> back, nearby, partners;
@@ -104,7 +104,7 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
             if (verdict[i] == none) continue;
             const std::uint32_t t = round[i];
             partners.assign(1, t);
-            if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, nearby, &partners);
+            if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, index, nearby, &partners);
             ++(verdict[i] == shape_rule ? counters_.shape
                : verdict[i] == normal_rule ? counters_.normal
                : verdict[i] == intersection_rule ? counters_.intersection
@@ -119,12 +119,7 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
         std::sort(round.begin(), round.end());
         round.erase(std::unique(round.begin(), round.end()), round.end());
     }
-    for (std::size_t i = 0; i < changed.size(); ++i) {
-        grid_.erase(changed[i], swept[i]);
-        const Box3 box = bounding_box(corners(changed[i]));
-        grid_.insert(changed[i], box);
-        boxes_[changed[i]] = compact(box);
-    }
+    for (const std::uint32_t t : changed) boxes_[t] = compact(bounding_box(corners(t)));
     std::vector<char> result(vertices.size(), 0);
     for (std::size_t i = 0; i < vertices.size(); ++i) result[i] = moved[vertices[i]];
     counters_.accepted += static_cast<std::size_t>(std::count(result.begin(), result.end(), 1));
