@@ -99,6 +99,20 @@ std::vector<std::uint32_t> ComplexEditor::neighbours(std::uint32_t v) const
     return result;
 }
 
+void ComplexEditor::ring(std::uint32_t v, std::vector<RingEntry>& out) const
+{
+    out.clear();
+    // A star has a few dozen entries at most: a linear search beats sorting.
+    for (const std::uint32_t t : stars_[v])
+        for (const std::uint32_t u : triangles_[t]) {
+            if (u == v) continue;
+            auto it = out.begin();
+            while (it != out.end() && it->vertex != u) ++it;
+            if (it == out.end()) out.push_back({u, 1});
+            else ++it->triangles;
+        }
+}
+
 std::size_t ComplexEditor::edge_multiplicity(std::uint32_t v, std::uint32_t w) const
 {
     std::size_t count = 0;
@@ -120,12 +134,12 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
 {
     const auto& star = stars_[v];
     if (star.empty()) return VertexKind::corner;
+    thread_local std::vector<RingEntry> around;
+    ring(v, around);
     std::size_t junction = 0;
-    const std::vector<std::uint32_t> ring = neighbours(v);
-    for (const std::uint32_t u : ring) {
-        const std::size_t m = edge_multiplicity(v, u);
-        if (m >= 3) ++junction;
-        else if (m != 2) return VertexKind::corner;
+    for (const RingEntry& e : around) {
+        if (e.triangles >= 3) ++junction;
+        else if (e.triangles != 2) return VertexKind::corner;
     }
     if (junction == 2) return VertexKind::curve;
     if (junction != 0) return VertexKind::corner;
@@ -133,13 +147,15 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     for (const std::uint32_t t : star)
         if (!(sides_[t] == first)) return VertexKind::corner;
     // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
-    return ring.size() == star.size() ? VertexKind::patch : VertexKind::corner;
+    return around.size() == star.size() ? VertexKind::patch : VertexKind::corner;
 }
 
 void ComplexEditor::update_kinds(std::uint32_t v)
 {
     kinds_[v] = classify(v);
-    for (const std::uint32_t u : neighbours(v)) kinds_[u] = classify(u);
+    thread_local std::vector<RingEntry> around;
+    ring(v, around);
+    for (const RingEntry& e : around) kinds_[e.vertex] = classify(e.vertex);
 }
 
 bool ComplexEditor::shape_ok(const Change& change)
@@ -336,22 +352,30 @@ bool ComplexEditor::try_move_group(const std::vector<std::uint32_t>& vertices, c
 /// multiplicity (no two junction edges fuse).
 bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
 {
-    const std::vector<std::uint32_t> nv = neighbours(v), nw = neighbours(w);
-    std::vector<std::uint32_t> common;
-    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
-    std::vector<std::uint32_t> apexes;
+    thread_local std::vector<RingEntry> nv, nw;
+    thread_local std::vector<std::uint32_t> apexes;
+    ring(v, nv);
+    ring(w, nw);
+    apexes.clear();
     for (const std::uint32_t t : stars_[v])
         if (contains(triangles_[t], w))
             for (const std::uint32_t u : triangles_[t])
-                if (u != v && u != w) apexes.push_back(u);
-    std::sort(apexes.begin(), apexes.end());
-    apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
-    common.erase(std::remove(common.begin(), common.end(), w), common.end());
-    if (common != apexes) return false;
+                if (u != v && u != w && std::find(apexes.begin(), apexes.end(), u) == apexes.end()) apexes.push_back(u);
+    // The common neighbours must be the apexes (each list holds distinct vertices); meanwhile note whether
+    // some common neighbour's edges to v and w are not both ordinary.
+    std::size_t common = 0;
+    bool fused = false;
+    for (const RingEntry& a : nv)
+        for (const RingEntry& b : nw)
+            if (a.vertex == b.vertex) {
+                if (std::find(apexes.begin(), apexes.end(), a.vertex) == apexes.end()) return false;
+                ++common;
+                fused = fused || std::min(a.triangles, b.triangles) != 2;
+            }
+    if (common != apexes.size()) return false;
     // Edges vx and wx merge; at most one of them may be a junction edge, or two junction curves would
-    // fuse into an edge where a tissue touches itself.
-    for (const std::uint32_t x : apexes)
-        if (std::min(edge_multiplicity(v, x), edge_multiplicity(w, x)) != 2) return false;
+    // fuse into an edge where a tissue touches itself (x runs over the apexes, now the common neighbours).
+    if (fused) return false;
     for (const std::uint32_t t : stars_[v]) {
         const Triangle r = starting_at(triangles_[t], v);
         if (r[1] == w || r[2] == w) continue;

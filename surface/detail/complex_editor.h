@@ -74,6 +74,14 @@ public:
     const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
     /// Vertices sharing an edge with v, ascending.
     std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
+    /// A vertex sharing an edge with v, and the number of alive triangles on that edge.
+    struct RingEntry {
+        std::uint32_t vertex;
+        std::uint32_t triangles;
+    };
+    /// The neighbours of v, in no particular order, each with its edge's multiplicity (into `out`, without
+    /// allocating once `out` has grown): for loops that ask for neighbours and multiplicities of many vertices.
+    void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
     /// The neighbours of v across junction edges (two for a curve vertex).
     std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
     /// Number of alive triangles on edge vw (0: no such edge; 3 or more: a junction edge).
