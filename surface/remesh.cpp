@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
@@ -56,7 +57,7 @@ double box_distance(const Vec3& p, const Box3& box)
 /// The input surface, for projecting vertices back: its triangles by tissue pair, and its junction edges.
 class Reference {
 public:
-    Reference(const InterfaceComplex& input, double cell_mm) : input_(input)
+    Reference(const InterfaceComplex& input, double cell_mm) : input_(input), cell_mm_(cell_mm)
     {
         Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
         for (const Vec3& v : input.vertices)
@@ -73,35 +74,27 @@ public:
             segments_.insert(s, detail::bounding_box(segment(s)));
     }
 
-    /// The nearest point of the input patch of `pair` to p (p itself when none is within reach).
+    /// The nearest point of the input patch of `pair` to p (p itself when none is within reach); of equally
+    /// near triangles, the first in the input's order.
     Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach)
     {
-        Vec3 best = p;
-        double nearest = std::numeric_limits<double>::max();
-        triangles_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
-        for (const std::uint32_t t : found_) {
-            if (unordered(input_.sides[t]) != pair) continue;
+        return nearest(triangles_, p, reach, [&](std::uint32_t t, double nearest_so_far) -> std::optional<Vec3> {
+            if (unordered(input_.sides[t]) != pair) return std::nullopt;
             // The box is never further than the triangle: most candidates end here, at a fraction of the cost.
             const TriangleCorners c = corners(t);
-            if (box_distance(p, detail::bounding_box(c)) >= nearest) continue;
-            const Vec3 q = detail::closest_point_on_triangle(p, c);
-            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
-        }
-        return best;
+            if (box_distance(p, detail::bounding_box(c)) > nearest_so_far) return std::nullopt;
+            return detail::closest_point_on_triangle(p, c);
+        });
     }
 
-    /// The nearest point of the input junction curves to p (p itself when none is within reach).
+    /// The nearest point of the input junction curves to p (p itself when none is within reach); of equally
+    /// near segments, the first in the input's order.
     Vec3 onto_curve(const Vec3& p, double reach)
     {
-        Vec3 best = p;
-        double nearest = std::numeric_limits<double>::max();
-        segments_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
-        for (const std::uint32_t s : found_) {
-            if (box_distance(p, detail::bounding_box(segment(s))) >= nearest) continue;
-            const Vec3 q = detail::closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
-            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
-        }
-        return best;
+        return nearest(segments_, p, reach, [&](std::uint32_t s, double nearest_so_far) -> std::optional<Vec3> {
+            if (box_distance(p, detail::bounding_box(segment(s))) > nearest_so_far) return std::nullopt;
+            return detail::closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
+        });
     }
 
 private:
@@ -116,7 +109,28 @@ private:
         return {a, a, input_.vertices[junction_[s].second]};
     }
 
+    /// The nearest of the points closest(i, nearest so far) gives for the items of `grid` near p (p when
+    /// none). The search box grows from a quarter cell until it holds the nearest point found (then nothing
+    /// outside it can be nearer) or reaches `reach`, whose box the answer then comes from: the same answer
+    /// as a search of the whole reach at once, at the cost of the few items near p.
+    template <class Closest> Vec3 nearest(TriangleGrid& grid, const Vec3& p, double reach, Closest closest)
+    {
+        for (double r = reach;; r = std::min(reach, 2 * r)) {
+            Vec3 best = p;
+            double best_distance = std::numeric_limits<double>::max();
+            std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
+            grid.query(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, found_);
+            for (const std::uint32_t i : found_)
+                if (const std::optional<Vec3> q = closest(i, best_distance)) {
+                    const double d = distance(p, *q);
+                    if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
+                }
+            if (best_distance <= r || r >= reach) return best;
+        }
+    }
+
     const InterfaceComplex& input_;
+    double cell_mm_;
     TriangleGrid triangles_;
     TriangleGrid segments_;
     std::vector<Edge> junction_;
