@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "surface/detail/triangle_grid.h"
@@ -27,9 +28,14 @@ public:
     BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::uint32_t>& ids);
 
     /// Calls visit(id) once for every filed id whose box overlaps `box` (closed boxes, compared as
-    /// boxes_overlap(const Box3&, const CompactBox&) does). Order: by cell, then by id. Reads only.
+    /// boxes_overlap(const Box3&, const CompactBox&) does), until visit returns true (when it returns a
+    /// bool). Order: by cell, then as filed. Reads only.
     template <class Visit> void visit(const Box3& box, Visit visit) const
     {
+        const auto stop = [&](std::uint32_t id) {
+            if constexpr (std::is_same_v<decltype(visit(id)), bool>) return visit(id);
+            else return visit(id), false;
+        };
         if (counts_[0] == 0) return;
         const auto low = cell_of(box.low), high = cell_of(box.high);
         // In single precision: u.low <= box.high exactly when u.low <= the largest float not above box.high.
@@ -46,7 +52,7 @@ public:
                     const Entry& b = small_[e];
                     if ((b.low[0] <= below[0]) & (b.high[0] >= above[0]) & (b.low[1] <= below[1]) &
                         (b.high[1] >= above[1]) & (b.low[2] <= below[2]) & (b.high[2] >= above[2]))
-                        visit(b.id);
+                        if (stop(b.id)) return;
                 }
             }
         if (big_.empty()) return;
@@ -63,7 +69,7 @@ public:
                         const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.low[0])),
                                                   std::max(box.low[1], static_cast<double>(b.low[1])),
                                                   std::max(box.low[2], static_cast<double>(b.low[2]))});
-                        if (ref[0] == i && ref[1] == j && ref[2] == k) visit(b.id);
+                        if (ref[0] == i && ref[1] == j && ref[2] == k && stop(b.id)) return;
                     }
                 }
     }

@@ -9,6 +9,7 @@
 #include <CGAL/intersections.h>
 
 #include "surface/detail/box_index.h"
+#include "surface/detail/plane_side.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
@@ -107,14 +108,7 @@ namespace filter {
 
 constexpr double margin = 1e-10;
 
-/// Sign of orient3d(a, b, c, d) when certain: +1, -1, or 0 for unsure.
-int side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
-{
-    const Vec3 u = b - a, v = c - a, w = d - a;
-    const double det = dot(cross(u, v), w);
-    const double scale2 = dot(u, u) * dot(v, v) * dot(w, w);
-    return det * det > margin * margin * scale2 ? (det > 0 ? 1 : -1) : 0;
-}
+int side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return certain_side(a, b, c, d); }
 
 /// True when all of q's corners are certainly strictly on one side of p's plane.
 bool off_plane(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& q, int first)

@@ -145,8 +145,11 @@ private:
     /// of them is judged by the smaller index only). With `partners`, collects every triangle t meets or
     /// crowds instead of stopping at the first.
     std::uint8_t judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                             const BoxIndex& index, std::vector<std::uint32_t>& nearby,
-                             std::vector<std::uint32_t>* partners) const;
+                             const BoxIndex& index, std::vector<std::uint32_t>* partners) const;
+    /// The rule the pair of moved triangle t (at `now`, formerly `before`, tight box `tight`) and triangle u
+    /// breaks at the current positions (0: none).
+    std::uint8_t pair_rule(std::uint32_t t, std::uint32_t u, const TriangleCorners& now, const TriangleCorners& before,
+                           const Box3& tight, const std::vector<Vec3>& start) const;
     /// Builds the neighbour grid if an edit needs it and it is not built (after rebuild_grid() or
     /// move_together(), which judges against its own index and leaves the grid to be rebuilt).
     void ensure_grid();

@@ -9,6 +9,7 @@
 #include "surface/detail/complex_editor.h"
 #include "surface/detail/edit_rules.h"
 #include "surface/detail/mesh_measures.h"
+#include "surface/detail/plane_side.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
@@ -23,8 +24,7 @@ TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t
 } // namespace
 
 std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                                        const BoxIndex& index, std::vector<std::uint32_t>& nearby,
-                                        std::vector<std::uint32_t>* partners) const
+                                        const BoxIndex& index, std::vector<std::uint32_t>* partners) const
 {
     const Triangle& tri = triangles_[t];
     const TriangleCorners now = corners(t), before = corners_at(start, tri);
@@ -33,29 +33,53 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
     if (tilts_beyond(normal_of(now), normal_of(before), max_tilt_)) return normal_rule;
     const double gap = limits_.min_gap_mm;
     const Box3 box = bounding_box(now, gap), tight = bounding_box(now);
-    // Candidates: boxes overlapping, each once (sorted, so the first rule found does not depend on
-    // the index's filing order).
-    nearby.clear();
-    index.visit(box, [&](std::uint32_t u) {
-        if (u != t && !(judged[u] && u < t)) nearby.push_back(u);
-    });
-    std::sort(nearby.begin(), nearby.end());
+    // Every triangle whose box meets `box`, in the index's order (deterministic; which rule is found
+    // first only feeds the counters).
     std::uint8_t found = none;
-    for (const std::uint32_t u : nearby) {
-        const TriangleCorners other = corners(u);
-        const Box3 other_box = bounding_box(other);
-        const Triangle& b = triangles_[u];
-        std::uint8_t broken = none;
-        if (boxes_overlap(tight, other_box) && triangles_intersect(positions_, tri, b)) broken = intersection_rule;
-        else if (gap > 0 && !shares_vertex(tri, b) && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
-                 closes_gap(now, before, other, corners_at(start, b), gap))
-            broken = gap_rule;
-        if (broken == none) continue;
-        if (!partners) return broken;
+    index.visit(box, [&](std::uint32_t u) {
+        if (u == t || (judged[u] && u < t)) return false;
+        const std::uint8_t broken = pair_rule(t, u, now, before, tight, start);
+        if (broken == none) return false;
         if (found == none) found = broken;
-        partners->push_back(u);
-    }
+        if (partners) partners->push_back(u);
+        return partners == nullptr;
+    });
     return found;
+}
+
+std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const TriangleCorners& now,
+                                      const TriangleCorners& before, const Box3& tight, const std::vector<Vec3>& start) const
+{
+    const Triangle& a = triangles_[t];
+    const Triangle& b = triangles_[u];
+    const TriangleCorners other = corners(u);
+    const bool s0 = contains(a, b[0]), s1 = contains(a, b[1]), s2 = contains(a, b[2]);
+    const int shared = int{s0} + int{s1} + int{s2};
+    if (shared > 0) {
+        // Neighbours meet only where they should when the rest of one lies strictly on one side of the
+        // other's plane (certain in floating point); otherwise the exact test decides. No gap between them.
+        const auto off_plane = [](const TriangleCorners& plane, const TriangleCorners& p, bool skip0, bool skip1,
+                                  bool skip2) {
+            int side = 0;
+            const bool skip[3] = {skip0, skip1, skip2};
+            for (int k = 0; k < 3; ++k) {
+                if (skip[k]) continue;
+                const int s = certain_side(plane[0], plane[1], plane[2], p[k]);
+                if (s == 0 || (side != 0 && s != side)) return false;
+                side = s;
+            }
+            return true;
+        };
+        if (off_plane(now, other, s0, s1, s2)) return none;
+        if (shared == 1 && off_plane(other, now, contains(b, a[0]), contains(b, a[1]), contains(b, a[2]))) return none;
+        return triangles_intersect(positions_, a, b) ? intersection_rule : none;
+    }
+    if (boxes_overlap(tight, bounding_box(other)) && triangles_intersect(positions_, a, b)) return intersection_rule;
+    const double gap = limits_.min_gap_mm;
+    if (gap > 0 && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
+        closes_gap(now, before, other, corners_at(start, b), gap))
+        return gap_rule;
+    return none;
 }
 
 std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>& vertices,
@@ -91,20 +115,17 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
         verdict.assign(round.size(), none);
         for (const std::uint32_t t : round) judged[t] = 1;
         const auto count = static_cast<std::int64_t>(round.size());
-#pragma omp parallel
-        {
-            std::vector<std::uint32_t> nearby;
-#pragma omp for schedule(dynamic, 512)
-            for (std::int64_t i = 0; i < count; ++i)
-                verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, index, nearby, nullptr);
-        }
+        // Later rounds judge a few triangles: waking the other threads would cost more than it saves.
+#pragma omp parallel for schedule(dynamic, 512) if (count > 4096)
+        for (std::int64_t i = 0; i < count; ++i)
+            verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, index, nullptr);
         // Sequential, in index order: which vertices go back does not depend on the threads.
-        std::vector<std::uint32_t> back, nearby, partners;
+        std::vector<std::uint32_t> back, partners;
         for (std::size_t i = 0; i < round.size(); ++i) {
             if (verdict[i] == none) continue;
             const std::uint32_t t = round[i];
             partners.assign(1, t);
-            if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, index, nearby, &partners);
+            if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, index, &partners);
             ++(verdict[i] == shape_rule ? counters_.shape
                : verdict[i] == normal_rule ? counters_.normal
                : verdict[i] == intersection_rule ? counters_.intersection
