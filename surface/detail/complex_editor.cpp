@@ -183,8 +183,10 @@ bool ComplexEditor::shape_ok(const Change& change)
 bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
 {
     const double gap = limits_.min_gap_mm;
-    std::vector<TriangleCorners> shapes;
-    std::vector<Box3> boxes;
+    thread_local std::vector<TriangleCorners> shapes;  // scratch: an edit changes a few triangles
+    thread_local std::vector<Box3> boxes;
+    shapes.clear();
+    boxes.clear();
     Box3 all{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
     for (const Change& change : changes) {
         const Triangle& a = change.triangle;
@@ -396,8 +398,10 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         return false;
     }
     ensure_grid();
-    std::vector<std::uint32_t> removed;
-    std::vector<Change> changes;
+    thread_local std::vector<std::uint32_t> removed, excluded;  // scratch: collapses are tried millions of times
+    thread_local std::vector<Change> changes;
+    removed.clear();
+    changes.clear();
     for (const std::uint32_t t : stars_[v]) {
         if (contains(triangles_[t], w)) {
             removed.push_back(t);
@@ -417,7 +421,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
     }
     if (veto && !veto()) return false;
     set_budget(stars_[v]);
-    std::vector<std::uint32_t> excluded = removed;
+    excluded = removed;
     for (const Change& change : changes) excluded.push_back(change.slot);
     if (!clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
