@@ -194,7 +194,8 @@ private:
     bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
                         std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
     {
-        std::vector<std::pair<Vec3, double>> spheres;
+        std::vector<std::pair<Vec3, double>>& spheres = spheres_;
+        spheres.clear();
         for (const TriangleCorners& c : shapes) {
             const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
             spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
@@ -220,12 +221,15 @@ private:
     /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
     bool collapse(std::uint32_t v, std::uint32_t w)
     {
-        std::vector<std::uint32_t> targets, sources;
-        std::vector<std::pair<std::size_t, std::uint32_t>> assignment;
+        // Scratch kept between calls: collapses are tried millions of times.
+        std::vector<std::uint32_t>& targets = targets_;
+        std::vector<std::uint32_t>& sources = sources_;
+        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
+        std::vector<TriangleCorners>& shapes = shapes_;
+        targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
         double worst = 0;
         bool too_far = false;
         const auto within_bound = [&] {
-            std::vector<TriangleCorners> shapes;
             for (const std::uint32_t t : editor_.star(v)) {
                 sources.push_back(t);
                 const Triangle& tri = editor_.triangle(t);
@@ -287,6 +291,10 @@ private:
     std::vector<std::vector<std::uint32_t>> samples_;
     detail::VertexQueue queue_;  ///< per vertex its cheapest collapse
     mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
+    std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
+    std::vector<TriangleCorners> shapes_;
+    mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
     std::vector<ComplexEditor::RingEntry> around_;        ///< scratch of collapse_all()
 };
 

@@ -180,6 +180,12 @@ bool ComplexEditor::shape_ok(const Change& change)
 
 /// No changed triangle meets another (changed or not) improperly, nor comes closer than the gap to one
 /// it shares no vertex with (unless its old version was closer still).
+bool ComplexEditor::meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb) const
+{
+    if (certainly_apart(a, pa, b, pb)) return false;
+    return triangles_intersect(positions_, a, b);
+}
+
 bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
 {
     const double gap = limits_.min_gap_mm;
@@ -208,7 +214,7 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         for (std::size_t j = i + 1; j < changes.size(); ++j)
             if ((same_vertex_set(changes[i].triangle, changes[j].triangle) ||
                  (boxes_overlap(boxes[i], boxes[j]) &&
-                  triangles_intersect(positions_, changes[i].triangle, changes[j].triangle))) &&
+                  meet(changes[i].triangle, shapes[i], changes[j].triangle, shapes[j]))) &&
                 meets())
                 return false;
     grid_.query(all, nearby_);
@@ -222,7 +228,7 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         for (std::size_t i = 0; i < changes.size(); ++i) {
             if (!boxes_overlap(boxes[i], box)) continue;
             const Triangle& a = changes[i].triangle;
-            if ((same_vertex_set(a, triangles_[t]) || triangles_intersect(positions_, a, triangles_[t])) && meets())
+            if ((same_vertex_set(a, triangles_[t]) || meet(a, shapes[i], triangles_[t], cb)) && meets())
                 return false;
             // The gap keeps layers apart: it applies between different patches only (within a patch, folds
             // are what the normal and intersection tests are for), and is measured between vertices and

@@ -136,6 +136,9 @@ private:
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    /// Whether triangles a and b (at corners pa, pb: the current positions) meet other than where they share
+    /// vertices; exact (triangles_intersect), with the plane test (certainly_apart) in front.
+    bool meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb) const;
     /// Intersecting pairs that involve `slots` (alive triangles) at the current positions: among them and
     /// with the other alive triangles. Sets the budget of the next check in tolerant mode.
     std::size_t intersections_involving(const std::vector<std::uint32_t>& slots);

@@ -53,28 +53,13 @@ std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const Tr
     const Triangle& a = triangles_[t];
     const Triangle& b = triangles_[u];
     const TriangleCorners other = corners(u);
-    const bool s0 = contains(a, b[0]), s1 = contains(a, b[1]), s2 = contains(a, b[2]);
-    const int shared = int{s0} + int{s1} + int{s2};
-    if (shared > 0) {
-        // Neighbours meet only where they should when the rest of one lies strictly on one side of the
-        // other's plane (certain in floating point); otherwise the exact test decides. No gap between them.
-        const auto off_plane = [](const TriangleCorners& plane, const TriangleCorners& p, bool skip0, bool skip1,
-                                  bool skip2) {
-            int side = 0;
-            const bool skip[3] = {skip0, skip1, skip2};
-            for (int k = 0; k < 3; ++k) {
-                if (skip[k]) continue;
-                const int s = certain_side(plane[0], plane[1], plane[2], p[k]);
-                if (s == 0 || (side != 0 && s != side)) return false;
-                side = s;
-            }
-            return true;
-        };
-        if (off_plane(now, other, s0, s1, s2)) return none;
-        if (shared == 1 && off_plane(other, now, contains(b, a[0]), contains(b, a[1]), contains(b, a[2]))) return none;
+    if (shares_vertex(a, b)) {
+        // No gap between neighbours; most are passed by the plane test before the exact one.
+        if (certainly_apart(a, now, b, other)) return none;
         return triangles_intersect(positions_, a, b) ? intersection_rule : none;
     }
-    if (boxes_overlap(tight, bounding_box(other)) && triangles_intersect(positions_, a, b)) return intersection_rule;
+    if (boxes_overlap(tight, bounding_box(other)) && !certainly_apart(a, now, b, other) && triangles_intersect(positions_, a, b))
+        return intersection_rule;
     const double gap = limits_.min_gap_mm;
     if (gap > 0 && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
         closes_gap(now, before, other, corners_at(start, b), gap))
