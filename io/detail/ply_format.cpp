@@ -259,12 +259,13 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
 
 } // namespace
 
-void write_ply(const InterfaceComplex& complex, std::ostream& out)
+void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments)
 {
     std::ostringstream header;
     header << "ply\nformat binary_little_endian 1.0\ncomment tissuemesh interface complex\n"
            << "comment background " << complex.background << "\n";
     for (const auto& [label, name] : complex.names) header << "comment tissue " << label << " " << name << "\n";
+    for (const std::string& comment : comments) header << "comment " << comment << "\n";
     header << "element vertex " << complex.vertices.size() << "\nproperty double x\nproperty double y\n"
            << "property double z\nelement face " << complex.triangles.size()
            << "\nproperty list uchar uint vertex_indices\nproperty ushort label_a\nproperty ushort label_b\n"
