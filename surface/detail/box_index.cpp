@@ -22,24 +22,33 @@ BoxIndex::BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::
 {
     if (ids.empty()) return;
     Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-    std::vector<float> sides(ids.size());
-    for (std::size_t n = 0; n < ids.size(); ++n) {
-        const CompactBox& b = boxes[ids[n]];
+    for (const std::uint32_t id : ids) {
+        const CompactBox& b = boxes[id];
         for (int a = 0; a < 3; ++a) {
             bounds.low[a] = std::min(bounds.low[a], static_cast<double>(b.low[a]));
             bounds.high[a] = std::max(bounds.high[a], static_cast<double>(b.high[a]));
         }
-        sides[n] = static_cast<float>(largest_side(b));
     }
-    // Cells as large as nine boxes in ten (the tenth is filed in every cell it overlaps), fewer than
-    // max_cells, and not so small that large boxes fill more than a few cells each.
+    // Cells as large as nine boxes in ten (the tenth is filed in every cell it overlaps; the fraction is
+    // estimated on at most 65 536 boxes spread over the list), fewer than max_cells, and not so small that
+    // large boxes fill more than a few cells each.
+    const std::size_t step = std::max<std::size_t>(1, ids.size() / 65536);
+    std::vector<double> sides;
+    for (std::size_t n = 0; n < ids.size(); n += step) sides.push_back(largest_side(boxes[ids[n]]));
     const auto tenth = sides.begin() + static_cast<std::ptrdiff_t>(sides.size() * 9 / 10);
     std::nth_element(sides.begin(), tenth, sides.end());
     const double span = std::max({bounds.high[0] - bounds.low[0], bounds.high[1] - bounds.low[1],
                                   bounds.high[2] - bounds.low[2], 1e-9});
-    cell_mm_ = std::max(static_cast<double>(*tenth) / small_fraction, 1e-6 * span);
+    cell_mm_ = std::max(*tenth / small_fraction, 1e-6 * span);
     origin_ = bounds.low;
-    std::vector<std::uint64_t> filings;
+    // Per id its cell (small boxes) or `none` (big ones), for the cell size that keeps the filings few.
+    constexpr std::uint32_t none = static_cast<std::uint32_t>(-1);
+    std::vector<std::uint32_t> cell_of_id(ids.size());
+    const auto index = [&](const std::array<std::int64_t, 3>& c) {
+        return static_cast<std::size_t>(c[0] + counts_[0] * (c[1] + counts_[1] * c[2]));
+    };
+    const auto low_cell = [&](const CompactBox& b) { return cell_of({b.low[0], b.low[1], b.low[2]}); };
+    const auto high_cell = [&](const CompactBox& b) { return cell_of({b.high[0], b.high[1], b.high[2]}); };
     for (;;) {
         double cells = 1;
         for (int a = 0; a < 3; ++a) {
@@ -50,43 +59,33 @@ BoxIndex::BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::
             cell_mm_ *= 1.25;
             continue;
         }
-        // Per id its number of cells (0: small, filed once).
-        std::uint64_t total = 0;
-        filings.assign(ids.size(), 0);
+        std::uint64_t filings = 0;
         for (std::size_t n = 0; n < ids.size(); ++n) {
             const CompactBox& b = boxes[ids[n]];
             if (largest_side(b) <= small_fraction * cell_mm_) {
-                ++total;
+                cell_of_id[n] = static_cast<std::uint32_t>(index(low_cell(b)));
+                ++filings;
                 continue;
             }
-            const auto lo = cell_of({b.low[0], b.low[1], b.low[2]}), hi = cell_of({b.high[0], b.high[1], b.high[2]});
-            filings[n] = static_cast<std::uint64_t>((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1));
-            total += filings[n];
+            cell_of_id[n] = none;
+            const auto lo = low_cell(b), hi = high_cell(b);
+            filings += static_cast<std::uint64_t>((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1));
         }
-        if (total <= 8 * ids.size() + 1024) break;
+        if (filings <= 8 * ids.size() + 1024) break;
         cell_mm_ *= 1.5;
     }
-    const auto index = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-        return static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
+    const auto for_each_cell = [&](const CompactBox& b, auto action) {
+        const auto lo = low_cell(b), hi = high_cell(b);
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+                for (std::int64_t i = lo[0]; i <= hi[0]; ++i) action(index({i, j, k}));
     };
     const std::size_t cells = static_cast<std::size_t>(counts_[0] * counts_[1] * counts_[2]);
     small_start_.assign(cells + 1, 0);
     big_start_.assign(cells + 1, 0);
-    const auto low_cell = [&](const CompactBox& b) { return cell_of({b.low[0], b.low[1], b.low[2]}); };
-    const auto for_each_cell = [&](const CompactBox& b, auto action) {
-        const auto lo = low_cell(b), hi = cell_of({b.high[0], b.high[1], b.high[2]});
-        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
-            for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
-                for (std::int64_t i = lo[0]; i <= hi[0]; ++i) action(index(i, j, k));
-    };
     for (std::size_t n = 0; n < ids.size(); ++n) {
-        const CompactBox& b = boxes[ids[n]];
-        if (filings[n] == 0) {
-            const auto c = low_cell(b);
-            ++small_start_[index(c[0], c[1], c[2]) + 1];
-        } else {
-            for_each_cell(b, [&](std::size_t c) { ++big_start_[c + 1]; });
-        }
+        if (cell_of_id[n] != none) ++small_start_[cell_of_id[n] + 1];
+        else for_each_cell(boxes[ids[n]], [&](std::size_t c) { ++big_start_[c + 1]; });
     }
     for (std::size_t c = 1; c <= cells; ++c) {
         small_start_[c] += small_start_[c - 1];
@@ -94,19 +93,38 @@ BoxIndex::BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::
     }
     small_.resize(small_start_.back());
     big_.resize(big_start_.back());
-    std::vector<std::uint32_t> next_small(small_start_.begin(), small_start_.end() - 1);
-    std::vector<std::uint32_t> next_big(big_start_.begin(), big_start_.end() - 1);
+    std::uint32_t largest_id = 0;
+    for (const std::uint32_t id : ids) largest_id = std::max(largest_id, id);
+    where_.assign(static_cast<std::size_t>(largest_id) + 1, none);
+    // The starts serve as the cells' cursors while they fill (each ends at the next cell's start).
     for (std::size_t n = 0; n < ids.size(); ++n) {
         const CompactBox& b = boxes[ids[n]];
-        const Entry entry{b.low, b.high, ids[n]};
-        if (filings[n] == 0) {
-            const auto c = low_cell(b);
-            small_[next_small[index(c[0], c[1], c[2])]++] = entry;
+        const Entry entry{b, ids[n]};
+        if (cell_of_id[n] != none) {
+            const std::uint32_t e = small_start_[cell_of_id[n]]++;
+            small_[e] = entry;
+            where_[ids[n]] = e;
         } else {
-            for_each_cell(b, [&](std::size_t c) { big_[next_big[c]++] = entry; });
+            for_each_cell(b, [&](std::size_t c) {
+                const std::uint32_t e = big_start_[c]++;
+                big_[e] = entry;
+                where_[ids[n]] = e | big_bit;
+            });
         }
     }
+    // Back to the starts: each cell's cursor now holds the next cell's start.
+    for (std::size_t c = cells; c > 0; --c) {
+        small_start_[c] = small_start_[c - 1];
+        big_start_[c] = big_start_[c - 1];
+    }
+    small_start_[0] = big_start_[0] = 0;
     if (big_.empty()) big_start_ = {};
+}
+
+const CompactBox& BoxIndex::filed_box(std::uint32_t id) const
+{
+    const std::uint32_t e = where_[id];
+    return (e & big_bit) ? big_[e & ~big_bit].box : small_[e].box;
 }
 
 } // namespace tissuemesh::surface::detail

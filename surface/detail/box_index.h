@@ -50,8 +50,8 @@ public:
                 const std::uint32_t end = small_start_[static_cast<std::size_t>(row + high[0] + 1)];
                 for (std::uint32_t e = small_start_[static_cast<std::size_t>(row + from_i)]; e < end; ++e) {
                     const Entry& b = small_[e];
-                    if ((b.low[0] <= below[0]) & (b.high[0] >= above[0]) & (b.low[1] <= below[1]) &
-                        (b.high[1] >= above[1]) & (b.low[2] <= below[2]) & (b.high[2] >= above[2]))
+                    if ((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) & (b.box.low[1] <= below[1]) &
+                        (b.box.high[1] >= above[1]) & (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2]))
                         if (stop(b.id)) return;
                 }
             }
@@ -63,26 +63,29 @@ public:
                     const auto cell = static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
                     for (std::uint32_t e = big_start_[cell]; e < big_start_[cell + 1]; ++e) {
                         const Entry& b = big_[e];
-                        if (!((b.low[0] <= below[0]) & (b.high[0] >= above[0]) & (b.low[1] <= below[1]) &
-                              (b.high[1] >= above[1]) & (b.low[2] <= below[2]) & (b.high[2] >= above[2])))
+                        if (!((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) & (b.box.low[1] <= below[1]) &
+                              (b.box.high[1] >= above[1]) & (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2])))
                             continue;
-                        const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.low[0])),
-                                                  std::max(box.low[1], static_cast<double>(b.low[1])),
-                                                  std::max(box.low[2], static_cast<double>(b.low[2]))});
+                        const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.box.low[0])),
+                                                  std::max(box.low[1], static_cast<double>(b.box.low[1])),
+                                                  std::max(box.low[2], static_cast<double>(b.box.low[2]))});
                         if (ref[0] == i && ref[1] == j && ref[2] == k && stop(b.id)) return;
                     }
                 }
     }
 
     double cell_mm() const { return cell_mm_; }
+    /// The box `id` was filed with.
+    /// @pre `id` was filed
+    const CompactBox& filed_box(std::uint32_t id) const;
 
 private:
     /// A filed box: single precision, rounded outward (CompactBox), next to its id.
     struct Entry {
-        std::array<float, 3> low;
-        std::array<float, 3> high;
+        CompactBox box;
         std::uint32_t id;
     };
+    static constexpr std::uint32_t big_bit = 1u << 31;  ///< in where_: an entry of big_
     static float float_down(double x)
     {
         const auto f = static_cast<float>(x);
@@ -111,6 +114,7 @@ private:
     std::vector<Entry> small_;                ///< boxes filed once, in the cell of their low corner
     std::vector<std::uint32_t> big_start_;    ///< per cell, its first big entry (one more for the end)
     std::vector<Entry> big_;                  ///< boxes filed in every cell they overlap
+    std::vector<std::uint32_t> where_;        ///< per id: its entry in small_, or big_bit | one of its entries in big_
 };
 
 } // namespace tissuemesh::surface::detail

@@ -283,6 +283,7 @@ bool ComplexEditor::acceptable(const std::vector<Change>& changes, const std::ve
 
 void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
+    batch_index_valid_ = false;
     for (const std::uint32_t t : removed) {
         grid_.erase(t, bounding_box(corners(t)));
         for (const std::uint32_t v : triangles_[t]) std::erase(stars_[v], t);

@@ -153,6 +153,8 @@ private:
     /// breaks at the current positions (0: none).
     std::uint8_t pair_rule(std::uint32_t t, std::uint32_t u, const TriangleCorners& now, const TriangleCorners& before,
                            const Box3& tight, const std::vector<Vec3>& start) const;
+    /// Makes batch_index_ fit for a batch whose `changed` triangles have their boxes for the batch in boxes_.
+    void refresh_batch_index(const std::vector<std::uint32_t>& changed);
     /// Builds the neighbour grid if an edit needs it and it is not built (after rebuild_grid() or
     /// move_together(), which judges against its own index and leaves the grid to be rebuilt).
     void ensure_grid();
@@ -177,6 +179,8 @@ private:
     TriangleGrid grid_;
     double grid_cell_mm_ = 1;   ///< cell size asked of the grid
     bool grid_ready_ = false;   ///< grid_ files every alive triangle under its current box
+    BoxIndex batch_index_;      ///< move_together()'s index (see refresh_batch_index())
+    bool batch_index_valid_ = false;
     std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)

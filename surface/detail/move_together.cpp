@@ -67,6 +67,28 @@ std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const Tr
     return none;
 }
 
+/// Every alive triangle is filed in batch_index_ under a box holding its current box (the invariant that
+/// lets a batch reuse the index: apply() drops it). A batch whose changed triangles' boxes (now in boxes_)
+/// all fit in the boxes they are filed under reuses it: a box larger than needed only brings candidates
+/// that are further apart than the gap, which no rule refuses (smoothing's halved steps stay within the
+/// boxes of the full ones). Otherwise the index is built again.
+void ComplexEditor::refresh_batch_index(const std::vector<std::uint32_t>& changed)
+{
+    const auto holds = [](const CompactBox& outer, const CompactBox& inner) {
+        for (int i = 0; i < 3; ++i)
+            if (inner.low[i] < outer.low[i] || outer.high[i] < inner.high[i]) return false;
+        return true;
+    };
+    if (batch_index_valid_ &&
+        std::all_of(changed.begin(), changed.end(), [&](std::uint32_t t) { return holds(batch_index_.filed_box(t), boxes_[t]); }))
+        return;
+    std::vector<std::uint32_t> alive;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) alive.push_back(t);
+    batch_index_ = BoxIndex(boxes_, alive);
+    batch_index_valid_ = true;
+}
+
 std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>& vertices,
                                                const std::vector<Vec3>& targets)
 {
@@ -85,16 +107,14 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
     round.erase(std::unique(round.begin(), round.end()), round.end());
     // While judged, a changed triangle is filed under the box of both its old and its new place, so that
     // a query finds it wherever its vertices are (each is either back at the start or at its target).
-    // The batch has its own index; the editor's grid is rebuilt when a single edit next needs it.
+    // Batches have their own index; the editor's grid is rebuilt when a single edit next needs it.
     const std::vector<std::uint32_t> changed = round;
     for (const std::uint32_t t : changed)
         boxes_[t] = compact(box_union(bounding_box(corners_at(start, triangles_[t])), bounding_box(corners(t))));
     grid_ = TriangleGrid();
     grid_ready_ = false;
-    std::vector<std::uint32_t> alive;
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) alive.push_back(t);
-    const BoxIndex index(boxes_, alive);
+    refresh_batch_index(changed);
+    const BoxIndex& index = batch_index_;
     std::vector<std::uint8_t> verdict;
     while (!round.empty()) {
         verdict.assign(round.size(), none);
