@@ -12,10 +12,11 @@
 namespace tissuemesh::surface {
 namespace {
 
+using detail::BoxIndex;
 using detail::Box3;
+using detail::CompactBox;
 using detail::ComplexEditor;
 using detail::TriangleCorners;
-using detail::TriangleGrid;
 using detail::VertexKind;
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
@@ -59,24 +60,24 @@ class Reference {
 public:
     Reference(const InterfaceComplex& input, double cell_mm) : input_(input), cell_mm_(cell_mm)
     {
-        Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-        for (const Vec3& v : input.vertices)
-            for (int i = 0; i < 3; ++i) bounds.low[i] = std::min(bounds.low[i], v[i]), bounds.high[i] = std::max(bounds.high[i], v[i]);
-        triangles_ = TriangleGrid(bounds, cell_mm, input.triangle_count());
-        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) triangles_.insert(t, detail::bounding_box(corners(t)));
+        std::vector<CompactBox> boxes(input.triangle_count());
+        std::vector<std::uint32_t> ids(input.triangle_count());
+        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) boxes[t] = compact(detail::bounding_box(corners(t))), ids[t] = t;
+        triangles_ = BoxIndex(boxes, ids);
         std::map<Edge, int> count;
         for (const Triangle& t : input.triangles)
             for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
         for (const auto& [edge, n] : count)
             if (n >= 3) junction_.push_back(edge);
-        segments_ = TriangleGrid(bounds, cell_mm, junction_.size());
-        for (std::uint32_t s = 0; s < junction_.size(); ++s)
-            segments_.insert(s, detail::bounding_box(segment(s)));
+        boxes.resize(junction_.size());
+        ids.resize(junction_.size());
+        for (std::uint32_t s = 0; s < junction_.size(); ++s) boxes[s] = compact(detail::bounding_box(segment(s))), ids[s] = s;
+        segments_ = BoxIndex(boxes, ids);
     }
 
     /// The nearest point of the input patch of `pair` to p (p itself when none is within reach); of equally
     /// near triangles, the first in the input's order.
-    Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach)
+    Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach) const
     {
         return nearest(triangles_, p, reach, [&](std::uint32_t t, double nearest_so_far) -> std::optional<Vec3> {
             if (unordered(input_.sides[t]) != pair) return std::nullopt;
@@ -89,7 +90,7 @@ public:
 
     /// The nearest point of the input junction curves to p (p itself when none is within reach); of equally
     /// near segments, the first in the input's order.
-    Vec3 onto_curve(const Vec3& p, double reach)
+    Vec3 onto_curve(const Vec3& p, double reach) const
     {
         return nearest(segments_, p, reach, [&](std::uint32_t s, double nearest_so_far) -> std::optional<Vec3> {
             if (box_distance(p, detail::bounding_box(segment(s))) > nearest_so_far) return std::nullopt;
@@ -109,32 +110,31 @@ private:
         return {a, a, input_.vertices[junction_[s].second]};
     }
 
-    /// The nearest of the points closest(i, nearest so far) gives for the items of `grid` near p (p when
-    /// none). The search box grows from a quarter cell until it holds the nearest point found (then nothing
-    /// outside it can be nearer) or reaches `reach`, whose box the answer then comes from: the same answer
-    /// as a search of the whole reach at once, at the cost of the few items near p.
-    template <class Closest> Vec3 nearest(TriangleGrid& grid, const Vec3& p, double reach, Closest closest)
+    /// The nearest of the points closest(i, nearest so far) gives for the items of `index` whose boxes meet
+    /// the box of half-width `reach` around p (p when none). The search box grows from a quarter cell until
+    /// it holds the nearest point found (then nothing outside it can be nearer) or reaches `reach`: the same
+    /// answer as a search of the whole reach at once, at the cost of the few items near p.
+    template <class Closest> Vec3 nearest(const BoxIndex& index, const Vec3& p, double reach, Closest closest) const
     {
-        for (double r = reach;; r = std::min(reach, 2 * r)) {
+        for (double r = std::min(reach, 0.25 * cell_mm_);; r = std::min(reach, 2 * r)) {
             Vec3 best = p;
             double best_distance = std::numeric_limits<double>::max();
             std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
-            grid.query(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, found_);
-            for (const std::uint32_t i : found_)
+            index.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t i) {
                 if (const std::optional<Vec3> q = closest(i, best_distance)) {
                     const double d = distance(p, *q);
                     if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
                 }
+            });
             if (best_distance <= r || r >= reach) return best;
         }
     }
 
     const InterfaceComplex& input_;
     double cell_mm_;
-    TriangleGrid triangles_;
-    TriangleGrid segments_;
+    BoxIndex triangles_;  ///< the input's triangles by their boxes
+    BoxIndex segments_;   ///< its junction edges by their boxes
     std::vector<Edge> junction_;
-    std::vector<std::uint32_t> found_;
 };
 
 class Remesher {
@@ -214,8 +214,10 @@ private:
     /// Whether collapsing v into w keeps every edge at w below 4/3 of its target.
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
     {
-        for (const std::uint32_t u : editor_.neighbours(v))
-            if (u != w && distance(editor_.position(u), editor_.position(w)) > 4.0 / 3.0 * target(v, u)) return false;
+        editor_.ring(v, ring_);
+        for (const ComplexEditor::RingEntry& e : ring_)
+            if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
+                return false;
         return true;
     }
 
@@ -248,7 +250,8 @@ private:
 
     int deviation(std::uint32_t v, int change) const
     {
-        return std::abs(static_cast<int>(editor_.neighbours(v).size()) + change - valence_target(v));
+        editor_.ring(v, ring_);
+        return std::abs(static_cast<int>(ring_.size()) + change - valence_target(v));
     }
 
     void flip_towards_valence_six()
@@ -312,6 +315,7 @@ private:
     RemeshReport& report_;
     ComplexEditor editor_;
     Reference reference_;
+    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any
