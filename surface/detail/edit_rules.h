@@ -26,27 +26,6 @@ inline bool same_vertex_set(const Triangle& a, const Triangle& b)
     return contains(b, a[0]) && contains(b, a[1]) && contains(b, a[2]);
 }
 
-/// Whether triangles a and b (corners pa, pb) certainly meet only at the vertices and edge they share (if
-/// any): the vertices of one that the other lacks lie strictly on one side of the other's plane (certain
-/// in floating point: certain_side()). False when unsure; the exact test then decides. Most pairs of a
-/// smooth surface are decided here, at a fraction of the exact test's cost.
-inline bool certainly_apart(const Triangle& a, const TriangleCorners& pa, const Triangle& b,
-                                       const TriangleCorners& pb)
-{
-    // The corners of `q` missing from `of`, all certainly on one side of the plane of `plane`.
-    const auto off_plane = [](const TriangleCorners& plane, const Triangle& q, const TriangleCorners& pq, const Triangle& of) {
-        int side = 0;
-        for (int k = 0; k < 3; ++k) {
-            if (contains(of, q[k])) continue;
-            const int s = certain_side(plane[0], plane[1], plane[2], pq[k]);
-            if (s == 0 || (side != 0 && s != side)) return false;
-            side = s;
-        }
-        return side != 0;
-    };
-    return off_plane(pa, b, pb, a) || off_plane(pb, a, pa, b);
-}
-
 inline Vec3 normal_of(const TriangleCorners& t) { return cross(t[1] - t[0], t[2] - t[0]); }
 
 inline double angle_between_deg(const Vec3& a, const Vec3& b)
