@@ -97,14 +97,33 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
     const std::vector<Vec3> start = positions_;
     std::vector<char> moved(positions_.size(), 0), judged(triangles_.size(), 0);
     std::vector<std::uint32_t> round;  // triangles to judge, ascending
+    std::vector<char> listed(triangles_.size(), 0);
+    // The triangles of the stars of `from` into `round`, ascending, each once (marks instead of a sort:
+    // a batch lists the stars of millions of vertices).
+    const auto stars_of = [&](const std::vector<std::uint32_t>& from) {
+        round.clear();
+        std::size_t count = 0;
+        for (const std::uint32_t v : from)
+            for (const std::uint32_t t : stars_[v])
+                if (!listed[t]) listed[t] = 1, ++count;
+        if (count > triangles_.size() / 64) {
+            for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+                if (listed[t]) round.push_back(t), listed[t] = 0;
+            return;
+        }
+        for (const std::uint32_t v : from)
+            for (const std::uint32_t t : stars_[v])
+                if (listed[t]) round.push_back(t), listed[t] = 0;
+        std::sort(round.begin(), round.end());
+    };
+    std::vector<std::uint32_t> movers;
     for (std::size_t i = 0; i < vertices.size(); ++i) {
         if (!vertex_alive(vertices[i])) continue;
         positions_[vertices[i]] = targets[i];
         moved[vertices[i]] = 1;
-        round.insert(round.end(), stars_[vertices[i]].begin(), stars_[vertices[i]].end());
+        movers.push_back(vertices[i]);
     }
-    std::sort(round.begin(), round.end());
-    round.erase(std::unique(round.begin(), round.end()), round.end());
+    stars_of(movers);
     // While judged, a changed triangle is filed under the box of both its old and its new place, so that
     // a query finds it wherever its vertices are (each is either back at the start or at its target).
     // Batches have their own index; the editor's grid is rebuilt when a single edit next needs it.
@@ -140,10 +159,7 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
                     if (moved[v]) moved[v] = 0, positions_[v] = start[v], back.push_back(v);
         }
         for (const std::uint32_t t : round) judged[t] = 0;
-        round.clear();
-        for (const std::uint32_t v : back) round.insert(round.end(), stars_[v].begin(), stars_[v].end());
-        std::sort(round.begin(), round.end());
-        round.erase(std::unique(round.begin(), round.end()), round.end());
+        stars_of(back);
     }
     for (const std::uint32_t t : changed) boxes_[t] = compact(bounding_box(corners(t)));
     std::vector<char> result(vertices.size(), 0);
