@@ -248,14 +248,18 @@ private:
 
     int valence_target(std::uint32_t v) const { return editor_.kind(v) == VertexKind::patch ? 6 : 4; }
 
-    int deviation(std::uint32_t v, int change) const
+    int deviation(const std::vector<int>& valence, std::uint32_t v, int change) const
     {
-        editor_.ring(v, ring_);
-        return std::abs(static_cast<int>(ring_.size()) + change - valence_target(v));
+        return std::abs(valence[v] + change - valence_target(v));
     }
 
     void flip_towards_valence_six()
     {
+        // Valences (distinct neighbours) kept up to date through the flips: a flip of vw towards ab takes one
+        // from v and w and gives one to a and b (vw had only those two triangles; ab was no edge).
+        std::vector<int> valence(editor_.vertex_slots(), 0);
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
+            if (editor_.vertex_alive(v)) editor_.ring(v, ring_), valence[v] = static_cast<int>(ring_.size());
         for (const Edge& e : edges()) {
             const auto [v, w] = e;
             if (editor_.edge_multiplicity(v, w) != 2) continue;
@@ -267,11 +271,17 @@ private:
                     if (u != v && u != w) apexes.push_back(u);
             }
             if (apexes.size() != 2) continue;
-            const int before = deviation(v, 0) + deviation(w, 0) + deviation(apexes[0], 0) + deviation(apexes[1], 0);
-            const int after = deviation(v, -1) + deviation(w, -1) + deviation(apexes[0], 1) + deviation(apexes[1], 1);
+            const int before = deviation(valence, v, 0) + deviation(valence, w, 0) + deviation(valence, apexes[0], 0) +
+                               deviation(valence, apexes[1], 0);
+            const int after = deviation(valence, v, -1) + deviation(valence, w, -1) + deviation(valence, apexes[0], 1) +
+                              deviation(valence, apexes[1], 1);
             if (after >= before) continue;
-            if (editor_.try_flip(v, w)) ++report_.flips;
-            else ++report_.refused;
+            if (editor_.try_flip(v, w)) {
+                ++report_.flips;
+                --valence[v], --valence[w], ++valence[apexes[0]], ++valence[apexes[1]];
+            } else {
+                ++report_.refused;
+            }
         }
     }
 
