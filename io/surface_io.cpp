@@ -36,16 +36,15 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
             throw IoError(concat(path.string(), ": a PLY comment cannot span lines"));
     const std::string extension = extension_of(path);
     validate_indices(complex, path.string());
-    std::string bytes;
-    if (extension == ".vtp") bytes = detail::format_vtp(complex);
-    if (extension == ".off") bytes = detail::format_off(complex);
-    if (extension == ".stl") bytes = detail::format_stl(complex);
-    if (extension == ".obj") bytes = detail::format_obj(complex);
+    // Every format goes to the temporary file in chunks of about 1 MB, never whole in memory.
     write_atomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
         if (extension == ".ply") detail::write_ply(complex, out, ply_comments);
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        if (extension == ".vtp") detail::write_vtp(complex, out);
+        if (extension == ".off") detail::write_off(complex, out);
+        if (extension == ".stl") detail::write_stl(complex, out);
+        if (extension == ".obj") detail::write_obj(complex, out);
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });

@@ -317,6 +317,7 @@ DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& option
     report.refused_fold = counters.normal;
     report.refused_intersection = counters.intersection;
     report.refused_gap = counters.gap;
+    report.refused_wedge = counters.wedge;
     report.triangles_after = complex.triangle_count();
     progress.info("decimate", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; ",
                                      report.refused_by_distance, " collapses refused by the distance bound, ",

@@ -46,6 +46,7 @@ struct DecimateReport {
     std::size_t refused_fold = 0;         ///< a triangle would tilt too much
     std::size_t refused_intersection = 0; ///< a triangle would meet another
     std::size_t refused_gap = 0;          ///< a triangle would come too close to another patch
+    std::size_t refused_wedge = 0;        ///< two triangles sharing one vertex would nearly lie on each other
     double max_distance_mm = 0;           ///< largest tracked distance of an input vertex to the output
 };
 

@@ -73,10 +73,12 @@ public:
         }
     }
 
-    InterfaceComplex run(const Progress& progress)
+    /// Hands the complex to `sink` one slab (piece) at a time.
+    void run(InterfaceSink& sink, const Progress& progress)
     {
         const std::size_t slabs = image_.dims()[2] + 1;
         ProgressTicker ticker(progress, "extract", slabs);
+        sink.start(image_.names(), background_);
         load_layer(1, 0);
         for (std::size_t k = 0; k < slabs; ++k) {
             std::swap(labels_[0], labels_[1]);
@@ -89,12 +91,21 @@ public:
             // Split-cube points on the plane z = k stay shared with this slab; older ones are done.
             std::erase_if(shared_, [k](const auto& entry) { return (entry.first & coordinate_mask) < 24 * k; });
             extract_slab();
+            for (const LabelPair& pair : sides_) seen_[pair.from] = seen_[pair.to] = true;
+            sink.add({first_vertex_, vertices_, triangles_, sides_});
+            first_vertex_ += vertices_.size();
+            triangle_count_ += triangles_.size();
+            vertices_.clear();
+            triangles_.clear();
+            sides_.clear();
             ticker.step();
         }
-        out_.background = background_;
-        out_.names = image_.names();
-        return std::move(out_);
     }
+
+    std::size_t vertex_count() const { return first_vertex_; }
+    std::size_t triangle_count() const { return triangle_count_; }
+    /// Whether some triangle has `label` on one of its sides.
+    bool produced(Label label) const { return seen_[label]; }
 
 private:
     /// Fills labels_[slot] with padded grid layer `k` (all background outside the image).
@@ -254,7 +265,8 @@ private:
         // side > 0: the reference vertex is in front of the triangle; `from` must be behind it.
         if ((side > 0) == (reference_label == pair.from)) std::swap(q, r);
         if (flip_) std::swap(q, r);
-        out_.add_triangle({p.id, q.id, r.id}, pair);
+        triangles_.push_back({p.id, q.id, r.id});
+        sides_.push_back(pair);
     }
 
     /// Midpoint of the edge between cube vertices x and y. A grid edge of the Kuhn kind (one corner a
@@ -310,14 +322,14 @@ private:
 
     std::uint32_t new_vertex(const Local& local)
     {
-        if (out_.vertices.size() >= no_vertex)
+        const std::size_t id = first_vertex_ + vertices_.size();
+        if (id >= no_vertex)
             throw InputError("extract_interfaces: more than 4 294 967 294 vertices; crop or coarsen the image");
         const Vec3 index{static_cast<double>(i_) - 1 + local[0] / 24.0, static_cast<double>(j_) - 1 + local[1] / 24.0,
                          static_cast<double>(k_) - 1 + local[2] / 24.0};
-        out_.vertices.push_back(image_.index_to_world(index));
-        return static_cast<std::uint32_t>(out_.vertices.size() - 1);
+        vertices_.push_back(image_.index_to_world(index));
+        return static_cast<std::uint32_t>(id);
     }
-
 
     const LabelImage& image_;
     std::vector<Label> map_;
@@ -333,7 +345,12 @@ private:
     std::array<std::vector<Label>, 2> labels_;
     std::array<std::vector<std::uint32_t>, 2> edges_;
     std::array<std::vector<std::uint32_t>, 2> faces_;
-    InterfaceComplex out_;
+    /// The current slab's new vertices and triangles, handed to the sink when the slab is done.
+    std::vector<Vec3> vertices_;
+    std::vector<Triangle> triangles_;
+    std::vector<LabelPair> sides_;
+    std::size_t first_vertex_ = 0, triangle_count_ = 0;
+    std::vector<bool> seen_ = std::vector<bool>(std::size_t{1} << 16, false);
 };
 
 /// The label each image label becomes: itself when kept, `background` otherwise.
@@ -359,7 +376,8 @@ std::vector<Label> label_map(const LabelImage& image, const ExtractOptions& opti
 
 } // namespace
 
-InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options, const Progress& progress)
+void extract_interfaces(const LabelImage& image, const ExtractOptions& options, InterfaceSink& sink,
+                        const Progress& progress)
 {
     if (image.empty()) throw InputError("extract_interfaces: the image has no voxels; give a non-empty image");
     std::vector<Label> map = label_map(image, options);
@@ -380,20 +398,21 @@ InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOption
                                     "), which is not a tissue of the image; check the priority list against "
                                     "tm-info"));
     SlabExtractor extractor(image, std::move(map), options.background, options.priority);
-    InterfaceComplex complex = extractor.run(progress);
+    extractor.run(sink, progress);
     // No tissue may be lost: padding gives every tissue a boundary, so this is a guard against bugs.
-    std::set<Label> seen;
-    for (const LabelPair& pair : complex.sides) {
-        seen.insert(pair.from);
-        seen.insert(pair.to);
-    }
     for (const Label tissue : tissues)
-        if (!seen.contains(tissue))
+        if (!extractor.produced(tissue))
             throw AlgorithmError(concat("extract_interfaces: tissue ", tissue, " produced no triangles; this is "
                                         "a bug, please report it with the image"));
-    progress.info("extract", concat(complex.triangle_count(), " triangles, ", complex.vertex_count(),
+    progress.info("extract", concat(extractor.triangle_count(), " triangles, ", extractor.vertex_count(),
                                     " vertices, ", tissues.size(), " tissues"));
-    return complex;
+}
+
+InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options, const Progress& progress)
+{
+    CollectingSink collect;
+    extract_interfaces(image, options, collect, progress);
+    return std::move(collect.complex());
 }
 
 } // namespace tissuemesh::surface

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/interface_complex.h"
+#include "core/interface_sink.h"
 #include "core/label_image.h"
 #include "core/progress.h"
 
@@ -84,5 +85,17 @@ struct ExtractOptions {
 ///         kept tissue nor the background, or (with a priority) an image side exceeds 80 000 voxels
 InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options = {},
                                     const Progress& progress = {});
+
+/// The same complex handed to `sink` slab by slab instead of returned, so that a writer never holds it
+/// whole (tm-extract streams the head's 6.5 M triangles to a PLY file this way). The pieces are the
+/// slabs in z order (image.dims()[2] + 1 of them, some empty); their concatenation is exactly the complex
+/// the overload above returns (same vertices, triangles and order). Locality, which streaming consumers
+/// may rely on: a triangle of piece k uses only vertices of pieces k - 1 and k, hence all the triangles
+/// around an edge arrive within two consecutive pieces. The options are checked before the first piece;
+/// an exception thrown later (over 2^32 - 1 vertices, an AlgorithmError) leaves `sink` with a partial
+/// complex, to be discarded.
+/// @throws as the overload above
+void extract_interfaces(const LabelImage& image, const ExtractOptions& options, InterfaceSink& sink,
+                        const Progress& progress = {});
 
 } // namespace tissuemesh::surface

@@ -197,8 +197,10 @@ RepairReport repair(InterfaceComplex& complex, const RepairOptions& options, con
     require_repairable(complex, "remain after merging vertices, dropping repeats and turning flipped triangles");
 
     const double cell_mm = 2 * detail::mean_edge_length(complex);
+    // Untangling crossings may pass through thin wedges at shared vertices on the way (a crossing is the
+    // worse defect, and the moves never add one), so the wedge rule of the other steps is off here.
     detail::ComplexEditor editor(std::move(complex),
-                                 {.min_angle_deg = 0, .max_normal_change_deg = 90, .min_gap_mm = 0,
+                                 {.min_angle_deg = 0, .max_normal_change_deg = 90, .min_gap_mm = 0, .min_wedge_deg = 0,
                                   .tolerate_existing_intersections = true},
                                  cell_mm);
     detail::collapse_degenerate_triangles(editor, log);

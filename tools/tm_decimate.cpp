@@ -69,6 +69,7 @@ int main(int argc, char** argv)
                            {"refused_fold", report.refused_fold},
                            {"refused_intersection", report.refused_intersection},
                            {"refused_gap", report.refused_gap},
+                           {"refused_wedge", report.refused_wedge},
                            {"max_distance_mm", report.max_distance_mm},
                            {"seconds_decimate", seconds}};
         });

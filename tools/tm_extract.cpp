@@ -4,7 +4,6 @@
 #include <charconv>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 
@@ -12,6 +11,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "io/surface_io.h"
+#include "io/write_surface_streamed.h"
 #include "surface/extract_interfaces.h"
 #include "surface/summarize_interfaces.h"
 #include "surface/tissue_surface.h"
@@ -41,11 +41,12 @@ fs::path tissue_path(const fs::path& dir, const InterfaceComplex& complex, Label
 }
 
 /// Writes each tissue's outward closed surface (background excluded); returns the paths.
-nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const fs::path& dir, const std::string& format)
+nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const surface::InterfaceSummary& summary,
+                                     const fs::path& dir, const std::string& format)
 {
     fs::create_directories(dir);
     nlohmann::json written = nlohmann::json::array();
-    for (const auto& [label, counts] : surface::summarize_interfaces(complex).tissues) {
+    for (const auto& [label, counts] : summary.tissues) {
         if (label == complex.background) continue;
         const fs::path path = tissue_path(dir, complex, label, format);
         io::write_surface(surface::tissue_surface(complex, label), path);
@@ -86,22 +87,11 @@ nlohmann::json priority_summary(const std::map<Label, int>& priority)
     return out;
 }
 
-/// Peak resident memory so far (MiB, Linux VmHWM; 0 when unknown): measured right after extraction,
-/// before writing and counting add their own buffers.
-double peak_memory_mib()
-{
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-    return 0;
-}
-
-nlohmann::json tissue_summary(const LabelImage& image, const InterfaceComplex& complex)
+nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceSummary& summary)
 {
     const auto voxels = count_labels(image);
     nlohmann::json tissues = nlohmann::json::object();
-    for (const auto& [label, counts] : surface::summarize_interfaces(complex).tissues) {
+    for (const auto& [label, counts] : summary.tissues) {
         const auto found = voxels.find(label);
         tissues[std::to_string(label)] = {{"name", image.name_of(label)},
                                           {"voxels", found == voxels.end() ? 0 : found->second},
@@ -157,24 +147,40 @@ int main(int argc, char** argv)
             const LabelImage image = io::read_label_image(input, read_options);
             const double read_seconds = seconds_since(start);
             options.priority = parse_priority(priority, image);
+            // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
+            // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
+            const bool streamed = extension == ".ply" && per_tissue_dir.empty();
+            surface::InterfaceSummarizer counter;
+            CollectingSink collector;
+            const auto extract = [&](InterfaceSink& sink) {
+                TeeSink both(sink, counter);
+                tools::with_source(input, [&] { surface::extract_interfaces(image, options, both, ctx.progress); });
+            };
             start = std::chrono::steady_clock::now();
-            const InterfaceComplex complex =
-                tools::with_source(input, [&] { return surface::extract_interfaces(image, options, ctx.progress); });
-            const double extract_seconds = seconds_since(start);
-            const double extract_peak_mib = peak_memory_mib();
-            ctx.log(concat(image.voxel_count(), " voxels -> ", complex.triangle_count(), " triangles, ",
-                           complex.vertex_count(), " vertices (", format_mm(extract_seconds, 2), " s)"));
-            start = std::chrono::steady_clock::now();
-            io::write_surface(complex, output);
+            double extract_seconds = 0;
+            if (streamed) {
+                io::write_surface_streamed(output, [&](InterfaceSink& ply) {
+                    extract(ply);
+                    extract_seconds = seconds_since(start);
+                });
+            } else {
+                extract(collector);
+                extract_seconds = seconds_since(start);
+                io::write_surface(collector.complex(), output);
+            }
+            const surface::InterfaceSummary counts = counter.summary();
             nlohmann::json per_tissue = nlohmann::json::array();
-            if (!per_tissue_dir.empty()) per_tissue = write_tissue_surfaces(complex, per_tissue_dir, per_tissue_format);
+            if (!per_tissue_dir.empty())
+                per_tissue = write_tissue_surfaces(collector.complex(), counts, per_tissue_dir, per_tissue_format);
+            ctx.log(concat(image.voxel_count(), " voxels -> ", counts.triangles, " triangles, ", counts.vertices,
+                           " vertices (", format_mm(extract_seconds, 2), " s)"));
             ctx.summary = {{"input", input},       {"output", output},
                            {"dims", image.dims()}, {"voxels", image.voxel_count()},
-                           {"triangles", complex.triangle_count()}, {"vertices", complex.vertex_count()},
-                           {"background", options.background},      {"tissues", tissue_summary(image, complex)},
+                           {"triangles", counts.triangles}, {"vertices", counts.vertices},
+                           {"background", options.background},      {"tissues", tissue_summary(image, counts)},
                            {"priority", priority_summary(options.priority)},
-                           {"per_tissue", per_tissue},
+                           {"per_tissue", per_tissue},              {"streamed", streamed},
                            {"seconds_read", read_seconds},          {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start)}, {"peak_memory_after_extract_mb", extract_peak_mib}};
+                           {"seconds_write", seconds_since(start) - extract_seconds}};
         });
 }

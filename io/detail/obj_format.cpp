@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "io/detail/byte_reader.h"
+#include "io/detail/chunked_output.h"
 #include "io/detail/msh_common.h"
 #include "io/detail/text_records.h"
 
@@ -39,21 +40,25 @@ LabelPair group_pair(std::string_view name)
 
 } // namespace
 
-std::string format_obj(const InterfaceComplex& complex)
+void write_obj(const InterfaceComplex& complex, std::ostream& stream)
 {
-    std::string out = "# tissuemesh interface complex, lengths in mm\n" + format_name_comments(complex.names, "#");
+    ChunkedOutput chunks(stream);
+    std::string& out = chunks.text;
+    out = "# tissuemesh interface complex, lengths in mm\n" + format_name_comments(complex.names, "#");
     for (const Vec3& v : complex.vertices) {
         out += 'v';
         for (const double c : v) out += ' ', append_real(out, c);
         out += '\n';
+        chunks.flush_if_full();
     }
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
         if (t == 0 || !(complex.sides[t] == complex.sides[t - 1]))
             out += concat("g tissues_", complex.sides[t].from, "_", complex.sides[t].to, "\n");
         const Triangle& tri = complex.triangles[t];
         out += concat("f ", tri[0] + 1, ' ', tri[1] + 1, ' ', tri[2] + 1, '\n');
+        chunks.flush_if_full();
     }
-    return out;
+    chunks.flush();
 }
 
 InterfaceComplex parse_obj(const std::string& text, const std::string& what)

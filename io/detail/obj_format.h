@@ -2,14 +2,15 @@
 // under a group `g tissues_<from>_<to>`, so labels read back (other tools see one group per patch run).
 #pragma once
 
+#include <ostream>
 #include <string>
 
 #include "core/interface_complex.h"
 
 namespace tissuemesh::io::detail {
 
-/// The whole .obj file (tissue names as `#` comments).
-std::string format_obj(const InterfaceComplex& complex);
+/// Writes the whole .obj file to `out` (tissue names as `#` comments).
+void write_obj(const InterfaceComplex& complex, std::ostream& out);
 
 /// Parses .obj text: `v x y z [w]`, `f` with 3 vertices (`i`, `i/t`, `i//n`, `i/t/n`, negative = relative);
 /// pairs from our groups, {1, 0} elsewhere; other records (vt, vn, usemtl, ...) are skipped.

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/detail/chunked_output.h"
 
 namespace tissuemesh::io::detail {
 namespace {
@@ -55,16 +56,22 @@ std::size_t count_value(double value, const std::string& what)
 
 } // namespace
 
-std::string format_off(const InterfaceComplex& complex)
+void write_off(const InterfaceComplex& complex, std::ostream& stream)
 {
-    std::string out = concat("OFF\n", complex.vertices.size(), " ", complex.triangles.size(), " 0\n");
+    ChunkedOutput chunks(stream);
+    std::string& out = chunks.text;
+    out = concat("OFF\n", complex.vertices.size(), " ", complex.triangles.size(), " 0\n");
     char buffer[96];
     for (const Vec3& v : complex.vertices) {
         std::snprintf(buffer, sizeof(buffer), "%.17g %.17g %.17g\n", v[0], v[1], v[2]);
         out += buffer;
+        chunks.flush_if_full();
     }
-    for (const Triangle& t : complex.triangles) out += concat("3 ", t[0], " ", t[1], " ", t[2], "\n");
-    return out;
+    for (const Triangle& t : complex.triangles) {
+        out += concat("3 ", t[0], " ", t[1], " ", t[2], "\n");
+        chunks.flush_if_full();
+    }
+    chunks.flush();
 }
 
 InterfaceComplex parse_off(const std::string& text, const std::string& what)

@@ -1,14 +1,15 @@
 // Object File Format (.off): geometry only.
 #pragma once
 
+#include <ostream>
 #include <string>
 
 #include "core/interface_complex.h"
 
 namespace tissuemesh::io::detail {
 
-/// The whole .off file (ascii, coordinates with 17 significant digits).
-std::string format_off(const InterfaceComplex& complex);
+/// Writes the whole .off file to `out` (ascii, coordinates with 17 significant digits).
+void write_off(const InterfaceComplex& complex, std::ostream& out);
 
 /// Parses .off text; every triangle gets the pair {1, 0}.
 /// @throws IoError when the header is not OFF, the file is truncated, or a face is not a triangle

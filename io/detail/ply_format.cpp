@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/detail/chunked_output.h"
 
 namespace tissuemesh::io::detail {
 namespace {
@@ -259,37 +260,48 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
 
 } // namespace
 
-void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments)
+std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles,
+                       const std::vector<std::string>& comments)
 {
     std::ostringstream header;
     header << "ply\nformat binary_little_endian 1.0\ncomment tissuemesh interface complex\n"
-           << "comment background " << complex.background << "\n";
-    for (const auto& [label, name] : complex.names) header << "comment tissue " << label << " " << name << "\n";
+           << "comment background " << background << "\n";
+    for (const auto& [label, name] : names) header << "comment tissue " << label << " " << name << "\n";
     for (const std::string& comment : comments) header << "comment " << comment << "\n";
-    header << "element vertex " << complex.vertices.size() << "\nproperty double x\nproperty double y\n"
-           << "property double z\nelement face " << complex.triangles.size()
+    header << "element vertex " << vertices << "\nproperty double x\nproperty double y\n"
+           << "property double z\nelement face " << triangles
            << "\nproperty list uchar uint vertex_indices\nproperty ushort label_a\nproperty ushort label_b\n"
            << "end_header\n";
-    std::string buffer = header.str();
-    // Streamed in chunks of about 1 MB: a head complex is ~200 MB and need not be held twice.
-    constexpr std::size_t chunk = std::size_t{1} << 20;
-    const auto flush_if_full = [&](bool force) {
-        if (buffer.size() < chunk && !force) return;
-        out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-        buffer.clear();
-    };
+    return header.str();
+}
+
+void append_ply_vertex(std::string& out, const Vec3& vertex)
+{
+    for (const double c : vertex) append(out, c);
+}
+
+void append_ply_face(std::string& out, const Triangle& triangle, LabelPair side)
+{
+    append(out, std::uint8_t{3});
+    for (const std::uint32_t v : triangle) append(out, v);
+    append(out, side.from);
+    append(out, side.to);
+}
+
+void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments)
+{
+    ChunkedOutput chunks(out);
+    chunks.text =
+        ply_header(complex.names, complex.background, complex.vertices.size(), complex.triangles.size(), comments);
     for (const Vec3& v : complex.vertices) {
-        for (const double c : v) append(buffer, c);
-        flush_if_full(false);
+        append_ply_vertex(chunks.text, v);
+        chunks.flush_if_full();
     }
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
-        append(buffer, std::uint8_t{3});
-        for (const std::uint32_t v : complex.triangles[t]) append(buffer, v);
-        append(buffer, complex.sides[t].from);
-        append(buffer, complex.sides[t].to);
-        flush_if_full(false);
+        append_ply_face(chunks.text, complex.triangles[t], complex.sides[t]);
+        chunks.flush_if_full();
     }
-    flush_if_full(true);
+    chunks.flush();
 }
 
 InterfaceComplex parse_ply(const std::string& bytes, const std::string& what)

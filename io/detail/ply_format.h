@@ -15,6 +15,14 @@ namespace tissuemesh::io::detail {
 /// `comments` as a `comment` line.
 void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments = {});
 
+/// The header write_ply() puts before the data of a complex with these names, background and counts.
+std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles);
+
+/// Appends one vertex (3 float64) or one face record (uchar 3, 3 uint32, ushort from, ushort to) as
+/// write_ply() writes them.
+void append_ply_vertex(std::string& out, const Vec3& vertex);
+void append_ply_face(std::string& out, const Triangle& triangle, LabelPair side);
+
 /// Parses PLY `bytes`; `what` names the file in messages. Faces must be triangles; without label_a and
 /// label_b every triangle gets {1, 0}. Other elements and properties are skipped.
 /// @throws IoError when the file is not PLY, is truncated or malformed

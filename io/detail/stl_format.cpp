@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/detail/byte_reader.h"
+#include "io/detail/chunked_output.h"
 
 namespace tissuemesh::io::detail {
 namespace {
@@ -34,12 +35,13 @@ constexpr std::size_t record_size = 50;  // normal, 3 corners (12 float32) + uin
 
 } // namespace
 
-std::string format_stl(const InterfaceComplex& complex)
+void write_stl(const InterfaceComplex& complex, std::ostream& stream)
 {
-    std::string out(80, ' ');
+    ChunkedOutput chunks(stream);
+    std::string& out = chunks.text;
+    out.assign(80, ' ');
     out.replace(0, 31, "tissuemesh binary STL surface  ");
     append(out, static_cast<std::uint32_t>(complex.triangles.size()));
-    out.reserve(header_size + record_size * complex.triangles.size());
     for (const Triangle& t : complex.triangles) {
         const Vec3 &a = complex.vertices[t[0]], &b = complex.vertices[t[1]], &c = complex.vertices[t[2]];
         Vec3 n = cross(b - a, c - a);
@@ -48,8 +50,9 @@ std::string format_stl(const InterfaceComplex& complex)
         for (const Vec3& v : {n, a, b, c})
             for (const double x : v) append(out, static_cast<float>(x));
         append(out, std::uint16_t{0});
+        chunks.flush_if_full();
     }
-    return out;
+    chunks.flush();
 }
 
 /// ASCII STL: "solid", then "facet normal n n n / outer loop / vertex x y z (3x) / endloop / endfacet".

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/detail/chunked_output.h"
 
 namespace tissuemesh::io::detail {
 namespace {
@@ -71,10 +72,12 @@ std::size_t piece_count(const std::string& text, const std::string& attribute, c
 
 } // namespace
 
-std::string format_vtp(const InterfaceComplex& complex)
+void write_vtp(const InterfaceComplex& complex, std::ostream& stream)
 {
     const std::size_t n = complex.triangles.size();
-    std::string out = concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+    ChunkedOutput chunks(stream);
+    std::string& out = chunks.text;
+    out = concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
                              "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n<Piece NumberOfPoints=\"",
                              complex.vertices.size(), "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
                              "NumberOfPolys=\"", n, "\">\n<Points>\n<DataArray type=\"Float64\" "
@@ -82,20 +85,29 @@ std::string format_vtp(const InterfaceComplex& complex)
     for (const Vec3& v : complex.vertices) {
         for (const double c : v) append_number(out, c);
         out += '\n';
+        chunks.flush_if_full();
     }
     out += "</DataArray>\n</Points>\n<Polys>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-    for (const Triangle& t : complex.triangles) out += concat(t[0], ' ', t[1], ' ', t[2], '\n');
+    for (const Triangle& t : complex.triangles) {
+        out += concat(t[0], ' ', t[1], ' ', t[2], '\n');
+        chunks.flush_if_full();
+    }
     out += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (std::size_t t = 1; t <= n; ++t) out += concat(3 * t, t % 16 == 0 ? '\n' : ' ');
+    for (std::size_t t = 1; t <= n; ++t) {
+        out += concat(3 * t, t % 16 == 0 ? '\n' : ' ');
+        chunks.flush_if_full();
+    }
     out += "\n</DataArray>\n</Polys>\n<CellData Scalars=\"label_a\">\n";
     for (const bool first : {true, false}) {
         out += concat("<DataArray type=\"UInt16\" Name=\"", first ? "label_a" : "label_b", "\" format=\"ascii\">\n");
-        for (std::size_t t = 0; t < n; ++t)
+        for (std::size_t t = 0; t < n; ++t) {
             out += concat(first ? complex.sides[t].from : complex.sides[t].to, t % 32 == 31 ? '\n' : ' ');
+            chunks.flush_if_full();
+        }
         out += "\n</DataArray>\n";
     }
     out += "</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
-    return out;
+    chunks.flush();
 }
 
 InterfaceComplex parse_vtp(const std::string& text, const std::string& what)

@@ -210,13 +210,26 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         ++counters_.intersection;
         return true;
     };
+    // A change that only moves vertices has its old self to compare with; new triangles do not.
+    thread_local std::vector<const TriangleCorners*> before;
+    before.assign(changes.size(), nullptr);
     for (std::size_t i = 0; i < changes.size(); ++i)
-        for (std::size_t j = i + 1; j < changes.size(); ++j)
+        if (changes[i].slot < triangles_.size() && alive_[changes[i].slot] &&
+            same_vertex_set(changes[i].triangle, triangles_[changes[i].slot]))
+            before[i] = &changes[i].before;
+    for (std::size_t i = 0; i < changes.size(); ++i)
+        for (std::size_t j = i + 1; j < changes.size(); ++j) {
             if ((same_vertex_set(changes[i].triangle, changes[j].triangle) ||
                  (boxes_overlap(boxes[i], boxes[j]) &&
                   meet(changes[i].triangle, shapes[i], changes[j].triangle, shapes[j]))) &&
                 meets())
                 return false;
+            if (closes_wedge(changes[i].triangle, shapes[i], before[j] ? before[i] : nullptr, changes[j].triangle, shapes[j],
+                             changes[j].before, limits_.min_wedge_deg)) {
+                ++counters_.wedge;
+                return false;
+            }
+        }
     grid_.query(all, nearby_);
     for (const std::uint32_t t : nearby_) {
         if (!alive_[t] || !boxes_overlap(all, boxes_[t]) ||
@@ -230,6 +243,10 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
             const Triangle& a = changes[i].triangle;
             if ((same_vertex_set(a, triangles_[t]) || meet(a, shapes[i], triangles_[t], cb)) && meets())
                 return false;
+            if (shares_vertex(a, triangles_[t]) && closes_wedge(a, shapes[i], before[i], triangles_[t], cb, cb, limits_.min_wedge_deg)) {
+                ++counters_.wedge;
+                return false;
+            }
             // The gap keeps layers apart: it applies between different patches only (within a patch, folds
             // are what the normal and intersection tests are for), and is measured between vertices and
             // faces (the closest approach of nearly parallel layers).

@@ -37,6 +37,8 @@ struct EditLimits {
     double min_angle_deg = 2.0;            ///< new triangles' smallest angle (unless not worse than before)
     double max_normal_change_deg = 60.0;   ///< a changed triangle may tilt at most this much in one edit
     double min_gap_mm = 0.0;               ///< distance kept between triangles sharing no vertex
+    double min_wedge_deg = 1.0;            ///< opening kept between triangles sharing one vertex (see
+                                           ///< wedge_angle.h), unless not thinner than before
     /// For repair(): an edit may leave intersections that were already there, as long as the changed
     /// triangles meet no more other triangles than before the edit (never more; none when there were none).
     bool tolerate_existing_intersections = false;
@@ -50,6 +52,7 @@ struct EditCounters {
     std::size_t normal = 0;        ///< tilted too much (a fold)
     std::size_t intersection = 0;  ///< would meet another triangle
     std::size_t gap = 0;           ///< would come too close to another triangle
+    std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex
 };
 
 class ComplexEditor {

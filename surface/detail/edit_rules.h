@@ -10,6 +10,7 @@
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/plane_side.h"
 #include "surface/detail/triangle_distance.h"
+#include "surface/detail/wedge_angle.h"
 
 namespace tissuemesh::surface::detail {
 
@@ -88,6 +89,17 @@ inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before
         }
     }
     return false;
+}
+
+/// Whether triangles `a` and `b`, sharing one vertex, now open a wedge thinner than `limit_deg` there and
+/// thinner than before (`before_a`, `before_b`: their corners before the edit; none when `a` is new, and
+/// then any wedge under the limit counts).
+inline bool closes_wedge(const Triangle& a, const TriangleCorners& now_a, const TriangleCorners* before_a, const Triangle& b,
+                         const TriangleCorners& now_b, const TriangleCorners& before_b, double limit_deg)
+{
+    const std::optional<double> now = wedge_between(a, now_a, b, now_b);
+    if (!now || *now >= limit_deg) return false;
+    return before_a == nullptr || *now < *wedge_between(a, *before_a, b, before_b) - 1e-9;
 }
 
 } // namespace tissuemesh::surface::detail

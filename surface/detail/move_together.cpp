@@ -14,7 +14,7 @@
 namespace tissuemesh::surface::detail {
 namespace {
 
-enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule };
+enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule, wedge_rule };
 
 TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t)
 {
@@ -54,9 +54,11 @@ std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const Tr
     const Triangle& b = triangles_[u];
     const TriangleCorners other = corners(u);
     if (shares_vertex(a, b)) {
-        // No gap between neighbours; most are passed by the plane test before the exact one.
-        if (certainly_apart(a, now, b, other)) return none;
-        return triangles_intersect(positions_, a, b) ? intersection_rule : none;
+        // No gap between neighbours, but a wedge at a single shared vertex; most are passed by the plane
+        // test before the exact one.
+        if (!certainly_apart(a, now, b, other) && triangles_intersect(positions_, a, b)) return intersection_rule;
+        if (closes_wedge(a, now, &before, b, other, corners_at(start, b), limits_.min_wedge_deg)) return wedge_rule;
+        return none;
     }
     if (boxes_overlap(tight, bounding_box(other)) && !certainly_apart(a, now, b, other) && triangles_intersect(positions_, a, b))
         return intersection_rule;
@@ -153,7 +155,8 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
             ++(verdict[i] == shape_rule ? counters_.shape
                : verdict[i] == normal_rule ? counters_.normal
                : verdict[i] == intersection_rule ? counters_.intersection
-                                                 : counters_.gap);
+               : verdict[i] == gap_rule        ? counters_.gap
+                                                 : counters_.wedge);
             for (const std::uint32_t p : partners)
                 for (const std::uint32_t v : triangles_[p])
                     if (moved[v]) moved[v] = 0, positions_[v] = start[v], back.push_back(v);
