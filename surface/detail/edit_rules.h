@@ -97,6 +97,7 @@ inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before
 inline bool closes_wedge(const Triangle& a, const TriangleCorners& now_a, const TriangleCorners* before_a, const Triangle& b,
                          const TriangleCorners& now_b, const TriangleCorners& before_b, double limit_deg)
 {
+    if (wedge_certainly_open(a, now_a, b, now_b, limit_deg)) return false;
     const std::optional<double> now = wedge_between(a, now_a, b, now_b);
     if (!now || *now >= limit_deg) return false;
     return before_a == nullptr || *now < *wedge_between(a, *before_a, b, before_b) - 1e-9;
