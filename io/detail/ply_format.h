@@ -15,8 +15,10 @@ namespace tissuemesh::io::detail {
 /// `comments` as a `comment` line.
 void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments = {});
 
-/// The header write_ply() puts before the data of a complex with these names, background and counts.
-std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles);
+/// The header write_ply() puts before the data of a complex with these names, background, counts and extra
+/// comment lines.
+std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles,
+                       const std::vector<std::string>& comments = {});
 
 /// Appends one vertex (3 float64) or one face record (uchar 3, 3 uint32, ushort from, ushort to) as
 /// write_ply() writes them.
