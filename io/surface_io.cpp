@@ -28,15 +28,19 @@ std::string extension_of(const std::filesystem::path& path)
 
 } // namespace
 
-void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path)
+void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path,
+                   const std::vector<std::string>& ply_comments)
 {
+    for (const std::string& comment : ply_comments)
+        if (comment.find_first_of("\r\n") != std::string::npos)
+            throw IoError(concat(path.string(), ": a PLY comment cannot span lines"));
     const std::string extension = extension_of(path);
     validate_indices(complex, path.string());
     // Every format goes to the temporary file in chunks of about 1 MB, never whole in memory.
     write_atomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
-        if (extension == ".ply") detail::write_ply(complex, out);
+        if (extension == ".ply") detail::write_ply(complex, out, ply_comments);
         if (extension == ".vtp") detail::write_vtp(complex, out);
         if (extension == ".off") detail::write_off(complex, out);
         if (extension == ".stl") detail::write_stl(complex, out);

@@ -1,6 +1,7 @@
 #include "surface/check_complex.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -18,6 +19,30 @@ namespace {
 using detail::DefectLog;
 constexpr std::uint32_t no_triangle = std::numeric_limits<std::uint32_t>::max();
 
+/// Whether two of the items 0..n-1 are equal (`same`), found by hashing (`hash`): the common answer "none"
+/// costs a pass instead of the sort that lists the repeats.
+template <class Hash, class Same> bool has_repeats(std::size_t n, Hash hash, Same same)
+{
+    std::size_t size = 16;
+    while (size < 2 * n) size *= 2;
+    std::vector<std::uint32_t> table(size, no_triangle);  // item indices; no_triangle: empty
+    for (std::uint32_t i = 0; i < n; ++i)
+        for (std::size_t slot = hash(i) & (size - 1);; slot = (slot + 1) & (size - 1)) {
+            if (table[slot] == no_triangle) {
+                table[slot] = i;
+                break;
+            }
+            if (same(table[slot], i)) return true;
+        }
+    return false;
+}
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t x)
+{
+    h = (h ^ x) * 0x9e3779b97f4a7c15ull;
+    return h ^ (h >> 29);
+}
+
 /// Maps every vertex to the lowest index at the same coordinates, and logs every further vertex used
 /// by a triangle there: triangles must share vertex indices, or the tissues' surfaces are open.
 std::vector<std::uint32_t> merge_coincident_vertices(DefectLog& log, CheckReport& report)
@@ -31,11 +56,19 @@ std::vector<std::uint32_t> merge_coincident_vertices(DefectLog& log, CheckReport
     for (std::uint32_t v = 0; v < first_user.size(); ++v)
         if (first_user[v] != no_triangle) used.push_back(v);
     report.vertices = used.size();
+    std::vector<std::uint32_t> canonical(complex.vertices.size());
+    std::iota(canonical.begin(), canonical.end(), 0u);
+    // Coordinates hashed as bit patterns, -0 as 0 (which == treats as equal).
+    const auto position_hash = [&](std::uint32_t i) {
+        std::uint64_t h = 0;
+        for (const double c : complex.vertices[used[i]]) h = mix(h, std::bit_cast<std::uint64_t>(c + 0.0));
+        return static_cast<std::size_t>(h);
+    };
+    const auto same_position = [&](std::uint32_t a, std::uint32_t b) { return complex.vertices[used[a]] == complex.vertices[used[b]]; };
+    if (!has_repeats(used.size(), position_hash, same_position)) return canonical;
     std::sort(used.begin(), used.end(), [&](std::uint32_t a, std::uint32_t b) {
         return complex.vertices[a] != complex.vertices[b] ? complex.vertices[a] < complex.vertices[b] : a < b;
     });
-    std::vector<std::uint32_t> canonical(complex.vertices.size());
-    std::iota(canonical.begin(), canonical.end(), 0u);
     for (std::size_t i = 1; i < used.size(); ++i) {
         const std::uint32_t keep = canonical[used[i - 1]], v = used[i];
         if (complex.vertices[v] != complex.vertices[keep]) continue;

@@ -78,7 +78,8 @@ public:
             if (!w) continue;
             ++report_.collapses;
             enqueue(*w);
-            for (const std::uint32_t u : editor_.neighbours(*w)) enqueue(u);
+            editor_.ring(*w, around_);
+            for (const ComplexEditor::RingEntry& e : around_) enqueue(e.vertex);
             if (editor_.triangle_count() < next_rebuild) {
                 editor_.rebuild_grid(2 * editor_.mean_edge_length());
                 next_rebuild = editor_.triangle_count() / 2;
@@ -151,21 +152,32 @@ private:
     std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const
     {
         std::vector<std::pair<double, std::uint32_t>> targets;
-        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return targets;
-        const std::vector<std::uint32_t> candidates =
-            editor_.kind(v) == VertexKind::curve ? editor_.curve_neighbours(v) : editor_.neighbours(v);
-        for (const std::uint32_t w : candidates)
-            if (const std::optional<double> c = cost(v, w)) targets.emplace_back(*c, w);
+        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
         std::sort(targets.begin(), targets.end());
         return targets;
     }
 
-    /// Queues v with the cost of its cheapest collapse.
+    /// Calls visit(cost, w) for every allowed target w of v (curve neighbours for curve vertices).
+    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const
+    {
+        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return;
+        const bool curve = editor_.kind(v) == VertexKind::curve;
+        editor_.ring(v, ring_);
+        for (const ComplexEditor::RingEntry& e : ring_)
+            if (!curve || e.triangles >= 3)
+                if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
+    }
+
+    /// Queues v with the cost of its cheapest collapse (ties: the lowest target).
     void enqueue(std::uint32_t v)
     {
-        const auto targets = targets_of(v);
-        if (targets.empty()) queue_.erase(v);
-        else queue_.set({targets.front().first, v, targets.front().second});
+        std::pair<double, std::uint32_t> best{0, 0};
+        bool any = false;
+        for_each_target(v, [&](double c, std::uint32_t w) {
+            if (!any || std::pair{c, w} < best) best = {c, w}, any = true;
+        });
+        if (!any) queue_.erase(v);
+        else queue_.set({best.first, v, best.second});
     }
 
     /// Tries v's collapses cheapest first; returns the target it collapsed into.
@@ -182,7 +194,8 @@ private:
     bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
                         std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
     {
-        std::vector<std::pair<Vec3, double>> spheres;
+        std::vector<std::pair<Vec3, double>>& spheres = spheres_;
+        spheres.clear();
         for (const TriangleCorners& c : shapes) {
             const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
             spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
@@ -204,33 +217,36 @@ private:
         return true;
     }
 
-    /// The triangles around w after collapsing v into w: geometry and slot (slots of v's changed triangles).
+    /// Collapses v into w if the editor and the distance bound allow it. The bound is asked (through the
+    /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
     bool collapse(std::uint32_t v, std::uint32_t w)
     {
-        std::vector<std::uint32_t> targets, sources;
-        std::vector<TriangleCorners> shapes;
-        for (const std::uint32_t t : editor_.star(v)) {
-            sources.push_back(t);
-            const Triangle& tri = editor_.triangle(t);
-            if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
-            TriangleCorners c = editor_.corners(t);
-            for (int k = 0; k < 3; ++k)
-                if (tri[k] == v) c[k] = editor_.position(w);
-            targets.push_back(t);
-            shapes.push_back(c);
-        }
-        for (const std::uint32_t t : editor_.star(w)) {
-            const Triangle& tri = editor_.triangle(t);
-            if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
-            targets.push_back(t);
-            shapes.push_back(editor_.corners(t));
-        }
-        // Every input vertex the changed triangles answer for must stay within the bound; asked only
-        // once the cheap local checks passed.
-        std::vector<std::pair<std::size_t, std::uint32_t>> assignment;
+        // Scratch kept between calls: collapses are tried millions of times.
+        std::vector<std::uint32_t>& targets = targets_;
+        std::vector<std::uint32_t>& sources = sources_;
+        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
+        std::vector<TriangleCorners>& shapes = shapes_;
+        targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
         double worst = 0;
         bool too_far = false;
         const auto within_bound = [&] {
+            for (const std::uint32_t t : editor_.star(v)) {
+                sources.push_back(t);
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
+                TriangleCorners c = editor_.corners(t);
+                for (int k = 0; k < 3; ++k)
+                    if (tri[k] == v) c[k] = editor_.position(w);
+                targets.push_back(t);
+                shapes.push_back(c);
+            }
+            for (const std::uint32_t t : editor_.star(w)) {
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
+                targets.push_back(t);
+                shapes.push_back(editor_.corners(t));
+            }
+            // Every input vertex the changed triangles answer for must stay within the bound.
             too_far = !assign_samples(sources, shapes, assignment, worst);
             return !too_far;
         };
@@ -274,6 +290,12 @@ private:
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
     detail::VertexQueue queue_;  ///< per vertex its cheapest collapse
+    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
+    std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
+    std::vector<TriangleCorners> shapes_;
+    mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
+    std::vector<ComplexEditor::RingEntry> around_;        ///< scratch of collapse_all()
 };
 
 } // namespace

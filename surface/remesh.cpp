@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
@@ -11,10 +12,11 @@
 namespace tissuemesh::surface {
 namespace {
 
+using detail::BoxIndex;
 using detail::Box3;
+using detail::CompactBox;
 using detail::ComplexEditor;
 using detail::TriangleCorners;
-using detail::TriangleGrid;
 using detail::VertexKind;
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
 
@@ -56,52 +58,44 @@ double box_distance(const Vec3& p, const Box3& box)
 /// The input surface, for projecting vertices back: its triangles by tissue pair, and its junction edges.
 class Reference {
 public:
-    Reference(const InterfaceComplex& input, double cell_mm) : input_(input)
+    Reference(const InterfaceComplex& input, double cell_mm) : input_(input), cell_mm_(cell_mm)
     {
-        Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-        for (const Vec3& v : input.vertices)
-            for (int i = 0; i < 3; ++i) bounds.low[i] = std::min(bounds.low[i], v[i]), bounds.high[i] = std::max(bounds.high[i], v[i]);
-        triangles_ = TriangleGrid(bounds, cell_mm, input.triangle_count());
-        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) triangles_.insert(t, detail::bounding_box(corners(t)));
+        std::vector<CompactBox> boxes(input.triangle_count());
+        std::vector<std::uint32_t> ids(input.triangle_count());
+        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) boxes[t] = compact(detail::bounding_box(corners(t))), ids[t] = t;
+        triangles_ = BoxIndex(boxes, ids);
         std::map<Edge, int> count;
         for (const Triangle& t : input.triangles)
             for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
         for (const auto& [edge, n] : count)
             if (n >= 3) junction_.push_back(edge);
-        segments_ = TriangleGrid(bounds, cell_mm, junction_.size());
-        for (std::uint32_t s = 0; s < junction_.size(); ++s)
-            segments_.insert(s, detail::bounding_box(segment(s)));
+        boxes.resize(junction_.size());
+        ids.resize(junction_.size());
+        for (std::uint32_t s = 0; s < junction_.size(); ++s) boxes[s] = compact(detail::bounding_box(segment(s))), ids[s] = s;
+        segments_ = BoxIndex(boxes, ids);
     }
 
-    /// The nearest point of the input patch of `pair` to p (p itself when none is within reach).
-    Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach)
+    /// The nearest point of the input patch of `pair` to p (p itself when none is within reach); of equally
+    /// near triangles, the first in the input's order.
+    Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach) const
     {
-        Vec3 best = p;
-        double nearest = std::numeric_limits<double>::max();
-        triangles_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
-        for (const std::uint32_t t : found_) {
-            if (unordered(input_.sides[t]) != pair) continue;
+        return nearest(triangles_, p, reach, [&](std::uint32_t t, double nearest_so_far) -> std::optional<Vec3> {
+            if (unordered(input_.sides[t]) != pair) return std::nullopt;
             // The box is never further than the triangle: most candidates end here, at a fraction of the cost.
             const TriangleCorners c = corners(t);
-            if (box_distance(p, detail::bounding_box(c)) >= nearest) continue;
-            const Vec3 q = detail::closest_point_on_triangle(p, c);
-            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
-        }
-        return best;
+            if (box_distance(p, detail::bounding_box(c)) > nearest_so_far) return std::nullopt;
+            return detail::closest_point_on_triangle(p, c);
+        });
     }
 
-    /// The nearest point of the input junction curves to p (p itself when none is within reach).
-    Vec3 onto_curve(const Vec3& p, double reach)
+    /// The nearest point of the input junction curves to p (p itself when none is within reach); of equally
+    /// near segments, the first in the input's order.
+    Vec3 onto_curve(const Vec3& p, double reach) const
     {
-        Vec3 best = p;
-        double nearest = std::numeric_limits<double>::max();
-        segments_.query(Box3{p - Vec3{reach, reach, reach}, p + Vec3{reach, reach, reach}}, found_);
-        for (const std::uint32_t s : found_) {
-            if (box_distance(p, detail::bounding_box(segment(s))) >= nearest) continue;
-            const Vec3 q = detail::closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
-            if (const double d = distance(p, q); d < nearest) nearest = d, best = q;
-        }
-        return best;
+        return nearest(segments_, p, reach, [&](std::uint32_t s, double nearest_so_far) -> std::optional<Vec3> {
+            if (box_distance(p, detail::bounding_box(segment(s))) > nearest_so_far) return std::nullopt;
+            return detail::closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
+        });
     }
 
 private:
@@ -116,11 +110,31 @@ private:
         return {a, a, input_.vertices[junction_[s].second]};
     }
 
+    /// The nearest of the points closest(i, nearest so far) gives for the items of `index` whose boxes meet
+    /// the box of half-width `reach` around p (p when none). The search box grows from a quarter cell until
+    /// it holds the nearest point found (then nothing outside it can be nearer) or reaches `reach`: the same
+    /// answer as a search of the whole reach at once, at the cost of the few items near p.
+    template <class Closest> Vec3 nearest(const BoxIndex& index, const Vec3& p, double reach, Closest closest) const
+    {
+        for (double r = std::min(reach, 0.25 * cell_mm_);; r = std::min(reach, 2 * r)) {
+            Vec3 best = p;
+            double best_distance = std::numeric_limits<double>::max();
+            std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
+            index.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t i) {
+                if (const std::optional<Vec3> q = closest(i, best_distance)) {
+                    const double d = distance(p, *q);
+                    if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
+                }
+            });
+            if (best_distance <= r || r >= reach) return best;
+        }
+    }
+
     const InterfaceComplex& input_;
-    TriangleGrid triangles_;
-    TriangleGrid segments_;
+    double cell_mm_;
+    BoxIndex triangles_;  ///< the input's triangles by their boxes
+    BoxIndex segments_;   ///< its junction edges by their boxes
     std::vector<Edge> junction_;
-    std::vector<std::uint32_t> found_;
 };
 
 class Remesher {
@@ -200,8 +214,10 @@ private:
     /// Whether collapsing v into w keeps every edge at w below 4/3 of its target.
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
     {
-        for (const std::uint32_t u : editor_.neighbours(v))
-            if (u != w && distance(editor_.position(u), editor_.position(w)) > 4.0 / 3.0 * target(v, u)) return false;
+        editor_.ring(v, ring_);
+        for (const ComplexEditor::RingEntry& e : ring_)
+            if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
+                return false;
         return true;
     }
 
@@ -232,13 +248,18 @@ private:
 
     int valence_target(std::uint32_t v) const { return editor_.kind(v) == VertexKind::patch ? 6 : 4; }
 
-    int deviation(std::uint32_t v, int change) const
+    int deviation(const std::vector<int>& valence, std::uint32_t v, int change) const
     {
-        return std::abs(static_cast<int>(editor_.neighbours(v).size()) + change - valence_target(v));
+        return std::abs(valence[v] + change - valence_target(v));
     }
 
     void flip_towards_valence_six()
     {
+        // Valences (distinct neighbours) kept up to date through the flips: a flip of vw towards ab takes one
+        // from v and w and gives one to a and b (vw had only those two triangles; ab was no edge).
+        std::vector<int> valence(editor_.vertex_slots(), 0);
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
+            if (editor_.vertex_alive(v)) editor_.ring(v, ring_), valence[v] = static_cast<int>(ring_.size());
         for (const Edge& e : edges()) {
             const auto [v, w] = e;
             if (editor_.edge_multiplicity(v, w) != 2) continue;
@@ -250,11 +271,17 @@ private:
                     if (u != v && u != w) apexes.push_back(u);
             }
             if (apexes.size() != 2) continue;
-            const int before = deviation(v, 0) + deviation(w, 0) + deviation(apexes[0], 0) + deviation(apexes[1], 0);
-            const int after = deviation(v, -1) + deviation(w, -1) + deviation(apexes[0], 1) + deviation(apexes[1], 1);
+            const int before = deviation(valence, v, 0) + deviation(valence, w, 0) + deviation(valence, apexes[0], 0) +
+                               deviation(valence, apexes[1], 0);
+            const int after = deviation(valence, v, -1) + deviation(valence, w, -1) + deviation(valence, apexes[0], 1) +
+                              deviation(valence, apexes[1], 1);
             if (after >= before) continue;
-            if (editor_.try_flip(v, w)) ++report_.flips;
-            else ++report_.refused;
+            if (editor_.try_flip(v, w)) {
+                ++report_.flips;
+                --valence[v], --valence[w], ++valence[apexes[0]], ++valence[apexes[1]];
+            } else {
+                ++report_.refused;
+            }
         }
     }
 
@@ -298,6 +325,7 @@ private:
     RemeshReport& report_;
     ComplexEditor editor_;
     Reference reference_;
+    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any

@@ -1,5 +1,6 @@
 // Shared by the tools that edit an interface complex (tm-smooth, tm-decimate, tm-remesh): the output must keep
-// the label pairs, the input must be fit for tetrahedralization, and so must the result.
+// the label pairs, the input must be fit for tetrahedralization, and so must the result (which is written
+// with the stamp of its passed check: tools/check_stamp.h).
 #pragma once
 
 #include <chrono>
@@ -9,6 +10,8 @@
 #include "core/error.h"
 #include "io/surface_io.h"
 #include "surface/check_complex.h"
+#include "tools/check_stamp.h"
+#include "tools/run_tool.h"
 
 namespace tissuemesh::tools {
 
@@ -21,12 +24,33 @@ inline void require_complex_output(const std::string& output)
                                         "triangle); other formats would lose the tissues"));
 }
 
-/// Reads `input` and checks that it is fit for tetrahedralization (InputError otherwise).
-inline InterfaceComplex read_fit_complex(const std::string& input)
+/// The complex a surface step read, and whether its full check ran.
+struct FitInput {
+    InterfaceComplex complex;
+    bool checked = true;
+};
+
+/// Reads `input` and checks that it is fit for tetrahedralization (InputError otherwise). The check is
+/// skipped, and the tool says so, when the file carries the stamp of a passed check of exactly this complex
+/// (written by write_checked()), unless `always_check`.
+inline FitInput read_fit_complex(const std::string& input, bool always_check, const ToolContext& ctx)
 {
-    InterfaceComplex complex = io::read_surface(input);
-    surface::require_fit_for_tetrahedralization(complex, input);
-    return complex;
+    FitInput in{io::read_surface(input), true};
+    const std::string stamp = always_check ? "" : read_check_stamp(input);
+    if (!stamp.empty() && stamp == check_stamp(in.complex)) {
+        in.checked = false;
+        ctx.log(concat("input check skipped: ", input, " carries the stamp of a passed check of this very complex (",
+                       stamp, "); --check-input checks it anyway"));
+        return in;
+    }
+    surface::require_fit_for_tetrahedralization(in.complex, input);
+    return in;
+}
+
+/// Writes a complex that passed its check (run_checked_step()), with the stamp of that check in a .ply header.
+inline void write_checked(const InterfaceComplex& complex, const std::string& output)
+{
+    io::write_surface(complex, output, {check_stamp(complex)});
 }
 
 /// Runs `step()` (which edits the complex), checks the result as `output (what)` and returns the seconds

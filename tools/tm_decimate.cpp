@@ -10,6 +10,7 @@ using namespace tissuemesh;
 
 int main(int argc, char** argv)
 {
+    bool check_input = false;
     std::string input, output, mode = "curvature";
     surface::DecimateOptions options;
     return tools::run_tool(
@@ -20,13 +21,14 @@ int main(int argc, char** argv)
          "size, which also splits longer edges). Vertices on junction curves collapse only along their curve; "
          "every input vertex stays within --max-distance-mm of the output; no collapse may fold, cross or come "
          "closer than --min-gap-mm to another patch. The output passes tm-check-surface whenever the input does "
-         "(both are checked).",
+         "(both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does not check it again).",
          "Examples:\n  tm-decimate -i smooth.ply -o coarse.ply --max-distance-mm 0.5\n"
          "  tm-decimate -i smooth.ply -o coarse.ply --target-triangles 200000\n"
          "  tm-decimate -i smooth.ply -o sized.ply --mode size --target-edge-mm 3\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("-o,--output", output, "Decimated interface complex (.ply or .vtp)")->required();
+            app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--mode", mode, "What goes first: curvature (quadric error) or size (edge length)")
                 ->check(CLI::IsMember({"curvature", "size"}))
                 ->capture_default_str();
@@ -45,14 +47,16 @@ int main(int argc, char** argv)
         [&](tools::ToolContext& ctx) {
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
             tools::require_complex_output(output);
-            InterfaceComplex complex = tools::read_fit_complex(input);
+            tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
+            InterfaceComplex& complex = in.complex;
             surface::DecimateReport report;
             const double seconds = tools::run_checked_step(complex, output, "decimated",
                                                            [&] { report = surface::decimate(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
                            format_mm(seconds, 2), " s)"));
-            io::write_surface(complex, output);
+            tools::write_checked(complex, output);
             ctx.summary = {{"input", input},
+                           {"input_checked", in.checked},
                            {"output", output},
                            {"mode", mode},
                            {"triangles_before", report.triangles_before},

@@ -53,6 +53,7 @@ std::map<std::pair<Label, Label>, double> parse_pair_lengths(const std::vector<s
 
 int main(int argc, char** argv)
 {
+    bool check_input = false;
     std::string input, output;
     std::vector<std::string> pair_lengths;
     surface::RemeshOptions options;
@@ -62,12 +63,13 @@ int main(int argc, char** argv)
          "Remeshes an interface complex towards edges of a target length (split long edges, collapse short ones, "
          "flip towards valence 6, relax vertices and project them back onto the input surface; junction curves "
          "are remeshed as curves). Every edit is checked, so the output passes tm-check-surface whenever the "
-         "input does (both are checked): well-shaped triangles for tm-tetra.",
+         "input does (both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does not check it again): well-shaped triangles for tm-tetra.",
          "Examples:\n  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 2\n"
          "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --edge-mm-pair csf:skull=1.5,4:3=1.5\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("-o,--output", output, "Remeshed interface complex (.ply or .vtp)")->required();
+            app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--edge-mm", options.target_edge_mm, "Target edge length")->capture_default_str();
             app.add_option("--edge-mm-pair", pair_lengths, "Target edge length per tissue pair, TISSUE:TISSUE=MM")
                 ->delimiter(',');
@@ -79,7 +81,8 @@ int main(int argc, char** argv)
         },
         [&](tools::ToolContext& ctx) {
             tools::require_complex_output(output);
-            InterfaceComplex complex = tools::read_fit_complex(input);
+            tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
+            InterfaceComplex& complex = in.complex;
             options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, complex);
             surface::RemeshReport report;
             const double seconds = tools::run_checked_step(complex, output, "remeshed",
@@ -87,8 +90,9 @@ int main(int argc, char** argv)
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles, smallest angle ",
                            format_mm(report.min_angle_before_deg, 3), " -> ", format_mm(report.min_angle_after_deg, 3),
                            " deg (", format_mm(seconds, 2), " s)"));
-            io::write_surface(complex, output);
+            tools::write_checked(complex, output);
             ctx.summary = {{"input", input},
+                           {"input_checked", in.checked},
                            {"output", output},
                            {"triangles_before", report.triangles_before},
                            {"triangles_after", report.triangles_after},

@@ -148,7 +148,7 @@ int main(int argc, char** argv)
             ctx.log(concat(targets.size(), " snake(s): ", report.iterations, " iterations, ",
                            report.converged ? "converged" : "stopped at the cap", ", ", report.triangles,
                            " triangles (", format_mm(seconds, 2), " s)"));
-            io::write_surface(complex, output);
+            tools::write_checked(complex, output);
             ctx.summary = {{"input", input},
                            {"output", output},
                            {"snakes", targets.size()},

@@ -260,12 +260,14 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
 
 } // namespace
 
-std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles)
+std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles,
+                       const std::vector<std::string>& comments)
 {
     std::ostringstream header;
     header << "ply\nformat binary_little_endian 1.0\ncomment tissuemesh interface complex\n"
            << "comment background " << background << "\n";
     for (const auto& [label, name] : names) header << "comment tissue " << label << " " << name << "\n";
+    for (const std::string& comment : comments) header << "comment " << comment << "\n";
     header << "element vertex " << vertices << "\nproperty double x\nproperty double y\n"
            << "property double z\nelement face " << triangles
            << "\nproperty list uchar uint vertex_indices\nproperty ushort label_a\nproperty ushort label_b\n"
@@ -286,10 +288,11 @@ void append_ply_face(std::string& out, const Triangle& triangle, LabelPair side)
     append(out, side.to);
 }
 
-void write_ply(const InterfaceComplex& complex, std::ostream& out)
+void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments)
 {
     ChunkedOutput chunks(out);
-    chunks.text = ply_header(complex.names, complex.background, complex.vertices.size(), complex.triangles.size());
+    chunks.text =
+        ply_header(complex.names, complex.background, complex.vertices.size(), complex.triangles.size(), comments);
     for (const Vec3& v : complex.vertices) {
         append_ply_vertex(chunks.text, v);
         chunks.flush_if_full();

@@ -3,6 +3,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "core/interface_complex.h"
 
@@ -10,11 +11,14 @@ namespace tissuemesh::io::detail {
 
 /// Writes the whole PLY file for `complex` to `out`: vertex x, y, z (float64), face vertex_indices (uchar count, uint32
 /// indices), label_a and label_b (ushort: the triangle's `from` and `to`), tissue names as
-/// `comment tissue <label> <name>` and the background as `comment background <label>`.
-void write_ply(const InterfaceComplex& complex, std::ostream& out);
+/// `comment tissue <label> <name>` and the background as `comment background <label>`, then each of
+/// `comments` as a `comment` line.
+void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments = {});
 
-/// The header write_ply() puts before the data of a complex with these names, background and counts.
-std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles);
+/// The header write_ply() puts before the data of a complex with these names, background, counts and extra
+/// comment lines.
+std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles,
+                       const std::vector<std::string>& comments = {});
 
 /// Appends one vertex (3 float64) or one face record (uchar 3, 3 uint32, ushort from, ushort to) as
 /// write_ply() writes them.

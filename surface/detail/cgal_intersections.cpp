@@ -1,13 +1,15 @@
 // The only translation unit of the surface checker that includes CGAL: exact predicates
-// (Exact_predicates_inexact_constructions_kernel) and box_intersection_d over triangle bounding boxes.
+// (Exact_predicates_inexact_constructions_kernel), applied to the pairs whose bounding boxes overlap.
 #include "surface/detail/cgal_intersections.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
+
+#include "surface/detail/box_index.h"
+#include "surface/detail/plane_side.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
@@ -19,32 +21,21 @@ using CgalTriangle = Kernel::Triangle_3;
 
 Point to_point(const Vec3& v) { return Point(v[0], v[1], v[2]); }
 
-/// A triangle's bounding box whose id is the triangle index, so that reports do not depend on
-/// allocation addresses or global counters.
-class TriangleBox : public CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE> {
-public:
-    using Base = CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE>;
-    using ID = std::size_t;
-    TriangleBox(const CGAL::Bbox_3& box, std::uint32_t triangle) : Base(box), triangle_(triangle) {}
-    ID id() const { return triangle_; }
-    std::uint32_t triangle() const { return triangle_; }
+TriangleCorners corners_of(const std::vector<Vec3>& vertices, const Triangle& t)
+{
+    return {vertices[t[0]], vertices[t[1]], vertices[t[2]]};
+}
 
-private:
-    std::uint32_t triangle_;
-};
-
-/// Rotates `t` so that the vertices it shares with `other` come first; returns how many it shares.
+/// Rotates `t` so that the vertices it shares with `other` come first (one: it leads; two: the third is
+/// last; none or three: no turn); returns how many it shares.
 int shared_first(Triangle& t, const Triangle& other)
 {
-    const auto shared = [&](std::uint32_t v) { return std::find(other.begin(), other.end(), v) != other.end(); };
-    int count = 0;
-    for (const std::uint32_t v : t) count += shared(v) ? 1 : 0;
+    const auto shared = [&](std::uint32_t v) { return v == other[0] || v == other[1] || v == other[2]; };
+    const bool s0 = shared(t[0]), s1 = shared(t[1]), s2 = shared(t[2]);
+    const int count = int{s0} + int{s1} + int{s2};
     // Rotations keep the orientation; only the order of the shared vertices matters below.
-    for (int turn = 0; turn < 3; ++turn) {
-        const bool leading = count == 1 ? shared(t[0]) : (count == 2 ? shared(t[0]) && shared(t[1]) : true);
-        if (leading) break;
-        std::rotate(t.begin(), t.begin() + 1, t.end());
-    }
+    const int turn = count == 1 ? (s0 ? 0 : s1 ? 1 : 2) : count == 2 ? (!s0 ? 1 : !s1 ? 2 : 0) : 0;
+    if (turn != 0) t = {t[turn], t[(turn + 1) % 3], t[(turn + 2) % 3]};
     return count;
 }
 
@@ -117,14 +108,7 @@ namespace filter {
 
 constexpr double margin = 1e-10;
 
-/// Sign of orient3d(a, b, c, d) when certain: +1, -1, or 0 for unsure.
-int side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
-{
-    const Vec3 u = b - a, v = c - a, w = d - a;
-    const double det = dot(cross(u, v), w);
-    const double scale2 = dot(u, u) * dot(v, v) * dot(w, w);
-    return det * det > margin * margin * scale2 ? (det > 0 ? 1 : -1) : 0;
-}
+int side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return certain_side(a, b, c, d); }
 
 /// True when all of q's corners are certainly strictly on one side of p's plane.
 bool off_plane(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& q, int first)
@@ -302,36 +286,6 @@ Vec3 centroid(const std::vector<Point>& points)
     return (1.0 / static_cast<double>(points.size())) * sum;
 }
 
-/// Closed bounding boxes of the candidates in a tilted frame. box_intersection_d cannot split a set of
-/// boxes whose lower coordinates coincide (a flat, axis-aligned patch of a voxel-derived surface) and
-/// scans it in O(n^1.5) instead; tilted, such patches spread out. Any linear map keeps the boxes a safe
-/// filter (a point common to two triangles maps into both boxes); each box is widened by far more than
-/// the rounding of the map, and every candidate pair is then decided exactly on the original points.
-std::vector<TriangleBox> tilted_boxes(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
-                                      const std::vector<std::uint32_t>& candidates)
-{
-    // A rotation by 0.05 rad about (1, 2, 3): enough to spread flat patches, small enough to keep the
-    // boxes of axis-aligned triangles thin (a larger tilt makes more candidate pairs).
-    const Mat3 tilt{0.9988395, -0.039894, 0.0269828, 0.040251, 0.9991073, -0.0128219, -0.0264472, 0.0138931,
-                    0.9995537};
-    double largest = 0;
-    for (const Vec3& v : vertices) largest = std::max({largest, std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-    const double widen = 1e-12 * (1 + largest);  // rounding of a 3-term dot product: below 1e-15 * largest
-    std::vector<Vec3> tilted(vertices.size());
-    for (std::size_t v = 0; v < vertices.size(); ++v) tilted[v] = multiply(tilt, vertices[v]);
-    std::vector<TriangleBox> boxes;
-    boxes.reserve(candidates.size());
-    for (const std::uint32_t t : candidates) {
-        const Vec3& a = tilted[triangles[t][0]];
-        const Vec3& b = tilted[triangles[t][1]];
-        const Vec3& c = tilted[triangles[t][2]];
-        const auto low = [&](int i) { return std::min({a[i], b[i], c[i]}) - widen; };
-        const auto high = [&](int i) { return std::max({a[i], b[i], c[i]}) + widen; };
-        boxes.emplace_back(CGAL::Bbox_3(low(0), low(1), low(2), high(0), high(1), high(2)), t);
-    }
-    return boxes;
-}
-
 } // namespace
 
 bool are_collinear(const Vec3& a, const Vec3& b, const Vec3& c)
@@ -343,21 +297,29 @@ std::vector<TrianglePair> find_intersecting_pairs(const std::vector<Vec3>& verti
                                                   const std::vector<Triangle>& triangles,
                                                   const std::vector<std::uint32_t>& candidates)
 {
-    const std::vector<TriangleBox> boxes = tilted_boxes(vertices, triangles, candidates);
+    // Every pair whose boxes overlap is decided exactly; the boxes (single precision, rounded outward)
+    // only select the pairs. Each triangle asks the index for the boxes its own box meets and keeps the
+    // later ones, on all threads; the pairs are sorted at the end, so the threads do not matter.
+    std::vector<CompactBox> boxes(triangles.size());
+    for (const std::uint32_t t : candidates) boxes[t] = compact(bounding_box(corners_of(vertices, triangles[t])));
+    const BoxIndex index(boxes, candidates);
     const PairTest test(vertices, triangles);
     std::vector<TrianglePair> pairs;
-    // Pointers: the algorithm sorts and partitions, cheaper on pointers than on boxes. Cutoff 2000 (below
-    // which it scans instead of splitting): measured 1.2-2x faster than the default 10 on voxel surfaces.
-    std::vector<const TriangleBox*> handles;
-    handles.reserve(boxes.size());
-    for (const TriangleBox& box : boxes) handles.push_back(&box);
-    const auto callback = [&](const TriangleBox* a, const TriangleBox* b) {
-        if (test.intersects(a->triangle(), b->triangle()))
-            pairs.emplace_back(std::min(a->triangle(), b->triangle()), std::max(a->triangle(), b->triangle()));
-    };
-    CGAL::box_self_intersection_d(handles.begin(), handles.end(), callback, std::ptrdiff_t{2000});
+    const auto count = static_cast<std::int64_t>(candidates.size());
+#pragma omp parallel
+    {
+        std::vector<TrianglePair> found;
+#pragma omp for schedule(dynamic, 4096) nowait
+        for (std::int64_t n = 0; n < count; ++n) {
+            const std::uint32_t t = candidates[static_cast<std::size_t>(n)];
+            index.visit(bounding_box(corners_of(vertices, triangles[t])), [&](std::uint32_t u) {
+                if (u > t && test.intersects(t, u)) found.emplace_back(t, u);
+            });
+        }
+#pragma omp critical
+        pairs.insert(pairs.end(), found.begin(), found.end());
+    }
     std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     return pairs;
 }
 

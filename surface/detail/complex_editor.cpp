@@ -29,7 +29,7 @@ Triangle starting_at(const Triangle& t, std::uint32_t v)
 } // namespace
 
 ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm)
-    : limits_(limits), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
+    : limits_(limits), min_angle_(limits.min_angle_deg), max_tilt_(limits.max_normal_change_deg), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
       sides_(std::move(complex.sides)), alive_(triangles_.size(), 1), stars_(positions_.size()),
       kinds_(positions_.size(), VertexKind::corner), alive_triangles_(triangles_.size())
 {
@@ -48,6 +48,17 @@ ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits,
 
 void ComplexEditor::rebuild_grid(double cell_mm)
 {
+    grid_cell_mm_ = cell_mm;
+    grid_ = TriangleGrid();
+    grid_ready_ = false;
+    boxes_.assign(triangles_.size(), CompactBox{});
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) boxes_[t] = compact(bounding_box(corners(t)));
+}
+
+void ComplexEditor::ensure_grid()
+{
+    if (grid_ready_) return;
     Box3 bounds{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
     for (std::uint32_t v = 0; v < positions_.size(); ++v) {
         if (!vertex_alive(v)) continue;
@@ -57,14 +68,10 @@ void ComplexEditor::rebuild_grid(double cell_mm)
         }
     }
     if (bounds.low[0] > bounds.high[0]) bounds = Box3{};
-    grid_ = TriangleGrid(bounds, cell_mm, triangles_.size());
-    boxes_.assign(triangles_.size(), CompactBox{});
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
-        if (!alive_[t]) continue;
-        const Box3 box = bounding_box(corners(t));
-        grid_.insert(t, box);
-        boxes_[t] = compact(box);
-    }
+    grid_ = TriangleGrid(bounds, grid_cell_mm_, triangles_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) grid_.insert(t, bounding_box(corners(t)));
+    grid_ready_ = true;
 }
 
 TriangleCorners ComplexEditor::corners(std::uint32_t t) const
@@ -81,194 +88,9 @@ double ComplexEditor::mean_edge_length() const
     return alive_triangles_ == 0 ? 1.0 : sum / static_cast<double>(alive_triangles_);
 }
 
-std::vector<std::uint32_t> ComplexEditor::neighbours(std::uint32_t v) const
-{
-    std::vector<std::uint32_t> result;
-    for (const std::uint32_t t : stars_[v])
-        for (const std::uint32_t u : triangles_[t])
-            if (u != v) result.push_back(u);
-    std::sort(result.begin(), result.end());
-    result.erase(std::unique(result.begin(), result.end()), result.end());
-    return result;
-}
-
-std::size_t ComplexEditor::edge_multiplicity(std::uint32_t v, std::uint32_t w) const
-{
-    std::size_t count = 0;
-    for (const std::uint32_t t : stars_[v]) count += contains(triangles_[t], w) ? 1 : 0;
-    return count;
-}
-
-std::vector<std::uint32_t> ComplexEditor::curve_neighbours(std::uint32_t v) const
-{
-    std::vector<std::uint32_t> result;
-    for (const std::uint32_t u : neighbours(v))
-        if (edge_multiplicity(v, u) >= 3) result.push_back(u);
-    return result;
-}
-
-/// patch: one closed fan of one patch (every edge at v shared by two triangles of that patch);
-/// curve: exactly two junction edges, every other edge shared by two triangles; corner: anything else.
-VertexKind ComplexEditor::classify(std::uint32_t v) const
-{
-    const auto& star = stars_[v];
-    if (star.empty()) return VertexKind::corner;
-    std::size_t junction = 0;
-    const std::vector<std::uint32_t> ring = neighbours(v);
-    for (const std::uint32_t u : ring) {
-        const std::size_t m = edge_multiplicity(v, u);
-        if (m >= 3) ++junction;
-        else if (m != 2) return VertexKind::corner;
-    }
-    if (junction == 2) return VertexKind::curve;
-    if (junction != 0) return VertexKind::corner;
-    const LabelPair first = sides_[star.front()];
-    for (const std::uint32_t t : star)
-        if (!(sides_[t] == first)) return VertexKind::corner;
-    // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
-    return ring.size() == star.size() ? VertexKind::patch : VertexKind::corner;
-}
-
-void ComplexEditor::update_kinds(std::uint32_t v)
-{
-    kinds_[v] = classify(v);
-    for (const std::uint32_t u : neighbours(v)) kinds_[u] = classify(u);
-}
-
-bool ComplexEditor::shape_ok(const Change& change)
-{
-    const Triangle& t = change.triangle;
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-        are_collinear(positions_[t[0]], positions_[t[1]], positions_[t[2]])) {
-        ++counters_.shape;
-        return false;
-    }
-    const TriangleCorners now{positions_[t[0]], positions_[t[1]], positions_[t[2]]};
-    const double angle = smallest_angle_deg(now);
-    if (angle < limits_.min_angle_deg && angle < smallest_angle_deg(change.before) - 1e-9) {
-        ++counters_.shape;
-        return false;
-    }
-    if (angle_between_deg(normal_of(now), normal_of(change.before)) > limits_.max_normal_change_deg) {
-        ++counters_.normal;
-        return false;
-    }
-    return true;
-}
-
-/// No changed triangle meets another (changed or not) improperly, nor comes closer than the gap to one
-/// it shares no vertex with (unless its old version was closer still).
-bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
-{
-    const double gap = limits_.min_gap_mm;
-    std::vector<TriangleCorners> shapes;
-    std::vector<Box3> boxes;
-    Box3 all{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-    for (const Change& change : changes) {
-        const Triangle& a = change.triangle;
-        shapes.push_back({positions_[a[0]], positions_[a[1]], positions_[a[2]]});
-        boxes.push_back(bounding_box(shapes.back(), gap));
-        for (int i = 0; i < 3; ++i) {
-            all.low[i] = std::min(all.low[i], boxes.back().low[i]);
-            all.high[i] = std::max(all.high[i], boxes.back().high[i]);
-        }
-    }
-    // Outside repair the budget is 0: the first intersection refuses the edit.
-    std::size_t meetings = 0;
-    const auto meets = [&] {
-        if (++meetings <= intersection_budget_) return false;
-        ++counters_.intersection;
-        return true;
-    };
-    // A change that only moves vertices has its old self to compare with; new triangles do not.
-    std::vector<const TriangleCorners*> before(changes.size(), nullptr);
-    for (std::size_t i = 0; i < changes.size(); ++i)
-        if (changes[i].slot < triangles_.size() && alive_[changes[i].slot] &&
-            same_vertex_set(changes[i].triangle, triangles_[changes[i].slot]))
-            before[i] = &changes[i].before;
-    for (std::size_t i = 0; i < changes.size(); ++i)
-        for (std::size_t j = i + 1; j < changes.size(); ++j) {
-            if ((same_vertex_set(changes[i].triangle, changes[j].triangle) ||
-                 (boxes_overlap(boxes[i], boxes[j]) &&
-                  triangles_intersect(positions_, changes[i].triangle, changes[j].triangle))) &&
-                meets())
-                return false;
-            if (closes_wedge(changes[i].triangle, shapes[i], before[j] ? before[i] : nullptr, changes[j].triangle, shapes[j],
-                             changes[j].before, limits_.min_wedge_deg)) {
-                ++counters_.wedge;
-                return false;
-            }
-        }
-    grid_.query(all, nearby_);
-    for (const std::uint32_t t : nearby_) {
-        if (!alive_[t] || !boxes_overlap(all, boxes_[t]) ||
-            std::find(excluded.begin(), excluded.end(), t) != excluded.end())
-            continue;
-        const TriangleCorners cb = corners(t);
-        const Box3 box = bounding_box(cb);
-        if (!boxes_overlap(all, box)) continue;
-        for (std::size_t i = 0; i < changes.size(); ++i) {
-            if (!boxes_overlap(boxes[i], box)) continue;
-            const Triangle& a = changes[i].triangle;
-            if ((same_vertex_set(a, triangles_[t]) || triangles_intersect(positions_, a, triangles_[t])) && meets())
-                return false;
-            if (shares_vertex(a, triangles_[t]) && closes_wedge(a, shapes[i], before[i], triangles_[t], cb, cb, limits_.min_wedge_deg)) {
-                ++counters_.wedge;
-                return false;
-            }
-            // The gap keeps layers apart: it applies between different patches only (within a patch, folds
-            // are what the normal and intersection tests are for), and is measured between vertices and
-            // faces (the closest approach of nearly parallel layers).
-            if (gap > 0 && !shares_vertex(a, triangles_[t]) && !farther_than(shapes[i], cb, gap) &&
-                !(sides_[t] == side_of(changes[i])) && closes_gap(shapes[i], changes[i].before, cb, cb, gap)) {
-                ++counters_.gap;
-                return false;
-            }
-        }
-    }
-    return true;
-}
-
-std::size_t ComplexEditor::intersections_involving(const std::vector<std::uint32_t>& slots)
-{
-    std::size_t count = 0;
-    std::vector<std::uint32_t> sorted = slots;
-    std::sort(sorted.begin(), sorted.end());
-    for (const std::uint32_t s : slots) {
-        const Box3 box = bounding_box(corners(s));
-        grid_.query(box, nearby_);
-        for (const std::uint32_t t : nearby_) {
-            if (!alive_[t] || t == s) continue;
-            const bool among = std::binary_search(sorted.begin(), sorted.end(), t);
-            if ((among && t < s) || !boxes_overlap(box, bounding_box(corners(t)))) continue;
-            if (same_vertex_set(triangles_[s], triangles_[t]) || triangles_intersect(positions_, triangles_[s], triangles_[t]))
-                ++count;
-        }
-    }
-    return count;
-}
-
-void ComplexEditor::set_budget(const std::vector<std::uint32_t>& slots)
-{
-    intersection_budget_ = limits_.tolerate_existing_intersections ? intersections_involving(slots) : 0;
-}
-
-LabelPair ComplexEditor::side_of(const Change& change) const
-{
-    return change.slot < sides_.size() ? sides_[change.slot] : change.side;
-}
-
-bool ComplexEditor::acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
-{
-    for (const Change& change : changes)
-        if (!shape_ok(change)) return false;
-    std::vector<std::uint32_t> excluded = removed;
-    for (const Change& change : changes) excluded.push_back(change.slot);
-    return clear_of_others(changes, excluded);
-}
-
 void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
+    batch_index_valid_ = false;
     for (const std::uint32_t t : removed) {
         grid_.erase(t, bounding_box(corners(t)));
         for (const std::uint32_t v : triangles_[t]) std::erase(stars_[v], t);
@@ -302,6 +124,7 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
 bool ComplexEditor::try_move(std::uint32_t v, const Vec3& p)
 {
     if (!vertex_alive(v)) return false;
+    ensure_grid();
     set_budget(stars_[v]);
     std::vector<Change> changes;
     for (const std::uint32_t t : stars_[v]) changes.push_back({t, triangles_[t], corners(t)});
@@ -323,6 +146,7 @@ bool ComplexEditor::try_move_group(const std::vector<std::uint32_t>& vertices, c
     std::sort(slots.begin(), slots.end());
     slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
     if (slots.empty()) return false;
+    ensure_grid();
     set_budget(slots);
     std::vector<Change> changes;
     for (const std::uint32_t t : slots) changes.push_back({t, triangles_[t], corners(t)});
@@ -339,36 +163,6 @@ bool ComplexEditor::try_move_group(const std::vector<std::uint32_t>& vertices, c
     return true;
 }
 
-/// Lk(v) n Lk(w) = Lk(vw): the common neighbours are exactly the third vertices of triangles on vw, and
-/// no edge ab has both triangles vab and wab. Plus the interface rule that merged edges keep their
-/// multiplicity (no two junction edges fuse).
-bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
-{
-    const std::vector<std::uint32_t> nv = neighbours(v), nw = neighbours(w);
-    std::vector<std::uint32_t> common;
-    std::set_intersection(nv.begin(), nv.end(), nw.begin(), nw.end(), std::back_inserter(common));
-    std::vector<std::uint32_t> apexes;
-    for (const std::uint32_t t : stars_[v])
-        if (contains(triangles_[t], w))
-            for (const std::uint32_t u : triangles_[t])
-                if (u != v && u != w) apexes.push_back(u);
-    std::sort(apexes.begin(), apexes.end());
-    apexes.erase(std::unique(apexes.begin(), apexes.end()), apexes.end());
-    common.erase(std::remove(common.begin(), common.end(), w), common.end());
-    if (common != apexes) return false;
-    // Edges vx and wx merge; at most one of them may be a junction edge, or two junction curves would
-    // fuse into an edge where a tissue touches itself.
-    for (const std::uint32_t x : apexes)
-        if (std::min(edge_multiplicity(v, x), edge_multiplicity(w, x)) != 2) return false;
-    for (const std::uint32_t t : stars_[v]) {
-        const Triangle r = starting_at(triangles_[t], v);
-        if (r[1] == w || r[2] == w) continue;
-        for (const std::uint32_t s : stars_[w])
-            if (contains(triangles_[s], r[1]) && contains(triangles_[s], r[2])) return false;
-    }
-    return true;
-}
-
 bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
@@ -379,8 +173,11 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         ++counters_.topology;
         return false;
     }
-    std::vector<std::uint32_t> removed;
-    std::vector<Change> changes;
+    ensure_grid();
+    thread_local std::vector<std::uint32_t> removed, excluded;  // scratch: collapses are tried millions of times
+    thread_local std::vector<Change> changes;
+    removed.clear();
+    changes.clear();
     for (const std::uint32_t t : stars_[v]) {
         if (contains(triangles_[t], w)) {
             removed.push_back(t);
@@ -400,7 +197,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
     }
     if (veto && !veto()) return false;
     set_budget(stars_[v]);
-    std::vector<std::uint32_t> excluded = removed;
+    excluded = removed;
     for (const Change& change : changes) excluded.push_back(change.slot);
     if (!clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
@@ -422,6 +219,7 @@ std::optional<std::uint32_t> ComplexEditor::try_split(std::uint32_t v, std::uint
     for (const std::uint32_t t : stars_[v])
         if (contains(triangles_[t], w)) on_edge.push_back(t);
     if (on_edge.empty()) return std::nullopt;
+    ensure_grid();
     set_budget(on_edge);
     const std::uint32_t m = add_vertex(p);
     std::vector<Change> changes;
@@ -481,6 +279,7 @@ bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
         ++counters_.topology;
         return false;
     }
+    ensure_grid();
     set_budget(on_edge);
     const TriangleCorners before1 = corners(t1), before2 = corners(t2);
     std::vector<Change> changes{{t1, {v, b, a}, before1}, {t2, {w, a, b}, before2}};
@@ -511,15 +310,6 @@ InterfaceComplex ComplexEditor::result() const
         out.add_triangle({index[tri[0]], index[tri[1]], index[tri[2]]}, sides_[t]);
     }
     return out;
-}
-
-std::vector<Label> tissues_around(const ComplexEditor& editor, std::uint32_t v)
-{
-    std::vector<Label> tissues;
-    for (const std::uint32_t t : editor.star(v)) tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
-    std::sort(tissues.begin(), tissues.end());
-    tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
-    return tissues;
 }
 
 } // namespace tissuemesh::surface::detail

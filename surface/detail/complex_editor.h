@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "core/interface_complex.h"
+#include "surface/detail/box_index.h"
+#include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
 
 namespace tissuemesh::surface::detail {
@@ -75,6 +77,14 @@ public:
     const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
     /// Vertices sharing an edge with v, ascending.
     std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
+    /// A vertex sharing an edge with v, and the number of alive triangles on that edge.
+    struct RingEntry {
+        std::uint32_t vertex;
+        std::uint32_t triangles;
+    };
+    /// The neighbours of v, in no particular order, each with its edge's multiplicity (into `out`, without
+    /// allocating once `out` has grown): for loops that ask for neighbours and multiplicities of many vertices.
+    void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
     /// The neighbours of v across junction edges (two for a curve vertex).
     std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
     /// Number of alive triangles on edge vw (0: no such edge; 3 or more: a junction edge).
@@ -83,7 +93,12 @@ public:
     /// Mean edge length over alive triangles (first edges), mm.
     double mean_edge_length() const;
     const EditLimits& limits() const { return limits_; }
-    void set_limits(const EditLimits& limits) { limits_ = limits; }
+    void set_limits(const EditLimits& limits)
+    {
+        limits_ = limits;
+        min_angle_ = AngleLimit(limits.min_angle_deg);
+        max_tilt_ = AngleLimit(limits.max_normal_change_deg);
+    }
     const EditCounters& counters() const { return counters_; }
 
     // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
@@ -106,7 +121,8 @@ public:
     std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
     /// Replaces edge vw (two triangles of one patch) by the edge between their opposite vertices.
     bool try_flip(std::uint32_t v, std::uint32_t w);
-    /// Rebuilds the neighbour grid with a new cell size (after triangles grew or shrank a lot).
+    /// Rebuilds the neighbour grid with a new cell size (after triangles grew or shrank a lot). The grid
+    /// is built when an edit first needs it.
     void rebuild_grid(double cell_mm);
 
     /// The edited complex, compacted (dead vertices and triangles dropped, order otherwise kept).
@@ -123,6 +139,9 @@ private:
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    /// Whether triangles a and b (at corners pa, pb: the current positions) meet other than where they share
+    /// vertices; exact (triangles_intersect), with the plane test (certainly_apart) in front.
+    bool meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb) const;
     /// Intersecting pairs that involve `slots` (alive triangles) at the current positions: among them and
     /// with the other alive triangles. Sets the budget of the next check in tolerant mode.
     std::size_t intersections_involving(const std::vector<std::uint32_t>& slots);
@@ -132,7 +151,16 @@ private:
     /// of them is judged by the smaller index only). With `partners`, collects every triangle t meets or
     /// crowds instead of stopping at the first.
     std::uint8_t judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                             std::vector<std::uint32_t>& nearby, std::vector<std::uint32_t>* partners) const;
+                             const BoxIndex& index, std::vector<std::uint32_t>* partners) const;
+    /// The rule the pair of moved triangle t (at `now`, formerly `before`, tight box `tight`) and triangle u
+    /// breaks at the current positions (0: none).
+    std::uint8_t pair_rule(std::uint32_t t, std::uint32_t u, const TriangleCorners& now, const TriangleCorners& before,
+                           const Box3& tight, const std::vector<Vec3>& start) const;
+    /// Makes batch_index_ fit for a batch whose `changed` triangles have their boxes for the batch in boxes_.
+    void refresh_batch_index(const std::vector<std::uint32_t>& changed);
+    /// Builds the neighbour grid if an edit needs it and it is not built (after rebuild_grid() or
+    /// move_together(), which judges against its own index and leaves the grid to be rebuilt).
+    void ensure_grid();
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     void update_kinds(std::uint32_t v);
@@ -142,6 +170,8 @@ private:
     Label background_ = 0;
     TissueNames names_;
     EditLimits limits_;
+    AngleLimit min_angle_;  ///< limits_.min_angle_deg
+    AngleLimit max_tilt_;   ///< limits_.max_normal_change_deg
     std::vector<Vec3> positions_;
     std::vector<Triangle> triangles_;
     std::vector<LabelPair> sides_;
@@ -150,6 +180,10 @@ private:
     std::vector<VertexKind> kinds_;
     std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
+    double grid_cell_mm_ = 1;   ///< cell size asked of the grid
+    bool grid_ready_ = false;   ///< grid_ files every alive triangle under its current box
+    BoxIndex batch_index_;      ///< move_together()'s index (see refresh_batch_index())
+    bool batch_index_valid_ = false;
     std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)

@@ -6,6 +6,9 @@
 #include <cmath>
 
 #include "core/interface_complex.h"
+#include "surface/detail/angle_limit.h"
+#include "surface/detail/mesh_measures.h"
+#include "surface/detail/plane_side.h"
 #include "surface/detail/triangle_distance.h"
 #include "surface/detail/wedge_angle.h"
 
@@ -31,6 +34,26 @@ inline double angle_between_deg(const Vec3& a, const Vec3& b)
     return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / 3.14159265358979323846;
 }
 
+/// Whether smallest_angle_deg(t) < limit.deg() (as that function computes it).
+inline bool has_angle_below(const TriangleCorners& t, const AngleLimit& limit)
+{
+    bool unsure = false;
+    for (int k = 0; k < 3; ++k) {
+        const Vec3 u = t[(k + 1) % 3] - t[k], w = t[(k + 2) % 3] - t[k];
+        const int order = limit.compare(norm(cross(u, w)), dot(u, w));
+        if (order < 0) return true;
+        unsure = unsure || order == 0;
+    }
+    return unsure && smallest_angle_deg(t) < limit.deg();
+}
+
+/// Whether angle_between_deg(a, b) > limit.deg().
+inline bool tilts_beyond(const Vec3& a, const Vec3& b, const AngleLimit& limit)
+{
+    const int order = limit.compare(norm(cross(a, b)), dot(a, b));
+    return order != 0 ? order > 0 : angle_between_deg(a, b) > limit.deg();
+}
+
 /// A cheap sufficient test for distance(a, b) > gap: the bounding spheres around the centroids are apart.
 inline bool farther_than(const TriangleCorners& a, const TriangleCorners& b, double gap)
 {
@@ -44,16 +67,26 @@ inline bool farther_than(const TriangleCorners& a, const TriangleCorners& b, dou
 }
 
 /// Whether triangle `now` (formerly `before`) comes closer than `gap` to `other` (formerly
-/// `other_before`), vertex to face, where it was not that close before.
+/// `other_before`), vertex to face, where it was not that close before. A vertex further than the gap
+/// from the plane of the face is further from the face: its closest point is not computed (the margin
+/// is far above the rounding of either distance, so the answer is the same).
 inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before, const TriangleCorners& other,
                        const TriangleCorners& other_before, double gap)
 {
+    const Vec3 n_now = normal_of(now), n_other = normal_of(other);
+    const double safe = gap * (1 + 1e-6) + 1e-9;
+    const double reach_now = safe * norm(n_now), reach_other = safe * norm(n_other);
     for (int k = 0; k < 3; ++k) {
-        const double d = distance(now[k], closest_point_on_triangle(now[k], other));
-        if (d < gap && d < distance(before[k], closest_point_on_triangle(before[k], other_before)) - 1e-12) return true;
-        const double e = distance(other[k], closest_point_on_triangle(other[k], now));
-        if (e < gap && e < distance(other_before[k], closest_point_on_triangle(other_before[k], before)) - 1e-12)
-            return true;
+        if (!(std::abs(dot(now[k] - other[0], n_other)) > reach_other)) {
+            const double d = distance(now[k], closest_point_on_triangle(now[k], other));
+            if (d < gap && d < distance(before[k], closest_point_on_triangle(before[k], other_before)) - 1e-12)
+                return true;
+        }
+        if (!(std::abs(dot(other[k] - now[0], n_now)) > reach_now)) {
+            const double e = distance(other[k], closest_point_on_triangle(other[k], now));
+            if (e < gap && e < distance(other_before[k], closest_point_on_triangle(other_before[k], before)) - 1e-12)
+                return true;
+        }
     }
     return false;
 }
@@ -64,6 +97,7 @@ inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before
 inline bool closes_wedge(const Triangle& a, const TriangleCorners& now_a, const TriangleCorners* before_a, const Triangle& b,
                          const TriangleCorners& now_b, const TriangleCorners& before_b, double limit_deg)
 {
+    if (wedge_certainly_open(a, now_a, b, now_b, limit_deg)) return false;
     const std::optional<double> now = wedge_between(a, now_a, b, now_b);
     if (!now || *now >= limit_deg) return false;
     return before_a == nullptr || *now < *wedge_between(a, *before_a, b, before_b) - 1e-9;

@@ -21,6 +21,16 @@ namespace tissuemesh::surface::detail {
 /// `apex`: the shared vertex; (a1, a2) and (b1, b2): the other corners of each triangle.
 double wedge_angle_deg(const Vec3& apex, const Vec3& a1, const Vec3& a2, const Vec3& b1, const Vec3& b2);
 
+/// Whether the opening at the one vertex shared by `a` and `b` (corners `ca`, `cb`) is certainly at least
+/// `limit_deg` (as wedge_between() computes it): a plane through the shared vertex has the rest of one
+/// triangle on one side and the rest of the other on the other side (or the plane of one triangle has
+/// the rest of the other on one side), every corner at an angle beyond the limit from it, with a margin far
+/// above rounding. Then neither arc comes nearer than the limit to the plane, nor to the other arc. False
+/// when unsure, or when the triangles do not share exactly one vertex. A few dot products instead of eight
+/// arctangents: the editor asks this of every pair of neighbours sharing one vertex.
+bool wedge_certainly_open(const Triangle& a, const TriangleCorners& ca, const Triangle& b, const TriangleCorners& cb,
+                          double limit_deg);
+
 /// The position (0..2) in `a` of the one vertex `a` and `b` share, or nothing when they share none or
 /// more than one.
 std::optional<int> single_shared_corner(const Triangle& a, const Triangle& b);

@@ -1,5 +1,7 @@
 // tm-smooth, tm-decimate and tm-remesh as a user chains them after tm-extract: valid outputs, summaries, refusals.
 #include <filesystem>
+#include <fstream>
+#include <string>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -86,6 +88,57 @@ TEST(SmoothDecimateCli, RefusesUnfitInputBadOptionsAndLossyFormats)
                                               "--max-depth-voxels", "3"});
     EXPECT_EQ(lambda.exit_code, 2);
     EXPECT_FALSE(std::filesystem::exists((dir / "out.ply").string()));
+}
+
+/// The "tissuemesh-checked ..." comment of a .ply header ("" when there is none).
+std::string stamp_of(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    while (std::getline(in, line) && line != "end_header")
+        if (line.rfind("comment tissuemesh-checked ", 0) == 0) return line.substr(8);
+    return "";
+}
+
+TEST(SmoothDecimateCli, CheckStampSkipsTheSecondCheckOfTheSameComplexOnly)
+{
+    const TempDir dir;
+    const Inputs in = write_inputs(dir);
+    const std::string smoothed = (dir / "s.ply").string();
+    const auto smooth = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", smoothed, "--json",
+                                              (dir / "s.json").string()});
+    ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
+    // tm-extract writes no stamp: tm-smooth checked its input; its output carries the stamp of its check.
+    EXPECT_TRUE(testing::read_json(dir / "s.json").at("input_checked").get<bool>());
+    const std::string stamp = stamp_of(smoothed);
+    EXPECT_EQ(stamp.rfind("tissuemesh-checked ", 0), 0u) << stamp;
+    const auto skipped = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d.ply").string(), "--max-distance-mm", "3",
+                                                 "--json", (dir / "d.json").string()});
+    ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
+    EXPECT_FALSE(testing::read_json(dir / "d.json").at("input_checked").get<bool>());
+    EXPECT_NE(skipped.err.find("input check skipped: " + smoothed + " carries the stamp"), std::string::npos) << skipped.err;
+    const auto forced = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d2.ply").string(), "--max-distance-mm", "3",
+                                                "--check-input", "--json", (dir / "d2.json").string()});
+    ASSERT_EQ(forced.exit_code, 0) << forced.err;
+    EXPECT_TRUE(testing::read_json(dir / "d2.json").at("input_checked").get<bool>());
+    // The same stamp on a changed complex (a triangle less: holes) is not trusted: the check runs and refuses.
+    InterfaceComplex broken = io::read_surface(smoothed);
+    broken.triangles.pop_back();
+    broken.sides.pop_back();
+    io::write_surface(broken, (dir / "broken.ply").string(), {stamp});
+    ASSERT_EQ(stamp_of((dir / "broken.ply").string()), stamp);
+    const auto unfit = run_cli("tm-decimate", {"-i", (dir / "broken.ply").string(), "-o", (dir / "out.ply").string()});
+    EXPECT_EQ(unfit.exit_code, 2);
+    EXPECT_NE(unfit.err.find("broken.ply: not fit for tetrahedralization"), std::string::npos) << unfit.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
+    // So is a moved vertex (the geometry is part of the digest).
+    InterfaceComplex moved = io::read_surface(smoothed);
+    moved.vertices[0][0] += 1e-9;
+    io::write_surface(moved, (dir / "moved.ply").string(), {stamp});
+    const auto rechecked = run_cli("tm-decimate", {"-i", (dir / "moved.ply").string(), "-o", (dir / "m.ply").string(),
+                                                   "--max-distance-mm", "3", "--json", (dir / "m.json").string()});
+    ASSERT_EQ(rechecked.exit_code, 0) << rechecked.err;
+    EXPECT_TRUE(testing::read_json(dir / "m.json").at("input_checked").get<bool>());
 }
 
 } // namespace

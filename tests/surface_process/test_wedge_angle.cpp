@@ -31,6 +31,44 @@ TEST(WedgeAngle, FoldedTriangleOpensByItsElevation)
     EXPECT_NEAR(opening, std::atan(t / std::sqrt(2.0)) * 180 / pi, 1e-9);
 }
 
+TEST(WedgeAngle, OppositeTrianglesOfAFlatFanAreWide)
+{
+    // Triangles opposite each other across the centre of a flat fan (b = -a exactly) lie on one great circle,
+    // 90 degrees apart along it. Regression: the crossing test took the zero vector (the planes' normals are
+    // equal, so their cross product vanishes) for a common point and answered 0.
+    EXPECT_NEAR(detail::wedge_angle_deg(origin, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}), 90, 1e-9);
+    EXPECT_NEAR(detail::wedge_angle_deg(origin, {0.3, -0.4, 0.1}, {0.2, 0.5, -0.3}, {-0.3, 0.4, -0.1}, {-0.2, -0.5, 0.3}),
+                180 - std::acos((0.3 * 0.2 - 0.4 * 0.5 - 0.1 * 0.3) / std::sqrt(0.26 * 0.38)) * 180 / pi, 1e-9);
+}
+
+TEST(WedgeAngle, CertainlyOpenOnlyWhenTheAngleSaysSo)
+{
+    // The shortcut may say "open" only where the angle is at least the limit; on clear cases it must say it.
+    const Triangle a{0, 1, 2}, b{0, 3, 4};
+    std::uint64_t state = 12345;
+    const auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<double>(state >> 11) / 9007199254740992.0 * 2 - 1;
+    };
+    int open = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const detail::TriangleCorners ca{origin, Vec3{next(), next(), next()}, Vec3{next(), next(), next()}};
+        // Half the trials: the second triangle near the first one's plane, where wedges are thin.
+        const double lift = trial % 2 ? 0.02 : 1.0;
+        const detail::TriangleCorners cb{origin, Vec3{next(), next(), lift * next()}, Vec3{next(), next(), lift * next()}};
+        for (const double limit : {1.0, 10.0}) {
+            if (!detail::wedge_certainly_open(a, ca, b, cb, limit)) continue;
+            ++open;
+            EXPECT_GE(*detail::wedge_between(a, ca, b, cb), limit) << trial;
+        }
+    }
+    EXPECT_GT(open, 10000);
+    const auto at = [](double deg) { return Vec3{std::cos(deg * pi / 180), std::sin(deg * pi / 180), 0}; };
+    EXPECT_TRUE(detail::wedge_certainly_open(a, {origin, at(0), at(60)}, b, {origin, at(120), at(180)}, 1.0));
+    EXPECT_TRUE(detail::wedge_certainly_open(a, {origin, at(0), at(60)}, b, {origin, at(180), at(240)}, 1.0));
+    EXPECT_FALSE(detail::wedge_certainly_open(a, {origin, at(0), at(60)}, b, {origin, at(60.5), at(120)}, 1.0));
+}
+
 TEST(WedgeAngle, FlatFanNeighboursTwoApartAreWide)
 {
     // A flat fan of six 60-degree triangles: the first and the third share only the centre and stand 60
