@@ -54,6 +54,58 @@ void check_tensor(const Mat3& m, const std::string& key)
                                 "give a positive scalar or an SPD 3x3 tensor"));
 }
 
+/// Whether `text` matches `pattern`, where '*' stands for any run of characters (case already folded).
+bool glob_match(const std::string& pattern, const std::string& text)
+{
+    std::size_t p = 0, t = 0, star = std::string::npos, resume = 0;
+    while (t < text.size()) {
+        if (p < pattern.size() && pattern[p] == '*') {
+            star = p++;
+            resume = t;
+        } else if (p < pattern.size() && pattern[p] == text[t]) {
+            ++p, ++t;
+        } else if (star != std::string::npos) {
+            p = star + 1;
+            t = ++resume;
+        } else {
+            return false;
+        }
+    }
+    while (p < pattern.size() && pattern[p] == '*') ++p;
+    return p == pattern.size();
+}
+
+/// Tissues the table's patterns ("rib_*", "*") give a value, for those no plain key named: the pattern with
+/// the most characters other than '*' wins; two equally specific patterns with different values are an error.
+void apply_patterns(const TetMesh& mesh, const ConductivityTable& table, const std::set<Label>& present,
+                    Conductivities& result)
+{
+    std::map<Label, std::pair<std::string, std::size_t>> chosen;  // pattern and its specificity
+    for (const auto& [key, tensor] : table) {
+        if (key.find('*') == std::string::npos) continue;
+        check_tensor(tensor, key);
+        const std::size_t specificity = key.size() - static_cast<std::size_t>(std::count(key.begin(), key.end(), '*'));
+        bool used = false;
+        for (const Label label : present) {
+            if (result.by_label.count(label) && !chosen.count(label)) continue;  // a plain key named it
+            if (!glob_match(lower(key), lower(name_of(mesh, label)))) continue;
+            used = true;
+            const auto found = chosen.find(label);
+            if (found != chosen.end() && found->second.second > specificity) continue;
+            if (found != chosen.end() && found->second.second == specificity && table.at(found->second.first) != tensor)
+                throw InputError(concat("conductivity table: '", found->second.first, "' and '", key, "' both match tissue ",
+                                        label, " (", name_of(mesh, label), ") with different values; name it alone"));
+            if (found == chosen.end() || found->second.second < specificity) {
+                chosen[label] = {key, specificity};
+                result.by_label[label] = tensor;
+            }
+        }
+        if (!used)
+            throw InputError(concat("conductivity table: the pattern '", key, "' matches no tissue of the mesh (tissues: ",
+                                    known_tissues(mesh, present), ")"));
+    }
+}
+
 } // namespace
 
 Mat3 isotropic(double sigma) { return {sigma, 0, 0, 0, sigma, 0, 0, 0, sigma}; }
@@ -72,6 +124,7 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
     Conductivities result;
     std::map<Label, std::string> key_of;  // a tissue named twice ("brain" and "4") would keep one value silently
     for (const auto& [key, tensor] : table) {
+        if (key.find('*') != std::string::npos) continue;  // patterns: below
         check_tensor(tensor, key);
         std::optional<Label> label = parse_label(key);
         if (!label)
@@ -85,6 +138,7 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
                                     " (", name_of(mesh, *label), "); give it once"));
         result.by_label[*label] = tensor;
     }
+    apply_patterns(mesh, table, present, result);
     for (Label label : present) {
         if (result.by_label.count(label)) continue;
         const auto& defaults = default_head_conductivities();

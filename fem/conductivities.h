@@ -21,8 +21,10 @@ struct Conductivities {
     const Mat3& of(Label tissue, std::size_t tet) const;
 };
 
-/// A user's table: keys are tissue names ("skull", matched case-insensitively against mesh.names) or
-/// label numbers ("3"); values are tensors in S/m (use isotropic() for scalars).
+/// A user's table: keys are tissue names ("skull", matched case-insensitively against mesh.names), label
+/// numbers ("3"), or name patterns where '*' stands for any characters ("rib_*", "vertebrae_*", "*" for
+/// every other tissue); values are tensors in S/m (use isotropic() for scalars). A plain key beats any
+/// pattern, a pattern with more characters other than '*' beats a shorter one.
 using ConductivityTable = std::map<std::string, Mat3>;
 
 /// Default isotropic conductivities (S/m) by tissue name, for common head tissues. Values commonly used
@@ -34,10 +36,10 @@ using ConductivityTable = std::map<std::string, Mat3>;
 const std::map<std::string, double>& default_head_conductivities();
 
 /// Conductivities for every tissue present in `mesh.tet_labels`: entries of `table` first (by label
-/// number or name), the remaining tissues from default_head_conductivities() by name when
-/// `use_defaults`.
+/// number or name, then by the most specific matching pattern), the remaining tissues from
+/// default_head_conductivities() by name when `use_defaults`.
 /// @throws InputError when a key of `table` names no tissue of the mesh (names the key and the known
-///         tissues), when a tissue present in the mesh has no conductivity (names it; the fix is to add
+///         tissues), a pattern matches none, two equally specific patterns give one tissue different values, when a tissue present in the mesh has no conductivity (names it; the fix is to add
 ///         it to the table), or when a tensor is not symmetric positive definite or not finite
 Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTable& table,
                                       bool use_defaults = true);

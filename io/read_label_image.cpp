@@ -54,6 +54,7 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     LabelImage image;
     if (extension == ".nii" || extension == ".nii.gz") {
         const detail::NiftiHeader header = detail::check_nifti_header(path);
+        if (header.version == 1) detail::require_finite_float_voxels(path, header);
         image = header.version == 2 ? detail::read_nifti2(path, header, options.before_voxels)
                                     : detail::read_itk_label_image(path, header.max_buffer_bytes, options.before_voxels);
     } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||

@@ -1,5 +1,6 @@
 // tm-extract: the interface complex of a label image (multi-material marching cubes), optionally with
 // one closed surface per tissue.
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <chrono>
@@ -102,10 +103,10 @@ nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceS
 }
 
 // Memory of an extraction, measured on spheres4 at 1 and 2 mm, the thin phantom and the 1 mm usc19-5 head
-// (README, "Resource limits"): reading holds the file's voxels and 14 B more per voxel; extracting holds the
-// labels and about 65 B per triangle, and marching cubes on Freudenthal's tets makes 6-8 triangles per voxel
+// (README, "Resource limits"): reading holds the file's voxels and 4 B more per voxel (the 1 mm head, streamed to
+// .ply: 46 MiB in all, 6 B per voxel); extracting holds the labels and about 65 B per triangle, and marching cubes on Freudenthal's tets makes 6-8 triangles per voxel
 // face between two labels, so about 500 B per such face.
-constexpr double read_bytes_per_voxel = 14;
+constexpr double read_bytes_per_voxel = 4;
 constexpr double bytes_per_voxel = 3;
 constexpr double bytes_per_label_face = 500;
 
@@ -125,13 +126,17 @@ double label_faces(const LabelImage& image, Label background)
     return static_cast<double>(faces);
 }
 
-/// Refuses an extraction that would need more memory than --max-memory allows, before it starts.
-void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image, Label background)
+/// Refuses an extraction that would need more memory than --max-memory allows, before it starts. A streamed
+/// extraction (a lone .ply) holds the triangles of two slabs at a time, not all of them.
+void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image, Label background,
+                  bool streamed)
 {
     const double voxels = static_cast<double>(image.voxel_count()), faces = label_faces(image, background);
-    tools::require_memory(context.memory, input, voxels * bytes_per_voxel + faces * bytes_per_label_face,
-                          concat(tools::format_count(faces), " voxel faces between tissues x ",
-                                 tools::format_bytes(bytes_per_label_face), " for the triangles"),
+    const double held_faces = streamed ? 2 * faces / static_cast<double>(std::max<std::size_t>(image.dims()[2], 1)) : faces;
+    tools::require_memory(context.memory, input, voxels * bytes_per_voxel + held_faces * bytes_per_label_face,
+                          concat(tools::format_count(held_faces), " voxel faces between tissues",
+                                 streamed ? " in two slabs" : "", " x ", tools::format_bytes(bytes_per_label_face),
+                                 " for the triangles"),
                           "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
 }
 
@@ -181,12 +186,12 @@ int main(int argc, char** argv)
             read_options.before_voxels = tools::image_memory_check(ctx.memory, input, read_bytes_per_voxel,
                                                                    "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
-            check_memory(ctx, input, image, options.background);
-            const double read_seconds = seconds_since(start);
-            options.priority = parse_priority(priority, image);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
             // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
             const bool streamed = extension == ".ply" && per_tissue_dir.empty();
+            check_memory(ctx, input, image, options.background, streamed);
+            const double read_seconds = seconds_since(start);
+            options.priority = parse_priority(priority, image);
             surface::InterfaceSummarizer counter;
             CollectingSink collector;
             const auto extract = [&](InterfaceSink& sink) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
+#include <optional>
 
 #include <zlib.h>
 
@@ -176,6 +178,51 @@ NiftiHeader check_nifti_header(const fs::path& path)
     require_payload(name, needed, size > data_start ? size - data_start : 0);
     f.max_buffer_bytes = needed / static_cast<std::uint64_t>(f.bitpix / 8) * 8;
     return f;
+}
+
+void require_finite_float_voxels(const fs::path& path, const NiftiHeader& header)
+{
+    const std::size_t width = header.datatype == 16 ? 4 : header.datatype == 64 ? 8 : 0;
+    if (width == 0) return;
+    const std::string name = path.string();
+    gzFile file = gzopen(path.c_str(), "rb");
+    if (file == nullptr) throw IoError(concat(name, ": cannot be opened; check the permissions"));
+    const std::uint64_t count = header.dims[0] * header.dims[1] * header.dims[2];
+    const auto offset = static_cast<z_off_t>(header.vox_offset);
+    bool ok = gzseek(file, offset, SEEK_SET) == offset;
+    std::vector<unsigned char> chunk(width << 18);
+    std::uint64_t voxel = 0;
+    std::optional<std::uint64_t> bad;
+    while (ok && voxel < count && !bad) {
+        const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(count - voxel, chunk.size() / width));
+        const int got = gzread(file, chunk.data(), static_cast<unsigned>(want * width));
+        ok = got == static_cast<int>(want * width);
+        for (std::size_t v = 0; ok && v < want; ++v) {
+            unsigned char* bytes = chunk.data() + v * width;
+            if (header.swapped) std::reverse(bytes, bytes + width);
+            double value = 0;
+            if (width == 4) {
+                float f = 0;
+                std::memcpy(&f, bytes, 4);
+                value = f;
+            } else {
+                std::memcpy(&value, bytes, 8);
+            }
+            if (!std::isfinite(value)) {
+                bad = voxel + v;
+                break;
+            }
+        }
+        voxel += want;
+    }
+    gzclose(file);
+    if (!ok) throw IoError(concat(name, ": truncated or corrupt voxel data; copy or export the file again"));
+    if (bad) {
+        const Dims& d = header.dims;
+        throw InputError(concat(name, ": voxel (", *bad % d[0], ", ", (*bad / d[0]) % d[1], ", ", *bad / (d[0] * d[1]),
+                                ") holds a value that is not a finite number; labels must be whole numbers. Fix the "
+                                "segmentation (its NaN voxels would otherwise be read as background)"));
+    }
 }
 
 } // namespace tissuemesh::io::detail

@@ -36,6 +36,12 @@ struct NiftiHeader {
 /// @throws IoError on unreadable, truncated or non-NIfTI files, InputError on invalid content
 NiftiHeader check_nifti_header(const std::filesystem::path& path);
 
+/// For a NIfTI-1 file of float voxels (datatype 16 or 64): throws InputError naming the first voxel
+/// (i, j, k) whose stored value is not finite. niftilib, under ITK, turns such values into 0 without a
+/// word, which for a label image would make broken voxels background. Streams the voxels (1 MiB at a time).
+/// Does nothing for other datatypes.
+void require_finite_float_voxels(const std::filesystem::path& path, const NiftiHeader& header);
+
 /// Reads a NIfTI-2 file whose header check_nifti_header() returned (ITK 5.2 reads NIfTI-1 only).
 /// Geometry from the sform (when sform_code > 0 and orthogonal), else the qform (qform_code > 0),
 /// else pixdim alone; scl_slope/scl_inter are applied before the labels are checked.

@@ -50,6 +50,32 @@ TEST(Conductivities, UnknownAndMissingTissuesAreInputErrors)
     EXPECT_THROW(resolve_conductivities(mesh, {{"1", {1, 0.5, 0, 0, 1, 0, 0, 0, 1}}}), InputError);  // not symmetric
 }
 
+TEST(Conductivities, PatternsFillWhatPlainKeysLeaveMostSpecificFirst)
+{
+    // A torso-like set of names: patterns for families of tissues, "*" for the rest.
+    TetMesh mesh = testing::box_mesh(4, 40.0, 0.2, [](const Vec3& c) { return Label(1 + (c[0] < 20) + 2 * (c[1] < 20)); });
+    mesh.names = {{1, "rib_left_7"}, {2, "rib_right_7"}, {3, "Lung_upper_lobe_left"}, {4, "liver"}};
+    const Conductivities sigma = resolve_conductivities(
+        mesh, {{"rib_*", isotropic(0.02)}, {"rib_right_*", isotropic(0.03)}, {"lung*", isotropic(0.04)},
+               {"*", isotropic(0.2)}, {"liver", isotropic(0.028)}}, false);
+    EXPECT_EQ(sigma.by_label.at(1)[0], 0.02);   // rib_* (and *)
+    EXPECT_EQ(sigma.by_label.at(2)[0], 0.03);   // rib_right_* is more specific than rib_*
+    EXPECT_EQ(sigma.by_label.at(3)[0], 0.04);   // case-insensitive
+    EXPECT_EQ(sigma.by_label.at(4)[0], 0.028);  // a plain key beats every pattern
+    try {
+        resolve_conductivities(mesh, {{"r*", isotropic(0.02)}, {"*7", isotropic(0.03)}, {"*", isotropic(0.2)}}, false);
+        FAIL() << "two equally specific patterns with different values must be refused";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("with different values"), std::string::npos) << error.what();
+    }
+    try {
+        resolve_conductivities(mesh, {{"heart*", isotropic(0.2)}, {"*", isotropic(0.2)}}, false);
+        FAIL() << "a pattern that matches nothing is a mistake";
+    } catch (const InputError& error) {
+        EXPECT_NE(std::string(error.what()).find("'heart*' matches no tissue"), std::string::npos) << error.what();
+    }
+}
+
 // A table that names one tissue twice, by number and by name, had one value win silently (the map's order).
 TEST(Conductivities, ATissueNamedTwiceIsAnInputError)
 {

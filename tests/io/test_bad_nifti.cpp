@@ -1,5 +1,8 @@
 // Broken and invalid NIfTI files: the reader names the file and the problem, and allocates nothing
 // beyond what the file holds.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -175,6 +178,31 @@ TEST(BadInput, FloatLabelsMustBeWholeNumbers)
     testing::write_nifti(dir / "prob.nii", spec, testing::voxel_bytes<float>({0, 1, 2, 3, 4, 2.5f, 6, 7}));
     expect_error<InputError>([&] { io::read_label_image(dir / "prob.nii"); },
                              {"prob.nii: voxel (1, 0, 1) holds 2.5", "whole numbers"});
+}
+
+/// Regression: niftilib (under ITK) reads a NaN voxel of a NIfTI-1 float image as 0, so a broken label became
+/// background without a word (tm-info counted it as tissue 0). Our own scan refuses it, in either byte order.
+TEST(BadInput, NanLabelsAreRefusedNotReadAsBackground)
+{
+    testing::TempDir dir;
+    for (const bool swapped : {false, true}) {
+        testing::NiftiSpec spec;
+        spec.datatype = 16;
+        spec.bitpix = 32;
+        spec.swapped = swapped;
+        std::vector<unsigned char> data = testing::voxel_bytes<float>({1, 1, 1, 1, 1, std::nanf(""), 2, 2});
+        if (swapped)
+            for (std::size_t v = 0; v < 8; ++v) std::reverse(data.begin() + 4 * v, data.begin() + 4 * v + 4);
+        testing::write_nifti(dir / "nan.nii", spec, data);
+        expect_error<InputError>([&] { io::read_label_image(dir / "nan.nii"); },
+                                 {"nan.nii: voxel (1, 0, 1)", "not a finite number"});
+    }
+    testing::NiftiSpec doubles;
+    doubles.datatype = 64;
+    doubles.bitpix = 64;
+    testing::write_nifti(dir / "inf.nii", doubles,
+                         testing::voxel_bytes<double>({0, 1, 2, 3, 4, 5, 6, std::numeric_limits<double>::infinity()}));
+    expect_error<InputError>([&] { io::read_label_image(dir / "inf.nii"); }, {"inf.nii: voxel (1, 1, 1)"});
 }
 
 TEST(BadInput, LabelsOutsideUint16)

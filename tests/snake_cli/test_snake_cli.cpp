@@ -149,9 +149,11 @@ TEST(SnakeCli, RefusalsNameTheProblemAndLeaveNothing)
     const auto stl = run_cli("tm-snake", {"-i", image, "--tissue", "1", "-o", (dir / "x.stl").string()});
     EXPECT_EQ(stl.exit_code, 2);
     EXPECT_NE(stl.err.find("written as .ply or .vtp"), std::string::npos) << stl.err;
-    const auto grey = run_cli("tm-snake", {"-i", image, "--grey", "--iso", "1", "-o", out});
+    std::ofstream(dir / "grey.png") << "not an image";
+    const auto grey = run_cli("tm-snake", {"-i", (dir / "grey.png").string(), "--grey", "--iso", "1", "-o", out});
     EXPECT_EQ(grey.exit_code, 2);
-    EXPECT_NE(grey.err.find("grey-level images are read from Inrimage"), std::string::npos) << grey.err;
+    EXPECT_NE(grey.err.find("unknown grey image format '.png'"), std::string::npos) << grey.err;
+    std::filesystem::remove(dir / "grey.png");
     const auto weight = run_cli("tm-snake", {"-i", image, "--tissue", "1", "--tension", "3", "-o", out});
     EXPECT_EQ(weight.exit_code, 2);
     EXPECT_NE(weight.err.find("must lie in [0, 1]"), std::string::npos) << weight.err;
