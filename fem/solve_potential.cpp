@@ -63,7 +63,7 @@ Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities
         report.electrode_area_mm2.push_back(patch.area_mm2);
         for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
             if (electrode.mode == Electrode::Mode::potential)
-                fix_node(local, fixed, patch.nodes[k], electrode.potential_v, electrode.name.empty() ? concat("electrode ", e + 1) : electrode.name);
+                fix_node(local, fixed, patch.nodes[k], electrode.potential_v, detail::electrode_label(electrode, e));
             else
                 rhs[patch.nodes[k]] += electrode.current_a * patch.node_area_mm2[k] / patch.area_mm2;
         }

@@ -12,13 +12,17 @@
 namespace tissuemesh::io {
 
 /// Options for read_label_image().
+/// Called once an image header is checked, before any voxel is allocated: dimensions, spacing (mm) and the bytes
+/// per voxel of the file's type. It may throw to refuse the image.
+using BeforeVoxels = std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)>;
+
 struct ReadImageOptions {
     std::filesystem::path names_json;  ///< optional {"1": "scalp", ...}; overrides names from the file
     /// Optional: called once the header is checked (dimensions, spacing, and that the file holds the voxels),
     /// before any voxel is allocated, with the dimensions, the spacing (mm) and the bytes per voxel of the
     /// file's type. It may throw to refuse the image: tools refuse images that need more memory than they
     /// may use (tools/memory_limit.h).
-    std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)> before_voxels;
+    BeforeVoxels before_voxels;
 };
 
 /// Reads a label image; the format is chosen by the file name's extension:

@@ -131,6 +131,7 @@ double label_faces(const LabelImage& image, Label background)
 void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image, Label background,
                   bool streamed)
 {
+    if (context.memory.bytes == 0) return;  // no limit: spare the pass over the voxels
     const double voxels = static_cast<double>(image.voxel_count()), faces = label_faces(image, background);
     const double held_faces = streamed ? 2 * faces / static_cast<double>(std::max<std::size_t>(image.dims()[2], 1)) : faces;
     tools::require_memory(context.memory, input, voxels * bytes_per_voxel + held_faces * bytes_per_label_face,
@@ -186,11 +187,11 @@ int main(int argc, char** argv)
             read_options.before_voxels = tools::image_memory_check(ctx.memory, input, read_bytes_per_voxel,
                                                                    "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
+            const double read_seconds = seconds_since(start);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
             // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
             const bool streamed = extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
-            const double read_seconds = seconds_since(start);
             options.priority = parse_priority(priority, image);
             surface::InterfaceSummarizer counter;
             CollectingSink collector;

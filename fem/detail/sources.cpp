@@ -9,6 +9,11 @@
 
 namespace tissuemesh::fem::detail {
 
+std::string electrode_label(const Electrode& electrode, std::size_t index)
+{
+    return electrode.name.empty() ? concat("electrode ", index + 1) : electrode.name;
+}
+
 ElectrodePatch electrode_patch(const TetMesh& mesh, const OuterBoundary& boundary, const Electrode& electrode,
                                std::size_t index)
 {
@@ -27,7 +32,7 @@ ElectrodePatch electrode_patch(const TetMesh& mesh, const OuterBoundary& boundar
         patch.area_mm2 += area;
     }
     if (!(patch.area_mm2 > 0))
-        throw InputError(concat(electrode.name.empty() ? concat("electrode ", index + 1) : electrode.name, " at (", format_mm(electrode.centre_mm[0]), ", ",
+        throw InputError(concat(electrode_label(electrode, index), " at (", format_mm(electrode.centre_mm[0]), ", ",
                                 format_mm(electrode.centre_mm[1]), ", ", format_mm(electrode.centre_mm[2]),
                                 ") mm with radius ", format_mm(electrode.radius_mm), " mm covers ", shares.size(),
                                 " boundary nodes and no whole boundary face; move it onto the surface or enlarge ",

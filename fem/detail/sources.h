@@ -20,6 +20,9 @@ struct ElectrodePatch {
     double area_mm2 = 0;
 };
 
+/// How messages name electrode `index` (0-based): its name, or "electrode N" (1-based) when it has none.
+std::string electrode_label(const Electrode& electrode, std::size_t index);
+
 /// @throws InputError when the patch holds no boundary face (names the electrode, its centre and radius)
 ElectrodePatch electrode_patch(const TetMesh& mesh, const OuterBoundary& boundary, const Electrode& electrode,
                                std::size_t index);

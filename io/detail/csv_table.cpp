@@ -148,6 +148,7 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
     if (at == lines.size())
         throw IoError(concat(file, ": no header line (only blank or '#' lines); write the header ", Header::expected_header(spec)));
     const Header header(file, at + 1, lines[at], spec);
+    const bool named = std::find(header.columns().begin(), header.columns().end(), -1) != header.columns().end();
     std::vector<CsvRow> rows;
     std::map<std::string, std::size_t> names;
     for (++at; at < lines.size(); ++at) {
@@ -172,7 +173,7 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
                                      printable(std::string(fields[k])), "' is not a finite number; write plain decimals (",
                                      Header::expected_header(spec), ")"));
         }
-        if (std::find(header.columns().begin(), header.columns().end(), -1) != header.columns().end()) {
+        if (named) {
             if (row.text.empty())
                 throw IoError(concat(file, " line ", line, ": the ", spec.rows_are, " has no ", spec.text_column,
                                      "; name every ", spec.rows_are, " or leave the column out"));

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/label_image.h"
+#include "io/read_label_image.h"
 
 namespace tissuemesh::io::detail {
 
@@ -29,7 +30,7 @@ std::optional<VoxelType> parse_voxel_type(const std::string& name);
 std::uint64_t checked_voxel_bytes(const std::string& file, const Dims& dims, std::size_t bytes_per_voxel);
 
 /// ReadImageOptions::before_voxels: called before the voxels are allocated (may be empty).
-using BeforeVoxels = std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)>;
+using BeforeVoxels = io::BeforeVoxels;
 
 /// Throws IoError ("truncated") naming `file` when `needed_bytes` > `available_bytes`. Readers call
 /// it before allocating, so a corrupt header cannot make them allocate more than the file holds.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surface/detail/cgal_intersections.h"
 #include "surface/detail/edit_rules.h"
 #include "surface/detail/mesh_measures.h"
 
@@ -16,14 +15,6 @@ bool canonical(const LabelPair& side, Label background)
     if (side.to == background) return true;
     if (side.from == background) return false;
     return side.from > side.to;
-}
-
-/// Rotates t so that it starts with v.
-Triangle starting_at(const Triangle& t, std::uint32_t v)
-{
-    if (t[1] == v) return {t[1], t[2], t[0]};
-    if (t[2] == v) return {t[2], t[0], t[1]};
-    return t;
 }
 
 } // namespace

@@ -6,17 +6,6 @@
 #include "surface/detail/edit_rules.h"
 
 namespace tissuemesh::surface::detail {
-namespace {
-
-/// Rotates t so that it starts with v.
-Triangle starting_at(const Triangle& t, std::uint32_t v)
-{
-    if (t[1] == v) return {t[1], t[2], t[0]};
-    if (t[2] == v) return {t[2], t[0], t[1]};
-    return t;
-}
-
-} // namespace
 
 std::vector<std::uint32_t> ComplexEditor::neighbours(std::uint32_t v) const
 {

@@ -16,6 +16,14 @@ namespace tissuemesh::surface::detail {
 
 inline bool contains(const Triangle& t, std::uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
 
+/// Rotates t so that it starts with v.
+inline Triangle starting_at(const Triangle& t, std::uint32_t v)
+{
+    if (t[1] == v) return {t[1], t[2], t[0]};
+    if (t[2] == v) return {t[2], t[0], t[1]};
+    return t;
+}
+
 inline bool shares_vertex(const Triangle& a, const Triangle& b)
 {
     return contains(b, a[0]) || contains(b, a[1]) || contains(b, a[2]);
