@@ -53,7 +53,11 @@ Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities
     for (std::size_t k = 0; k < problem.fixed.nodes.size(); ++k)
         fix_node(local, fixed, local_node(local, problem.fixed.nodes[k], "fixed potentials"), problem.fixed.values_v[k],
                  "fixed potentials");
-    const OuterBoundary boundary = outer_boundary(mesh);
+    // The outer boundary (a face-neighbour pass over every tet) only where it is used: electrodes sit on
+    // it, and the subtraction approach integrates over it.
+    const bool needs_boundary = !problem.electrodes.empty() ||
+                                (!problem.dipoles.empty() && problem.dipole_model == DipoleModel::subtraction);
+    const OuterBoundary boundary = needs_boundary ? outer_boundary(mesh) : OuterBoundary{};
     double injected = 0;
     double injected_magnitude = 0;
     for (std::size_t e = 0; e < problem.electrodes.size(); ++e) {

@@ -1,16 +1,18 @@
 #include "fem/detail/hypre_pcg.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <type_traits>
-#include <numeric>
-#include <vector>
 
 #include <mpi.h>
 
 #include <HYPRE.h>
 #include <HYPRE_krylov.h>
 #include <HYPRE_parcsr_ls.h>
+#include <HYPRE_parcsr_mv.h>
+#include <_hypre_parcsr_mv.h>
 
 #include "core/error.h"
 
@@ -42,57 +44,96 @@ void ensure_initialised()
 
 // Owns the hypre objects of one solve; destroys them whatever happens.
 struct HypreObjects {
-    HYPRE_IJMatrix matrix = nullptr;
-    HYPRE_IJVector rhs = nullptr;
-    HYPRE_IJVector solution = nullptr;
+    HYPRE_ParCSRMatrix matrix = nullptr;
+    HYPRE_ParVector rhs = nullptr;
+    HYPRE_ParVector solution = nullptr;
     HYPRE_Solver pcg = nullptr;
     HYPRE_Solver amg = nullptr;
     ~HypreObjects()
     {
         if (amg) HYPRE_BoomerAMGDestroy(amg);
         if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
-        if (solution) HYPRE_IJVectorDestroy(solution);
-        if (rhs) HYPRE_IJVectorDestroy(rhs);
-        if (matrix) HYPRE_IJMatrixDestroy(matrix);
+        if (solution) HYPRE_ParVectorDestroy(solution);
+        if (rhs) HYPRE_ParVectorDestroy(rhs);
+        if (matrix) HYPRE_ParCSRMatrixDestroy(matrix);
     }
 };
 
-HYPRE_IJVector make_vector(HYPRE_BigInt n, const double* values, const std::vector<HYPRE_BigInt>& indices)
+// One process owns every row: rows [0, n) on rank 0.
+HYPRE_ParVector make_vector(HYPRE_BigInt n, const double* values)
 {
-    HYPRE_IJVector vector = nullptr;
-    HYPRE_IJVectorCreate(MPI_COMM_WORLD, 0, n - 1, &vector);
-    HYPRE_IJVectorSetObjectType(vector, HYPRE_PARCSR);
-    HYPRE_IJVectorInitialize(vector);
-    HYPRE_IJVectorSetValues(vector, static_cast<HYPRE_Int>(n), indices.data(), values);
-    HYPRE_IJVectorAssemble(vector);
+    HYPRE_BigInt partitioning[2] = {0, n};
+    HYPRE_ParVector vector = nullptr;
+    HYPRE_ParVectorCreate(MPI_COMM_WORLD, n, partitioning, &vector);
+    HYPRE_ParVectorInitialize(vector);
+    double* data = hypre_VectorData(hypre_ParVectorLocalVector(vector));
+    std::copy(values, values + n, data);
     return vector;
 }
 
-void fill_matrix(HYPRE_IJMatrix matrix, const SparseMatrix& source)
+// The matrix straight into hypre's ParCSR form, without the IJ interface, which stages every entry and then
+// copies it again (0.99 s for 1.04 M rows, against 0.17 s this way). On one process the whole matrix is the
+// "diagonal" block, stored as compressed rows whose first entry is the diagonal one, as hypre's smoothers expect.
+HYPRE_ParCSRMatrix make_matrix(const SparseMatrix& source)
 {
     const auto n = static_cast<HYPRE_BigInt>(source.rows());
-    std::vector<HYPRE_Int> sizes(static_cast<std::size_t>(n));
-    std::vector<HYPRE_BigInt> rows(static_cast<std::size_t>(n));
-    for (HYPRE_BigInt row = 0; row < n; ++row) {
-        rows[row] = row;
-        sizes[row] = source.outerIndexPtr()[row + 1] - source.outerIndexPtr()[row];
+    const auto nonzeros = static_cast<HYPRE_Int>(source.nonZeros());
+    HYPRE_BigInt partitioning[2] = {0, n};
+    HYPRE_ParCSRMatrix matrix = nullptr;
+    HYPRE_ParCSRMatrixCreate(MPI_COMM_WORLD, n, n, partitioning, partitioning, 0, nonzeros, 0, &matrix);
+    HYPRE_ParCSRMatrixInitialize(matrix);
+    hypre_CSRMatrix* block = hypre_ParCSRMatrixDiag(matrix);
+    HYPRE_Int* starts = hypre_CSRMatrixI(block);
+    HYPRE_Int* columns = hypre_CSRMatrixJ(block);
+    double* values = hypre_CSRMatrixData(block);
+    const int* source_starts = source.outerIndexPtr();
+    const int* source_columns = source.innerIndexPtr();
+    const double* source_values = source.valuePtr();
+    static_assert(std::is_same_v<HYPRE_Int, SparseMatrix::StorageIndex>);
+    std::copy(source_starts, source_starts + n + 1, starts);
+    const auto rows = static_cast<std::int64_t>(n);
+    std::int64_t missing_diagonal = -1;
+#pragma omp parallel for schedule(static) reduction(max : missing_diagonal)
+    for (std::int64_t row = 0; row < rows; ++row) {
+        HYPRE_Int at = source_starts[row];
+        const HYPRE_Int end = source_starts[row + 1];
+        // The diagonal first, then the other columns in increasing order.
+        HYPRE_Int diagonal = -1;
+        for (HYPRE_Int k = at; k < end; ++k)
+            if (source_columns[k] == row) diagonal = k;
+        if (diagonal < 0) {
+            missing_diagonal = std::max(missing_diagonal, row);
+            continue;
+        }
+        columns[at] = static_cast<HYPRE_Int>(row);
+        values[at++] = source_values[diagonal];
+        for (HYPRE_Int k = source_starts[row]; k < end; ++k)
+            if (k != diagonal) {
+                columns[at] = source_columns[k];
+                values[at++] = source_values[k];
+            }
     }
-    HYPRE_IJMatrixSetRowSizes(matrix, sizes.data());
-    HYPRE_IJMatrixInitialize(matrix);
-    // Debian's hypre has 32-bit HYPRE_BigInt, Eigen's indices are int: the column indices are passed as they are.
-    static_assert(std::is_same_v<HYPRE_BigInt, SparseMatrix::StorageIndex>);
-    HYPRE_IJMatrixSetValues(matrix, static_cast<HYPRE_Int>(n), sizes.data(), rows.data(), source.innerIndexPtr(),
-                            source.valuePtr());
-    HYPRE_IJMatrixAssemble(matrix);
+    if (missing_diagonal >= 0) {
+        HYPRE_ParCSRMatrixDestroy(matrix);
+        throw AlgorithmError(concat("linear system: row ", missing_diagonal, " has no diagonal entry"));
+    }
+    hypre_CSRMatrixNumRownnz(block) = static_cast<HYPRE_Int>(n);
+    hypre_ParCSRMatrixSetNumNonzeros(matrix);
+    hypre_ParCSRMatrixSetDNumNonzeros(matrix);
+    return matrix;
 }
 
 // Settings for 3D scalar elliptic problems (hypre's manual): HMIS coarsening, extended+i interpolation
-// truncated to 4 entries, strength threshold 0.5, one V-cycle of symmetric hybrid Gauss-Seidel (keeps the
-// preconditioner symmetric, as CG needs). Aggressive coarsening on the first level (multipass
-// interpolation) cut the operator complexity and the setup: measured on a 0.9 M-node tDCS problem to
-// 1e-8, 15 -> 22 iterations but 51 -> 38 CPU seconds for the whole solve (bench/SOLVE.md). The transposed
-// interpolation is kept for the restriction of every cycle (on that problem 2.6 -> 2.1 s setup, 6.9 -> 6.0 s
-// of iterations, medians of 3 on a noisy machine; the other settings tried there did not help).
+// truncated to 4 entries, strength threshold 0.5, one V-cycle with one forward Gauss-Seidel sweep on the way
+// down and one backward sweep on the way up: the cycle stays symmetric, as CG needs, at half the smoothing
+// of a symmetric sweep on both legs (measured on the 1.04 M-node tDCS problem of bench/solve, one thread:
+// AMG setup plus iterations 11.4-12.3 s -> 7.4-8.4 s, 22 -> 25 iterations). Aggressive coarsening on the
+// first level (multipass interpolation) cut the operator complexity and the setup: measured on a 0.9 M-node
+// tDCS problem to 1e-8, 15 -> 22 iterations but 51 -> 38 CPU seconds for the whole solve (bench/SOLVE.md).
+// The transposed interpolation is kept for the restriction of every cycle (on that problem 2.6 -> 2.1 s
+// setup, 6.9 -> 6.0 s of iterations, medians of 3 on a noisy machine). Tried on the 1.04 M-node problem
+// with the split smoother, and slower: two aggressive levels (33 iterations), threshold 0.6 (28), and
+// interpolation truncated to 3 entries (26).
 HYPRE_Solver make_boomeramg()
 {
     HYPRE_Solver amg = nullptr;
@@ -104,7 +145,9 @@ HYPRE_Solver make_boomeramg()
     HYPRE_BoomerAMGSetStrongThreshold(amg, 0.5);
     HYPRE_BoomerAMGSetAggNumLevels(amg, 1);
     HYPRE_BoomerAMGSetAggInterpType(amg, 4);
-    HYPRE_BoomerAMGSetRelaxType(amg, 6);
+    HYPRE_BoomerAMGSetRelaxType(amg, 6);  // then split below; the coarsest level is solved directly
+    HYPRE_BoomerAMGSetCycleRelaxType(amg, 13, 1);  // down: forward l1-Gauss-Seidel
+    HYPRE_BoomerAMGSetCycleRelaxType(amg, 14, 2);  // up: backward l1-Gauss-Seidel
     HYPRE_BoomerAMGSetNumSweeps(amg, 1);
     HYPRE_BoomerAMGSetTol(amg, 0.0);
     HYPRE_BoomerAMGSetMaxIter(amg, 1);
@@ -124,21 +167,14 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     };
     HyprePcgResult result;
     const auto n = static_cast<HYPRE_BigInt>(matrix.rows());
-    std::vector<HYPRE_BigInt> indices(static_cast<std::size_t>(n));
-    std::iota(indices.begin(), indices.end(), HYPRE_BigInt{0});
     HypreObjects objects;
-    HYPRE_IJMatrixCreate(MPI_COMM_WORLD, 0, n - 1, 0, n - 1, &objects.matrix);
-    HYPRE_IJMatrixSetObjectType(objects.matrix, HYPRE_PARCSR);
-    fill_matrix(objects.matrix, matrix);
+    objects.matrix = make_matrix(matrix);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(matrix.rows());
-    objects.rhs = make_vector(n, rhs.data(), indices);
-    objects.solution = make_vector(n, zero.data(), indices);
-    HYPRE_ParCSRMatrix par_matrix = nullptr;
-    HYPRE_ParVector par_rhs = nullptr;
-    HYPRE_ParVector par_solution = nullptr;
-    HYPRE_IJMatrixGetObject(objects.matrix, reinterpret_cast<void**>(&par_matrix));
-    HYPRE_IJVectorGetObject(objects.rhs, reinterpret_cast<void**>(&par_rhs));
-    HYPRE_IJVectorGetObject(objects.solution, reinterpret_cast<void**>(&par_solution));
+    objects.rhs = make_vector(n, rhs.data());
+    objects.solution = make_vector(n, zero.data());
+    HYPRE_ParCSRMatrix par_matrix = objects.matrix;
+    HYPRE_ParVector par_rhs = objects.rhs;
+    HYPRE_ParVector par_solution = objects.solution;
 
     HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &objects.pcg);
     HYPRE_PCGSetMaxIter(objects.pcg, max_iterations);
@@ -165,7 +201,8 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     result.iterations = iterations;
     result.converged = converged != 0;
     result.solution.resize(matrix.rows());
-    HYPRE_IJVectorGetValues(objects.solution, static_cast<HYPRE_Int>(n), indices.data(), result.solution.data());
+    const double* solution = hypre_VectorData(hypre_ParVectorLocalVector(objects.solution));
+    std::copy(solution, solution + n, result.solution.data());
     return result;
 }
 
