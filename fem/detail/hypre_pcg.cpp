@@ -59,16 +59,20 @@ struct HypreObjects {
     }
 };
 
-// One process owns every row: rows [0, n) on rank 0.
-HYPRE_ParVector make_vector(HYPRE_BigInt n, const double* values)
+// A vector of n zeros; one process owns every row: rows [0, n) on rank 0.
+HYPRE_ParVector make_vector(HYPRE_BigInt n)
 {
     HYPRE_BigInt partitioning[2] = {0, n};
     HYPRE_ParVector vector = nullptr;
     HYPRE_ParVectorCreate(MPI_COMM_WORLD, n, partitioning, &vector);
     HYPRE_ParVectorInitialize(vector);
-    double* data = hypre_VectorData(hypre_ParVectorLocalVector(vector));
-    std::copy(values, values + n, data);
+    HYPRE_ParVectorSetConstantValues(vector, 0.0);
     return vector;
+}
+
+double* values_of(HYPRE_ParVector vector)
+{
+    return hypre_VectorData(hypre_ParVectorLocalVector(vector));
 }
 
 // The matrix straight into hypre's ParCSR form, without the IJ interface, which stages every entry and then
@@ -169,12 +173,9 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     const auto n = static_cast<HYPRE_BigInt>(matrix.rows());
     HypreObjects objects;
     objects.matrix = make_matrix(matrix);
-    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(matrix.rows());
-    objects.rhs = make_vector(n, rhs.data());
-    objects.solution = make_vector(n, zero.data());
-    HYPRE_ParCSRMatrix par_matrix = objects.matrix;
-    HYPRE_ParVector par_rhs = objects.rhs;
-    HYPRE_ParVector par_solution = objects.solution;
+    objects.rhs = make_vector(n);
+    std::copy(rhs.data(), rhs.data() + n, values_of(objects.rhs));
+    objects.solution = make_vector(n);
 
     HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &objects.pcg);
     HYPRE_PCGSetMaxIter(objects.pcg, max_iterations);
@@ -187,10 +188,10 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
                         reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), objects.amg);
     result.copy_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    HYPRE_ParCSRPCGSetup(objects.pcg, par_matrix, par_rhs, par_solution);
+    HYPRE_ParCSRPCGSetup(objects.pcg, objects.matrix, objects.rhs, objects.solution);
     result.setup_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
-    HYPRE_ParCSRPCGSolve(objects.pcg, par_matrix, par_rhs, par_solution);
+    HYPRE_ParCSRPCGSolve(objects.pcg, objects.matrix, objects.rhs, objects.solution);
     result.iterate_seconds = seconds_since(start);
     HYPRE_ClearAllErrors();  // non-convergence is reported through the result, not hypre's error flag
 
@@ -201,7 +202,7 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     result.iterations = iterations;
     result.converged = converged != 0;
     result.solution.resize(matrix.rows());
-    const double* solution = hypre_VectorData(hypre_ParVectorLocalVector(objects.solution));
+    const double* solution = values_of(objects.solution);
     std::copy(solution, solution + n, result.solution.data());
     return result;
 }
