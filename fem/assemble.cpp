@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <omp.h>
@@ -78,53 +79,37 @@ std::vector<ElementMatrix> element_matrices(const TetMesh& mesh, const Conductiv
     return matrices;
 }
 
-// Per-thread scratch of the row loops. `slot[v]` is the position of column v in the current row, -1 when
+// Per-thread scratch of the row loop. `slot[v]` is the position of column v in the current row, -1 when
 // v is not in it: a mark array instead of sorting the 4 x (tets around the node) repeated nodes of a row
-// (about 100 for ~15 distinct columns), which made the row loops the bulk of the assembly time.
+// (about 100 for ~15 distinct columns), which made the row loop the bulk of the assembly time.
 struct RowScratch {
     explicit RowScratch(std::size_t nodes) : slot(nodes, -1) {}
     std::vector<int> slot;
-    std::vector<int> columns;
+    std::vector<std::pair<int, double>> entries;  ///< (column, value) of the current row
 };
 
-// The distinct nodes of the tets around `node` (the columns of its row) into `scratch.columns`, unsorted;
-// their slots are left marked (0) until release_columns().
-void gather_columns(const TetMesh& mesh, const detail::NodeTets& incidence, std::size_t node, RowScratch& scratch)
+// Row `node` of K into `scratch.entries`, sorted by column: the sum of its tets' element rows, in
+// increasing tet order for every entry (so the bytes do not depend on how rows are shared among threads).
+void gather_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
+                std::size_t node, RowScratch& scratch)
 {
-    scratch.columns.clear();
-    for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i)
-        for (std::uint32_t v : mesh.tets[incidence.tets[i]])
-            if (scratch.slot[v] < 0) {
-                scratch.slot[v] = 0;
-                scratch.columns.push_back(static_cast<int>(v));
-            }
-}
-
-void release_columns(RowScratch& scratch)
-{
-    for (int column : scratch.columns) scratch.slot[static_cast<std::size_t>(column)] = -1;
-}
-
-// Row `node` of K, whose sorted columns are already in `matrix`: the sum of its tets' element rows in
-// increasing tet order (so the bytes do not depend on how rows are shared among threads).
-void fill_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
-              std::size_t node, SparseMatrix& matrix, RowScratch& scratch)
-{
-    const auto begin = static_cast<std::size_t>(matrix.outerIndexPtr()[node]);
-    const auto size = static_cast<std::size_t>(matrix.outerIndexPtr()[node + 1]) - begin;
-    const int* inner = matrix.innerIndexPtr() + begin;
-    double* values = matrix.valuePtr() + begin;
-    for (std::size_t k = 0; k < size; ++k) {
-        values[k] = 0.0;
-        scratch.slot[static_cast<std::size_t>(inner[k])] = static_cast<int>(k);
-    }
+    scratch.entries.clear();
     for (std::size_t i = incidence.offsets[node]; i < incidence.offsets[node + 1]; ++i) {
         const std::uint32_t t = incidence.tets[i];
         const Tet& tet = mesh.tets[t];
         const int local = static_cast<int>(std::find(tet.begin(), tet.end(), node) - tet.begin());
-        for (int j = 0; j < 4; ++j) values[scratch.slot[tet[j]]] += elements[t][packed(local, j)];
+        for (int j = 0; j < 4; ++j) {
+            int& slot = scratch.slot[tet[j]];
+            if (slot < 0) {
+                slot = static_cast<int>(scratch.entries.size());
+                scratch.entries.emplace_back(static_cast<int>(tet[j]), 0.0);
+            }
+            scratch.entries[static_cast<std::size_t>(slot)].second += elements[t][packed(local, j)];
+        }
     }
-    for (std::size_t k = 0; k < size; ++k) scratch.slot[static_cast<std::size_t>(inner[k])] = -1;
+    for (const auto& entry : scratch.entries) scratch.slot[static_cast<std::size_t>(entry.first)] = -1;
+    std::sort(scratch.entries.begin(), scratch.entries.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
 } // namespace
@@ -138,8 +123,8 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
     SparseMatrix matrix(static_cast<int>(n), static_cast<int>(n));
     std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);
     bool too_large = false;
-    // Each thread gathers the sorted columns of one contiguous block of rows once, keeps them until the
-    // row offsets are known, copies them in and then sums its rows.
+    // Each thread sums the rows of one contiguous block once, keeps them until the row offsets are known,
+    // then copies them in.
 #pragma omp parallel
     {
         const auto threads = static_cast<std::int64_t>(omp_get_num_threads());
@@ -147,12 +132,14 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
         const std::int64_t first = n * thread / threads, last = n * (thread + 1) / threads;
         RowScratch scratch(static_cast<std::size_t>(n));
         std::vector<int> block_columns;
+        std::vector<double> block_values;
         for (std::int64_t v = first; v < last; ++v) {
-            gather_columns(mesh, incidence, static_cast<std::size_t>(v), scratch);
-            std::sort(scratch.columns.begin(), scratch.columns.end());
-            block_columns.insert(block_columns.end(), scratch.columns.begin(), scratch.columns.end());
-            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(scratch.columns.size());
-            release_columns(scratch);
+            gather_row(mesh, incidence, elements, static_cast<std::size_t>(v), scratch);
+            for (const auto& [column, value] : scratch.entries) {
+                block_columns.push_back(column);
+                block_values.push_back(value);
+            }
+            row_start[static_cast<std::size_t>(v) + 1] = static_cast<std::int64_t>(scratch.entries.size());
         }
 #pragma omp barrier
 #pragma omp single
@@ -166,10 +153,9 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
             }
         }
         if (!too_large) {
-            std::copy(block_columns.begin(), block_columns.end(),
-                      matrix.innerIndexPtr() + row_start[static_cast<std::size_t>(first)]);
-            for (std::int64_t v = first; v < last; ++v)
-                fill_row(mesh, incidence, elements, static_cast<std::size_t>(v), matrix, scratch);
+            const std::int64_t at = row_start[static_cast<std::size_t>(first)];
+            std::copy(block_columns.begin(), block_columns.end(), matrix.innerIndexPtr() + at);
+            std::copy(block_values.begin(), block_values.end(), matrix.valuePtr() + at);
         }
     }
     if (too_large)

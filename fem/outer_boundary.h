@@ -18,4 +18,10 @@ struct OuterBoundary {
 /// @throws InputError when a vertex index is out of range or a coordinate is not finite
 OuterBoundary outer_boundary(const TetMesh& mesh);
 
+/// The part of outer_boundary() near a ball: its faces with at least one node within `radius_mm` of
+/// `centre_mm`, and its nodes within that distance; found from the tets around those nodes only (an
+/// electrode's patch without a pass over the whole mesh).
+/// @throws InputError when a vertex index is out of range, or the centre or radius is not finite
+OuterBoundary outer_boundary_near(const TetMesh& mesh, const Vec3& centre_mm, double radius_mm);
+
 } // namespace tissuemesh::fem

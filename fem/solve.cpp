@@ -1,10 +1,14 @@
 #include "fem/solve.h"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
+#include <string>
 
 #include <Eigen/IterativeLinearSolvers>
 
 #include "core/error.h"
+#include "fem/detail/amg_processes.h"
 #include "fem/detail/hypre_pcg.h"
 
 namespace tissuemesh::fem {
@@ -38,6 +42,28 @@ RawSolve solve_jacobi(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, co
     return result;
 }
 
+RawSolve solve_amg(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, const SolverOptions& options,
+                   const Progress& progress, int& processes)
+{
+    const int wanted = options.processes == 0 ? detail::available_cores() : std::max(options.processes, 1);
+    const Eigen::Index share = std::max(options.min_unknowns_per_process, 1);
+    processes = static_cast<int>(std::clamp<Eigen::Index>(matrix.rows() / share, 1, wanted));
+    std::optional<detail::HyprePcgResult> amg;
+    if (processes > 1) {
+        std::string why_not;
+        amg = detail::solve_on_processes(matrix, rhs, {.tolerance = options.relative_tolerance,
+                                                       .max_iterations = options.max_iterations},
+                                         {.processes = processes, .mpiexec = options.mpiexec}, why_not);
+        if (!amg) {
+            progress.warn("solve", concat("AMG-CG on ", processes, " processes failed (", why_not, "); solving in ",
+                                          "one process instead"));
+            processes = 1;
+        }
+    }
+    if (!amg) amg = detail::solve_with_boomeramg(matrix, rhs, options.relative_tolerance, options.max_iterations);
+    return {std::move(amg->solution), amg->iterations, amg->copy_seconds, amg->setup_seconds, amg->iterate_seconds};
+}
+
 } // namespace
 
 Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, const SolverOptions& options,
@@ -55,9 +81,7 @@ Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs
     if (rhs_norm > 0 && rhs.size() > 0) {
         RawSolve raw;
         if (options.preconditioner == Preconditioner::amg) {
-            detail::HyprePcgResult amg = detail::solve_with_boomeramg(matrix, rhs, options.relative_tolerance,
-                                                                      options.max_iterations);
-            raw = {std::move(amg.solution), amg.iterations, amg.copy_seconds, amg.setup_seconds, amg.iterate_seconds};
+            raw = solve_amg(matrix, rhs, options, progress, local.processes);
         } else {
             raw = solve_jacobi(matrix, rhs, options);
         }
@@ -69,7 +93,8 @@ Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs
         local.relative_residual = (rhs - matrix * solution).norm() / rhs_norm;
     }
     local.seconds = seconds_since(start);
-    progress.info("solve", concat(local.preconditioner, "-CG: ", rhs.size(), " unknowns, ", local.iterations,
+    progress.info("solve", concat(local.preconditioner, "-CG", local.processes > 1 ? concat(" on ", local.processes, " processes") : "",
+                                  ": ", rhs.size(), " unknowns, ", local.iterations,
                                   " iterations, relative residual ", local.relative_residual));
     // The recomputed residual may sit slightly above the solver's own estimate (round-off in the
     // recurrence): allow a factor 10 before calling it a failure.

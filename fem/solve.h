@@ -20,11 +20,20 @@ struct SolverOptions {
     Preconditioner preconditioner = Preconditioner::amg;  ///< see Preconditioner
     double relative_tolerance = 1e-10;  ///< stop when ||b - A x||_2 / ||b||_2 falls below this (unitless)
     int max_iterations = 5000;          ///< iteration cap; reaching it without convergence throws
+    /// MPI processes for the AMG-CG (tm-amg-worker under mpiexec; Debian's hypre has no threads, so this is
+    /// how it uses more than one core). 1: in this process; 0: one per core this process may run on. Fewer
+    /// are used when a process would get under min_unknowns_per_process; when the processes cannot run (no
+    /// mpiexec, say) the solve warns and runs here.
+    int processes = 1;
+    /// Starting the processes costs about 0.5 s: each must get at least this many unknowns.
+    int min_unknowns_per_process = 100'000;
+    std::string mpiexec = "mpiexec";  ///< the MPI launcher: a path, or a name looked up in PATH
 };
 
 /// What solve_spd() did.
 struct SolverReport {
     std::string preconditioner;      ///< "jacobi" or "amg"
+    int processes = 1;               ///< MPI processes the AMG-CG ran on
     int iterations = 0;              ///< CG iterations
     double relative_residual = 0;    ///< ||b - A x||_2 / ||b||_2 recomputed from the returned x
     double seconds = 0;              ///< everything below, and the residual check

@@ -192,6 +192,7 @@ int main(int argc, char** argv)
     std::string input, output, conductivity, sensors_path, sensor_output, montage, solver = "amg", dipole_model = "partial-integration";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
+    int processes = 0;
     bool error_indicator = false, vtu_ascii = false;
     return tools::run_tool(
         argc, argv,
@@ -233,6 +234,11 @@ int main(int argc, char** argv)
                            "that tet)")
                 ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
+            app.add_option("--processes", processes,
+                           "MPI processes for the AMG-CG (mpiexec; hypre has no threads here): 0 = one per available "
+                           "core, 1 = none; fewer when each would get under 100 000 unknowns. The iteration count, and "
+                           "so the last digits, depend on it")
+                ->check(CLI::Range(0, 1024));
             app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
             app.add_flag("--error-indicator", error_indicator,
                          "Also write the flux-jump error indicator per tet (error_indicator) and its total to --json");
@@ -258,7 +264,8 @@ int main(int argc, char** argv)
             fem::PotentialReport report;
             const std::vector<double> phi = fem::solve_potential(
                 mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
-                                       .relative_tolerance = tolerance}, context.progress, &report);
+                                       .relative_tolerance = tolerance, .processes = processes},
+                context.progress, &report);
             clock.lap("solve");
             record_solver_phases(report, clock);
             const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
@@ -286,7 +293,8 @@ int main(int argc, char** argv)
             context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
                                report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
             context.summary.update({{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
-                                    {"preconditioner", report.solver.preconditioner}, {"iterations", report.solver.iterations},
+                                    {"preconditioner", report.solver.preconditioner}, {"processes", report.solver.processes},
+                                    {"iterations", report.solver.iterations},
                                     {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
                                     {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
                                     {"sensors", sensors.size()}, {"phase_seconds", clock.phases()},

@@ -5,10 +5,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <mpi.h>
 
 #include <HYPRE.h>
+#include <HYPRE_IJ_mv.h>
 #include <HYPRE_krylov.h>
 #include <HYPRE_parcsr_ls.h>
 #include <HYPRE_parcsr_mv.h>
@@ -49,10 +52,12 @@ struct HypreObjects {
     HYPRE_ParVector solution = nullptr;
     HYPRE_Solver pcg = nullptr;
     HYPRE_Solver amg = nullptr;
+    bool borrowed = false;  ///< matrix and vectors belong to IJ objects
     ~HypreObjects()
     {
         if (amg) HYPRE_BoomerAMGDestroy(amg);
         if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
+        if (borrowed) return;
         if (solution) HYPRE_ParVectorDestroy(solution);
         if (rhs) HYPRE_ParVectorDestroy(rhs);
         if (matrix) HYPRE_ParCSRMatrixDestroy(matrix);
@@ -159,24 +164,14 @@ HYPRE_Solver make_boomeramg()
     return amg;
 }
 
-} // namespace
-
-HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, double tolerance,
-                                    int max_iterations)
+double seconds_since(std::chrono::steady_clock::time_point since)
 {
-    ensure_initialised();
-    auto start = std::chrono::steady_clock::now();
-    const auto seconds_since = [](std::chrono::steady_clock::time_point since) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-    };
-    HyprePcgResult result;
-    const auto n = static_cast<HYPRE_BigInt>(matrix.rows());
-    HypreObjects objects;
-    objects.matrix = make_matrix(matrix);
-    objects.rhs = make_vector(n);
-    std::copy(rhs.data(), rhs.data() + n, values_of(objects.rhs));
-    objects.solution = make_vector(n);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
+}
 
+// Runs the PCG on objects whose matrix and vectors are built; fills the counts and times of `result`.
+void run_pcg(HypreObjects& objects, double tolerance, int max_iterations, HyprePcgResult& result)
+{
     HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &objects.pcg);
     HYPRE_PCGSetMaxIter(objects.pcg, max_iterations);
     HYPRE_PCGSetTol(objects.pcg, tolerance);
@@ -186,8 +181,7 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     objects.amg = make_boomeramg();
     HYPRE_PCGSetPrecond(objects.pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
                         reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), objects.amg);
-    result.copy_seconds = seconds_since(start);
-    start = std::chrono::steady_clock::now();
+    auto start = std::chrono::steady_clock::now();
     HYPRE_ParCSRPCGSetup(objects.pcg, objects.matrix, objects.rhs, objects.solution);
     result.setup_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
@@ -201,9 +195,86 @@ HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::Vec
     HYPRE_PCGGetConverged(objects.pcg, &converged);
     result.iterations = iterations;
     result.converged = converged != 0;
+}
+
+} // namespace
+
+HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, double tolerance,
+                                    int max_iterations)
+{
+    ensure_initialised();
+    const auto start = std::chrono::steady_clock::now();
+    HyprePcgResult result;
+    const auto n = static_cast<HYPRE_BigInt>(matrix.rows());
+    HypreObjects objects;
+    objects.matrix = make_matrix(matrix);
+    objects.rhs = make_vector(n);
+    std::copy(rhs.data(), rhs.data() + n, values_of(objects.rhs));
+    objects.solution = make_vector(n);
+    result.copy_seconds = seconds_since(start);
+    run_pcg(objects, tolerance, max_iterations, result);
     result.solution.resize(matrix.rows());
     const double* solution = values_of(objects.solution);
     std::copy(solution, solution + n, result.solution.data());
+    return result;
+}
+
+// Across processes the matrix goes through hypre's IJ interface, which works out the columns each process
+// needs from the others (the off-diagonal blocks) and puts each row's diagonal entry first.
+HyprePcgResult solve_block_with_boomeramg(const RowBlock& block, double tolerance, int max_iterations)
+{
+    const auto start = std::chrono::steady_clock::now();
+    HyprePcgResult result;
+    const auto rows = static_cast<HYPRE_Int>(block.row_count());
+    const auto first = static_cast<HYPRE_BigInt>(block.first_row);
+    const HYPRE_BigInt last = first + rows - 1;
+    std::vector<HYPRE_Int> sizes(static_cast<std::size_t>(rows));
+    std::vector<HYPRE_BigInt> row_numbers(static_cast<std::size_t>(rows));
+    for (HYPRE_Int r = 0; r < rows; ++r) {
+        sizes[static_cast<std::size_t>(r)] = block.starts[static_cast<std::size_t>(r) + 1] - block.starts[static_cast<std::size_t>(r)];
+        row_numbers[static_cast<std::size_t>(r)] = first + r;
+    }
+    HYPRE_IJMatrix ij_matrix = nullptr;
+    HYPRE_IJVector ij_rhs = nullptr, ij_solution = nullptr;
+    HYPRE_IJMatrixCreate(MPI_COMM_WORLD, first, last, first, last, &ij_matrix);
+    HYPRE_IJMatrixSetObjectType(ij_matrix, HYPRE_PARCSR);
+    HYPRE_IJMatrixSetRowSizes(ij_matrix, sizes.data());
+    HYPRE_IJMatrixInitialize(ij_matrix);
+    HYPRE_IJMatrixSetValues(ij_matrix, rows, sizes.data(), row_numbers.data(), block.columns.data(), block.values.data());
+    HYPRE_IJMatrixAssemble(ij_matrix);
+    const std::vector<double> zeros(static_cast<std::size_t>(rows), 0.0);
+    for (auto [vector, values] : {std::pair{&ij_rhs, block.rhs.data()}, std::pair{&ij_solution, zeros.data()}}) {
+        HYPRE_IJVectorCreate(MPI_COMM_WORLD, first, last, vector);
+        HYPRE_IJVectorSetObjectType(*vector, HYPRE_PARCSR);
+        HYPRE_IJVectorInitialize(*vector);
+        HYPRE_IJVectorSetValues(*vector, rows, row_numbers.data(), values);
+        HYPRE_IJVectorAssemble(*vector);
+    }
+    // The IJ objects own the ParCSR ones: HypreObjects only borrows them, the IJ ones are destroyed last.
+    struct IjOwner {
+        HYPRE_IJMatrix& matrix;
+        HYPRE_IJVector &rhs, &solution;
+        ~IjOwner()
+        {
+            HYPRE_IJVectorDestroy(solution);
+            HYPRE_IJVectorDestroy(rhs);
+            HYPRE_IJMatrixDestroy(matrix);
+        }
+    } ij_owner{ij_matrix, ij_rhs, ij_solution};
+    HypreObjects objects;
+    void* object = nullptr;
+    HYPRE_IJMatrixGetObject(ij_matrix, &object);
+    objects.matrix = static_cast<HYPRE_ParCSRMatrix>(object);
+    HYPRE_IJVectorGetObject(ij_rhs, &object);
+    objects.rhs = static_cast<HYPRE_ParVector>(object);
+    HYPRE_IJVectorGetObject(ij_solution, &object);
+    objects.solution = static_cast<HYPRE_ParVector>(object);
+    objects.borrowed = true;
+    result.copy_seconds = seconds_since(start);
+    run_pcg(objects, tolerance, max_iterations, result);
+    result.solution.resize(rows);
+    const double* solution = values_of(objects.solution);
+    std::copy(solution, solution + rows, result.solution.data());
     return result;
 }
 

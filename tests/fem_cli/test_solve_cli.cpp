@@ -63,6 +63,7 @@ TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
     const nlohmann::json summary = read_json(dir / "summary.json");
     EXPECT_EQ(summary["nodes"], 125);
     EXPECT_GT(summary["iterations"].get<int>(), 0);
+    EXPECT_EQ(summary["processes"], 1);  // --processes 0 (one per core), but 125 nodes are too few to share
     EXPECT_NEAR(summary["min_dihedral_deg"].get<double>(), 45.0, 1e-6);  // Kuhn tets: dihedrals 45, 60, 90 deg
     EXPECT_LE(summary["relative_residual"].get<double>(), 1e-9);
     // J = 2e-3 A / 4e-4 m^2 = 5 A/m^2 everywhere, E = 10 V/m (1e-9: round-off).
