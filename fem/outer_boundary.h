@@ -19,8 +19,9 @@ struct OuterBoundary {
 OuterBoundary outer_boundary(const TetMesh& mesh);
 
 /// The part of outer_boundary() near a ball: its faces with at least one node within `radius_mm` of
-/// `centre_mm`, and its nodes within that distance; found from the tets around those nodes only (an
-/// electrode's patch without a pass over the whole mesh).
+/// `centre_mm`, and its nodes within that distance; the faces are paired only among the tets around those
+/// nodes (an electrode's patch without pairing the faces of the whole mesh). Equal to the cut whole
+/// boundary on conforming meshes (no face in more than two tets; tm-check-mesh counts such faces).
 /// @throws InputError when a vertex index is out of range, or the centre or radius is not finite
 OuterBoundary outer_boundary_near(const TetMesh& mesh, const Vec3& centre_mm, double radius_mm);
 

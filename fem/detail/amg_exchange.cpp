@@ -63,6 +63,7 @@ void close(File file, const std::filesystem::path& path)
 void write_system_file(const std::filesystem::path& path, const SparseMatrix& matrix, const Eigen::VectorXd& rhs,
                        const SolveRequest& request)
 {
+    if (!matrix.isCompressed()) throw AlgorithmError("solver exchange: the matrix is not in compressed rows");
     File file = open_file(path, "wb");
     const std::int64_t header[2] = {matrix.rows(), matrix.nonZeros()};
     const std::int64_t max_iterations = request.max_iterations;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -68,23 +69,34 @@ std::optional<fs::path> find_program(const std::string& program)
     return std::nullopt;
 }
 
-// The worker's environment: ours without the MPI runtime's own variables (an earlier in-process solve
-// leaves its singleton's there, which would mislead the new job), plus what a 2-core machine, a container
-// and root need: no binding to cores, more ranks than hwloc's cores if need be, no cross-memory attach
-// (often forbidden in containers), and Open MPI's consent to run as root.
+// Variables an MPI singleton (an earlier in-process solve) leaves in our environment; passed on, they would
+// tell mpiexec's ranks that they are that singleton's.
+bool singleton_own(std::string_view text)
+{
+    if (text.starts_with("PMIX_")) return true;
+    if (!text.starts_with("OMPI_")) return false;
+    if (!text.starts_with("OMPI_MCA_")) return !text.starts_with("OMPI_ALLOW_RUN_AS_ROOT");  // OMPI_COMMAND, OMPI_APP_CTX_...
+    return text.starts_with("OMPI_MCA_ess") || text.starts_with("OMPI_MCA_orte_") || text.starts_with("OMPI_MCA_pmix");
+}
+
+// The worker's environment: ours without the singleton's variables (the user's own OMPI_MCA_ settings and
+// OPAL_PREFIX stay), plus, where the user has not set them, what a 2-core machine, a container and root
+// need: no binding to cores, more ranks than hwloc's cores if need be, no cross-memory attach (often
+// forbidden in containers), Open MPI's consent to run as root, and one OpenMP thread per rank.
 std::vector<std::string> worker_environment()
 {
     std::vector<std::string> environment;
     for (char** entry = environ; *entry; ++entry) {
         const std::string_view text(*entry);
-        const bool mpi_own = text.starts_with("OMPI_") || text.starts_with("PMIX_") || text.starts_with("OPAL_") ||
-                             text.starts_with("ORTE_") || text.starts_with("OMP_NUM_THREADS=");
-        if (!mpi_own) environment.emplace_back(text);
+        if (!singleton_own(text) && !text.starts_with("OMP_NUM_THREADS=")) environment.emplace_back(text);
     }
-    for (const char* setting : {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
-                                "OMPI_MCA_rmaps_base_oversubscribe=1", "OMPI_MCA_hwloc_base_binding_policy=none",
-                                "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMP_NUM_THREADS=1"})
-        environment.emplace_back(setting);
+    for (const std::string_view setting : {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
+                                           "OMPI_MCA_rmaps_base_oversubscribe=1", "OMPI_MCA_hwloc_base_binding_policy=none",
+                                           "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMP_NUM_THREADS=1"}) {
+        const std::string_view name = setting.substr(0, setting.find('=') + 1);
+        if (std::none_of(environment.begin(), environment.end(), [&](const std::string& kept) { return kept.starts_with(name); }))
+            environment.emplace_back(setting);
+    }
     return environment;
 }
 
@@ -123,24 +135,55 @@ pid_t start_mpiexec(std::vector<std::string> arguments, const fs::path& log)
     return pid;
 }
 
-// Waits for mpiexec; stops it when the ranks have not started in time. Returns its wait status, or
-// nothing after a timeout.
-std::optional<int> wait_for(pid_t pid, const fs::path& started)
+// How mpiexec ended.
+struct Ending {
+    bool started = true;  ///< false: the ranks had not started within start_timeout, and mpiexec was stopped
+    std::optional<int> status;  ///< its wait status; unknown when it was reaped elsewhere (SIGCHLD ignored)
+};
+
+// Stops mpiexec (SIGTERM, on which it takes its ranks down; SIGKILL after 5 s) and reaps it.
+void stop(pid_t pid)
+{
+    kill(pid, SIGTERM);
+    for (int k = 0; k < 500; ++k) {
+        int status = 0;
+        if (waitpid(pid, &status, WNOHANG) != 0) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+}
+
+// Waits for mpiexec; stops it when the ranks have not started in time.
+Ending wait_for(pid_t pid, const fs::path& started)
 {
     const auto begin = std::chrono::steady_clock::now();
     for (;;) {
         int status = 0;
         const pid_t done = waitpid(pid, &status, WNOHANG);
-        if (done == pid) return status;
-        if (done < 0 && errno != EINTR) return std::nullopt;
-        if (!fs::exists(started) && std::chrono::steady_clock::now() - begin > start_timeout) {
-            kill(pid, SIGTERM);
-            std::this_thread::sleep_for(std::chrono::seconds(2));
-            kill(pid, SIGKILL);
-            waitpid(pid, &status, 0);
-            return std::nullopt;
+        if (done == pid) return {true, status};
+        if (done < 0 && errno != EINTR) return {true, std::nullopt};  // ECHILD: reaped by an ignored SIGCHLD
+        std::error_code ignored;
+        if (!fs::exists(started, ignored) && std::chrono::steady_clock::now() - begin > start_timeout) {
+            stop(pid);
+            return {false, std::nullopt};
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
+// The core count of the cgroup's CPU quota (cgroup v2 cpu.max: "QUOTA PERIOD" or "max PERIOD"), if any.
+std::optional<int> cgroup_cores()
+{
+    std::ifstream in("/sys/fs/cgroup/cpu.max");
+    std::string quota;
+    double period = 0;
+    if (!(in >> quota >> period) || quota == "max" || !(period > 0)) return std::nullopt;
+    try {
+        return static_cast<int>(std::ceil(std::stod(quota) / period));
+    } catch (const std::exception&) {
+        return std::nullopt;
     }
 }
 
@@ -150,8 +193,8 @@ int available_cores()
 {
     cpu_set_t set;
     CPU_ZERO(&set);
-    if (sched_getaffinity(0, sizeof(set), &set) != 0) return 1;
-    return std::max(1, CPU_COUNT(&set));
+    const int mask = sched_getaffinity(0, sizeof(set), &set) == 0 ? CPU_COUNT(&set) : 1;
+    return std::max(1, std::min(mask, cgroup_cores().value_or(mask)));
 }
 
 std::optional<HyprePcgResult> solve_on_processes(const SparseMatrix& matrix, const Eigen::VectorXd& rhs,
@@ -178,19 +221,23 @@ std::optional<HyprePcgResult> solve_on_processes(const SparseMatrix& matrix, con
         const pid_t pid = start_mpiexec({mpiexec->string(), "-n", std::to_string(processes), worker.string(),
                                          system.string(), result.string(), started.string()},
                                         log);
-        const std::optional<int> status = wait_for(pid, started);
-        if (!status) {
+        const Ending ending = wait_for(pid, started);
+        if (!ending.started) {
             why_not = concat("MPI did not start ", processes, " processes within ", start_timeout.count(), " s");
             return std::nullopt;
         }
-        if (!WIFEXITED(*status) || WEXITSTATUS(*status) != 0 || !fs::exists(result)) {
-            why_not = concat(launch.mpiexec, " ", WIFEXITED(*status) ? concat("exited with status ", WEXITSTATUS(*status))
-                                                             : std::string("was killed"),
+        std::error_code ignored;
+        const bool exited_cleanly = !ending.status || (WIFEXITED(*ending.status) && WEXITSTATUS(*ending.status) == 0);
+        if (!exited_cleanly || !fs::exists(result, ignored)) {
+            why_not = concat(launch.mpiexec, " ",
+                             !ending.status                ? std::string("ended without a result")
+                             : WIFEXITED(*ending.status) ? concat("exited with status ", WEXITSTATUS(*ending.status))
+                                                         : std::string("was killed"),
                              ": ", last_line(log));
             return std::nullopt;
         }
         return read_result_file(result, matrix.rows());
-    } catch (const IoError& failure) {
+    } catch (const std::exception& failure) {  // IoError, or a filesystem error (no temporary directory)
         why_not = failure.what();
         return std::nullopt;
     }
