@@ -64,9 +64,10 @@ Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities
     double injected_magnitude = 0;
     for (std::size_t e = 0; e < problem.electrodes.size(); ++e) {
         const Electrode& electrode = problem.electrodes[e];
-        const detail::ElectrodePatch patch = detail::electrode_patch(
-            mesh, needs_boundary ? boundary : outer_boundary_near(mesh, electrode.centre_mm, electrode.radius_mm),
-            electrode, e);
+        // Both branches name an lvalue: the whole boundary is not copied per electrode.
+        const OuterBoundary near =
+            needs_boundary ? OuterBoundary{} : outer_boundary_near(mesh, electrode.centre_mm, electrode.radius_mm);
+        const detail::ElectrodePatch patch = detail::electrode_patch(mesh, needs_boundary ? boundary : near, electrode, e);
         report.electrode_nodes.push_back(patch.nodes.size());
         report.electrode_area_mm2.push_back(patch.area_mm2);
         for (std::size_t k = 0; k < patch.nodes.size(); ++k) {

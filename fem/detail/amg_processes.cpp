@@ -155,6 +155,14 @@ void stop(pid_t pid)
     waitpid(pid, &status, 0);
 }
 
+// "exited with status 1", "was killed", or "ended without a result" (status unknown, or 0 but no result).
+std::string how_it_ended(const Ending& ending)
+{
+    if (!ending.status || (WIFEXITED(*ending.status) && WEXITSTATUS(*ending.status) == 0))
+        return "ended without a result";
+    return WIFEXITED(*ending.status) ? concat("exited with status ", WEXITSTATUS(*ending.status)) : "was killed";
+}
+
 // Waits for mpiexec; stops it when the ranks have not started in time.
 Ending wait_for(pid_t pid, const fs::path& started)
 {
@@ -229,11 +237,7 @@ std::optional<HyprePcgResult> solve_on_processes(const SparseMatrix& matrix, con
         std::error_code ignored;
         const bool exited_cleanly = !ending.status || (WIFEXITED(*ending.status) && WEXITSTATUS(*ending.status) == 0);
         if (!exited_cleanly || !fs::exists(result, ignored)) {
-            why_not = concat(launch.mpiexec, " ",
-                             !ending.status                ? std::string("ended without a result")
-                             : WIFEXITED(*ending.status) ? concat("exited with status ", WEXITSTATUS(*ending.status))
-                                                         : std::string("was killed"),
-                             ": ", last_line(log));
+            why_not = concat(launch.mpiexec, " ", how_it_ended(ending), ": ", last_line(log));
             return std::nullopt;
         }
         return read_result_file(result, matrix.rows());
