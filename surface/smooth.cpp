@@ -5,7 +5,9 @@
 #include <optional>
 
 #include "core/error.h"
+#include "surface/detail/cgal_intersections.h"
 #include "surface/detail/complex_editor.h"
+#include "surface/detail/edit_rules.h"
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/label_field.h"
 #include "surface/detail/voxel_evidence.h"
@@ -139,20 +141,122 @@ std::size_t move_held(ComplexEditor& editor, const detail::VoxelEvidence& eviden
     return move_checked(editor, evidence, tissues, vertices, targets, report);
 }
 
-/// One Taubin pair: the lambda and the mu Jacobi step computed together, then only the net move of each
-/// vertex is held to the image and checked (the intermediate, shrunk surface is never kept, so it need
-/// not be valid).
-void step_pair(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvidence& evidence,
-               const std::vector<std::vector<Label>>& tissues, const SmoothOptions& options, SmoothReport& report)
+/// Puts back to `before` the moved vertices of every triangle (of `round`, and then of the stars of the
+/// vertices put back, which may break in turn) that the move from `before` to `now` makes degenerate, gives
+/// an angle below the limit (and below its old one) or tilts beyond the limit: the rules of a single triangle
+/// (ComplexEditor's judge), cheap enough for every pair of a run. Returns the vertices put back.
+std::vector<std::uint32_t> put_back_misshapen(const ComplexEditor& editor, const std::vector<Vec3>& before,
+                                              std::vector<Vec3>& now, std::vector<std::uint32_t> round)
 {
-    const std::vector<Vec3>& now = editor.positions();
-    const std::vector<Vec3> after = jacobi_step(editor, rings, jacobi_step(editor, rings, now, options.lambda), options.mu);
-    std::vector<std::optional<Vec3>> shift(editor.vertex_slots());
-    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
-        const Vec3 s = after[v] - now[v];
-        if (dot(s, s) >= 1e-20) shift[v] = s;  // else flat here (or a corner): nothing to do
+    const detail::AngleLimit min_angle(editor.limits().min_angle_deg), max_tilt(editor.limits().max_normal_change_deg);
+    const auto breaks = [&](std::uint32_t t) {
+        const Triangle& tri = editor.triangle(t);
+        const detail::TriangleCorners was{before[tri[0]], before[tri[1]], before[tri[2]]};
+        const detail::TriangleCorners is{now[tri[0]], now[tri[1]], now[tri[2]]};
+        if (was == is) return false;
+        return detail::are_collinear(is[0], is[1], is[2]) ||
+               (detail::has_angle_below(is, min_angle) &&
+                detail::smallest_angle_deg(is) < detail::smallest_angle_deg(was) - 1e-9) ||
+               detail::tilts_beyond(detail::normal_of(is), detail::normal_of(was), max_tilt);
+    };
+    std::vector<std::uint32_t> back;
+    std::vector<char> broken, listed(editor.triangle_slots(), 0);
+    while (!round.empty()) {
+        broken.assign(round.size(), 0);
+        const auto count = static_cast<std::int64_t>(round.size());
+#pragma omp parallel for schedule(dynamic, 16384) if (count > 16384)
+        for (std::int64_t i = 0; i < count; ++i)
+            broken[static_cast<std::size_t>(i)] = breaks(round[static_cast<std::size_t>(i)]) ? 1 : 0;
+        std::vector<std::uint32_t> next;
+        for (std::size_t i = 0; i < round.size(); ++i) {
+            if (!broken[i]) continue;
+            for (const std::uint32_t v : editor.triangle(round[i])) {
+                if (now[v] == before[v]) continue;
+                now[v] = before[v];
+                back.push_back(v);
+                for (const std::uint32_t t : editor.star(v))
+                    if (!listed[t]) listed[t] = 1, next.push_back(t);
+            }
+        }
+        for (const std::uint32_t t : next) listed[t] = 0;
+        round = std::move(next);
     }
-    move_held(editor, evidence, tissues, shift, report);
+    return back;
+}
+
+/// Holds one pair's move from `before` to `now` to the rules of a single triangle as move_checked() holds a
+/// batch to all rules: the offenders go back, then try half their move, judged against where the others
+/// settled. Returns the moves put back even at half.
+std::size_t hold_to_shape(const ComplexEditor& editor, const detail::VoxelEvidence& evidence,
+                          const std::vector<std::vector<Label>>& tissues, const std::vector<Vec3>& before,
+                          std::vector<Vec3>& now)
+{
+    const std::vector<Vec3> wanted = now;
+    std::vector<std::uint32_t> all;
+    for (std::uint32_t t = 0; t < editor.triangle_slots(); ++t)
+        if (editor.triangle_alive(t)) all.push_back(t);
+    const std::vector<std::uint32_t> back = put_back_misshapen(editor, before, now, std::move(all));
+    const std::vector<Vec3> settled = now;
+    std::vector<std::uint32_t> round;
+    std::size_t refused = 0;
+    for (const std::uint32_t v : back) {
+        const Vec3 half = before[v] + 0.5 * (wanted[v] - before[v]);
+        if (!evidence.allows(half, tissues[v])) {
+            ++refused;
+            continue;
+        }
+        now[v] = half;
+        round.insert(round.end(), editor.star(v).begin(), editor.star(v).end());
+    }
+    std::sort(round.begin(), round.end());
+    round.erase(std::unique(round.begin(), round.end()), round.end());
+    return refused + put_back_misshapen(editor, settled, now, std::move(round)).size();
+}
+
+/// `count` Taubin pairs run on a copy of the positions, each pair's net move of each vertex held to the image
+/// (full, half or none), and only then the net move of the whole run checked against the complex in one
+/// batch (the intermediate surfaces are never kept, so they need not be valid). Checking once for many pairs
+/// judges every triangle once instead of once per pair.
+void step_pairs(ComplexEditor& editor, const Rings& rings, const detail::VoxelEvidence& evidence,
+                const std::vector<std::vector<Label>>& tissues, const SmoothOptions& options, std::size_t count,
+                SmoothReport& report)
+{
+    std::vector<Vec3> now = editor.positions();
+    const auto slots = static_cast<std::int64_t>(editor.vertex_slots());
+    std::vector<char> refused(editor.vertex_slots(), 0);
+    for (std::size_t pair = 0; pair < count; ++pair) {
+        const std::vector<Vec3> after =
+            jacobi_step(editor, rings, jacobi_step(editor, rings, now, options.lambda), options.mu);
+        std::vector<Vec3> next = now;
+#pragma omp parallel for schedule(dynamic, 4096)
+        for (std::int64_t i = 0; i < slots; ++i) {
+            const auto v = static_cast<std::size_t>(i);
+            const Vec3 s = after[v] - now[v];
+            if (dot(s, s) < 1e-20) continue;  // flat here (or a corner): nothing to do
+            const std::optional<Vec3> target = allowed_target(now[v], s, evidence, tissues[v]);
+            if (target) next[v] = *target;
+            else refused[v] = 1;
+        }
+        if (count > 1) report.refused_by_checks += hold_to_shape(editor, evidence, tissues, now, next);
+        now = next;
+        report.refused_by_image += static_cast<std::size_t>(std::count(refused.begin(), refused.end(), 1));
+        std::fill(refused.begin(), refused.end(), 0);
+    }
+    std::vector<std::uint32_t> vertices;
+    std::vector<Vec3> targets;
+    for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v) {
+        const Vec3 s = now[v] - editor.position(v);
+        if (dot(s, s) >= 1e-20) vertices.push_back(v), targets.push_back(now[v]);
+    }
+    // Each pair tilted each triangle at most by the limit; the run as a whole may turn it further, but not over.
+    const detail::EditLimits limits = editor.limits();
+    if (count > 1)
+        editor.set_limits({.min_angle_deg = limits.min_angle_deg,
+                           .max_normal_change_deg = std::min(90.0, static_cast<double>(count) * limits.max_normal_change_deg),
+                           .min_gap_mm = limits.min_gap_mm,
+                           .min_wedge_deg = limits.min_wedge_deg});
+    move_checked(editor, evidence, tissues, vertices, targets, report);
+    editor.set_limits(limits);
 }
 
 /// One fit pass: every patch vertex (two tissues around it) steps towards the zero level of the two
@@ -198,10 +302,12 @@ SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const Sm
     }
     const Rings rings(editor);
     const auto steps = static_cast<double>(options.iterations + options.fit_passes);
-    for (std::size_t i = 0; i < options.iterations; ++i) {
-        step_pair(editor, rings, evidence, tissues, options, report);
-        ++report.iterations;
-        progress.update("smooth", static_cast<double>(i + 1) / steps);
+    const std::size_t per_check = options.pairs_per_check == 0 ? options.iterations : options.pairs_per_check;
+    while (report.iterations < options.iterations) {
+        const std::size_t count = std::min(per_check, options.iterations - report.iterations);
+        step_pairs(editor, rings, evidence, tissues, options, count, report);
+        report.iterations += count;
+        progress.update("smooth", static_cast<double>(report.iterations) / steps);
     }
     const detail::LabelField field(image, background, options.fit_sigma_voxels);
     for (std::size_t i = 0; i < options.fit_passes; ++i) {

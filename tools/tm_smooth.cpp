@@ -34,6 +34,10 @@ int main(int argc, char** argv)
             app.add_option("-o,--output", output, "Smoothed interface complex (.ply or .vtp)")->required();
             app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--iterations", options.iterations, "Taubin step pairs")->check(CLI::NonNegativeNumber)->capture_default_str();
+            app.add_option("--pairs-per-check", options.pairs_per_check,
+                           "Taubin pairs run between two checks against the complex (0: all, checked once)")
+                ->check(CLI::NonNegativeNumber)
+                ->capture_default_str();
             app.add_option("--max-depth-voxels", options.max_depth_voxels,
                            "How far (voxels) a vertex may sit from the voxels of each of its tissues")
                 ->capture_default_str();
