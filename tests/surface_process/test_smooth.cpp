@@ -1,6 +1,8 @@
 // smooth(): terraces become smooth, vertices get closer to the exact phantom surfaces, and the complex
 // stays valid with the same topology.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <iostream>
 
 #include "core/error.h"
@@ -49,6 +51,31 @@ TEST(Smooth, JunctionAt2mm) { check_smoothing("junction", 2.0, 1.25, 0.18); }
 TEST(Smooth, LongThinAt1mm) { check_smoothing("thin", 1.0, 1.25, 0.26); }
 
 TEST(Smooth, LongSpheres4At2mm) { check_smoothing("spheres4", 2.0, 1.25, 0.25); }
+
+// Checking the net move of all ten pairs once judges each triangle once instead of once per pair; the
+// result must stay what pair-by-pair checking gives. Measured on junction at 2 mm: 2 174 of the vertices
+// differ, by 0.0003 voxel on average and at most 0.096 voxel (vertices refused at a different pair).
+TEST(Smooth, CheckingOnceFollowsPairByPair)
+{
+    const image::Phantom phantom = image::make_phantom("junction", {.voxel_mm = 2.0});
+    const InterfaceComplex raw = surface::extract_interfaces(phantom.image);
+    InterfaceComplex once = raw, each = raw;
+    surface::smooth(once, phantom.image, {.pairs_per_check = 0});
+    surface::smooth(each, phantom.image, {.pairs_per_check = 1});
+    ASSERT_EQ(once.vertices.size(), each.vertices.size());
+    EXPECT_TRUE(surface::check_complex(once).ok());
+    double largest = 0, sum = 0, moved = 0;
+    const auto count = static_cast<double>(once.vertices.size());
+    for (std::size_t v = 0; v < once.vertices.size(); ++v) {
+        const double d = distance(once.vertices[v], each.vertices[v]) / 2.0;
+        largest = std::max(largest, d), sum += d, moved += distance(raw.vertices[v], each.vertices[v]) / 2.0;
+    }
+    std::cout << "[ figures  ] junction 2 mm, checked once against pair by pair: mean " << sum / count
+              << " voxel, max " << largest << " voxel (mean displacement " << moved / count << " voxel)\n";
+    EXPECT_LT(sum / count, 0.005);
+    EXPECT_LT(largest, 0.25);
+    EXPECT_GT(moved, 0);
+}
 
 TEST(Smooth, RejectsBadOptions)
 {
