@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "core/error.h"
-#include "surface/detail/cgal_intersections.h"
 #include "surface/detail/complex_editor.h"
 #include "surface/detail/edit_rules.h"
 #include "surface/detail/mesh_measures.h"
@@ -153,11 +152,7 @@ std::vector<std::uint32_t> put_back_misshapen(const ComplexEditor& editor, const
         const Triangle& tri = editor.triangle(t);
         const detail::TriangleCorners was{before[tri[0]], before[tri[1]], before[tri[2]]};
         const detail::TriangleCorners is{now[tri[0]], now[tri[1]], now[tri[2]]};
-        if (was == is) return false;
-        return detail::are_collinear(is[0], is[1], is[2]) ||
-               (detail::has_angle_below(is, min_angle) &&
-                detail::smallest_angle_deg(is) < detail::smallest_angle_deg(was) - 1e-9) ||
-               detail::tilts_beyond(detail::normal_of(is), detail::normal_of(was), max_tilt);
+        return !(was == is) && detail::single_triangle_rule(is, was, min_angle, max_tilt) != detail::TriangleRule::none;
     };
     std::vector<std::uint32_t> back;
     std::vector<char> broken, listed(editor.triangle_slots(), 0);

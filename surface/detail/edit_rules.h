@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "core/interface_complex.h"
 #include "surface/detail/angle_limit.h"
+#include "surface/detail/cgal_intersections.h"
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/plane_side.h"
 #include "surface/detail/triangle_distance.h"
@@ -60,6 +62,19 @@ inline bool tilts_beyond(const Vec3& a, const Vec3& b, const AngleLimit& limit)
 {
     const int order = limit.compare(norm(cross(a, b)), dot(a, b));
     return order != 0 ? order > 0 : angle_between_deg(a, b) > limit.deg();
+}
+
+/// The rules of a single moved triangle, now at `now` and before at `before`: degenerate or given an angle
+/// below `min_angle` (and below its old one) breaks its shape; tilted beyond `max_tilt` it folds.
+enum class TriangleRule : std::uint8_t { none, shape, tilt };
+inline TriangleRule single_triangle_rule(const TriangleCorners& now, const TriangleCorners& before,
+                                         const AngleLimit& min_angle, const AngleLimit& max_tilt)
+{
+    if (are_collinear(now[0], now[1], now[2])) return TriangleRule::shape;
+    if (has_angle_below(now, min_angle) && smallest_angle_deg(now) < smallest_angle_deg(before) - 1e-9)
+        return TriangleRule::shape;
+    if (tilts_beyond(normal_of(now), normal_of(before), max_tilt)) return TriangleRule::tilt;
+    return TriangleRule::none;
 }
 
 /// A cheap sufficient test for distance(a, b) > gap: the bounding spheres around the centroids are apart.

@@ -28,9 +28,11 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
 {
     const Triangle& tri = triangles_[t];
     const TriangleCorners now = corners(t), before = corners_at(start, tri);
-    if (are_collinear(now[0], now[1], now[2])) return shape_rule;
-    if (has_angle_below(now, min_angle_) && smallest_angle_deg(now) < smallest_angle_deg(before) - 1e-9) return shape_rule;
-    if (tilts_beyond(normal_of(now), normal_of(before), max_tilt_)) return normal_rule;
+    switch (single_triangle_rule(now, before, min_angle_, max_tilt_)) {
+    case TriangleRule::shape: return shape_rule;
+    case TriangleRule::tilt: return normal_rule;
+    case TriangleRule::none: break;
+    }
     const double gap = limits_.min_gap_mm;
     const Box3 box = bounding_box(now, gap), tight = bounding_box(now);
     // Every triangle whose box meets `box`, in the index's order (deterministic; which rule is found
