@@ -1,25 +1,22 @@
 #include "surface/decimate.h"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
-
-#include <OpenMesh/Core/Utils/vector_traits.hh>
-#include <OpenMesh/Core/Geometry/QuadricT.hh>
-#include <OpenMesh/Core/Geometry/VectorT.hh>
+#include <chrono>
+#include <exception>
 
 #include "core/error.h"
-#include "surface/detail/complex_editor.h"
+#include "surface/detail/decimator.h"
 #include "surface/detail/mesh_measures.h"
-#include "surface/detail/vertex_queue.h"
 
 namespace tissuemesh::surface {
 namespace {
 
-using detail::ComplexEditor;
-using detail::TriangleCorners;
-using detail::VertexKind;
-using Quadric = OpenMesh::Geometry::QuadricT<double>;
+using detail::Carried;
+using detail::Decimator;
+using detail::Fence;
+using detail::Piece;
+using detail::Quadric;
+using detail::Slab;
 
 void validate(const DecimateOptions& options)
 {
@@ -38,265 +35,104 @@ void validate(const DecimateOptions& options)
                                     pair.second, " must be positive"));
 }
 
-class Decimator {
-public:
-    /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in.
-    Decimator(InterfaceComplex&& complex, double cell_mm, const DecimateOptions& options, DecimateReport& report)
-        : options_(options), report_(report),
-          editor_(std::move(complex),
-                  {.min_angle_deg = options.min_angle_deg,
-                   .max_normal_change_deg = options.max_normal_change_deg,
-                   .min_gap_mm = options.min_gap_mm},
-                  cell_mm),
-          quadrics_(editor_.vertex_slots()), samples_(editor_.triangle_slots())
-    {
-        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
-            const TriangleCorners c = editor_.corners(t);
-            const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
-            const double area2 = norm(n);
-            if (area2 <= 0) continue;
-            const Vec3 u = (1.0 / area2) * n;
-            Quadric plane(u[0], u[1], u[2], -dot(u, c[0]));
-            plane *= 0.5 * area2;  // area-weighted
-            for (const std::uint32_t v : editor_.triangle(t)) quadrics_[v] += plane;
-        }
-        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
-            if (editor_.vertex_alive(v)) samples_[editor_.star(v).front()].push_back(v);
-    }
+/// How many slabs to decimate side by side: options.slabs, or one per 400 000 triangles (at most 8); one
+/// when a triangle count must stop the decimation (the count is global).
+std::size_t piece_count(const InterfaceComplex& complex, const DecimateOptions& options)
+{
+    if (options.target_triangles > 0) return 1;
+    if (options.slabs > 0) return options.slabs;
+    return std::clamp<std::size_t>(complex.triangle_count() / 400'000, 1, 8);
+}
 
-    void collapse_all(const Progress& progress)
-    {
-        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) enqueue(v);
-        const std::size_t start = editor_.triangle_count();
-        std::size_t next_rebuild = start / 2;
-        while (!queue_.empty()) {
-            if (options_.target_triangles > 0 && editor_.triangle_count() <= options_.target_triangles) break;
-            const detail::VertexQueue::Entry c = queue_.top();
-            queue_.pop();
-            if (!editor_.vertex_alive(c.v)) continue;
-            const std::optional<std::uint32_t> w = collapse_cheapest(c.v);
-            if (!w) continue;
-            ++report_.collapses;
-            enqueue(*w);
-            editor_.ring(*w, around_);
-            for (const ComplexEditor::RingEntry& e : around_) enqueue(e.vertex);
-            if (editor_.triangle_count() < next_rebuild) {
-                editor_.rebuild_grid(2 * editor_.mean_edge_length());
-                next_rebuild = editor_.triangle_count() / 2;
-                progress.update("decimate", 1.0 - static_cast<double>(editor_.triangle_count()) / static_cast<double>(start));
-            }
+/// The initial state of a slab, numbered as the slab: the quadrics of its vertices and the samples of its
+/// triangles (at the start each sample is a corner of its triangle).
+Carried slab_carried(const InterfaceComplex& complex, const Carried& carried, const detail::SlabPiece& slab)
+{
+    Carried local{std::vector<Quadric>(slab.from_vertex.size()),
+                  std::vector<std::vector<std::uint32_t>>(slab.from_triangle.size())};
+    for (std::size_t v = 0; v < slab.from_vertex.size(); ++v) local.quadrics[v] = carried.quadrics[slab.from_vertex[v]];
+    for (std::size_t t = 0; t < slab.from_triangle.size(); ++t) {
+        const Triangle& whole = complex.triangles[slab.from_triangle[t]];
+        for (const std::uint32_t s : carried.samples[slab.from_triangle[t]]) {
+            const auto k = static_cast<std::size_t>(std::find(whole.begin(), whole.end(), s) - whole.begin());
+            if (k == 3) throw AlgorithmError("decimate: a sample is not a corner of its triangle (internal error)");
+            local.samples[t].push_back(slab.complex.triangles[t][k]);
         }
     }
+    return local;
+}
 
-    void split_long_edges()
-    {
-        std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
-        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
-            if (!editor_.triangle_alive(t)) continue;
-            const Triangle& tri = editor_.triangle(t);
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
-                const double length = distance(editor_.position(a), editor_.position(b));
-                if (length > 4.0 / 3.0 * target_edge(a, b)) edges.push_back({-length, {a, b}});
-            }
+/// Decimates `count` slabs of the complex on their own (in parallel), each fenced off from the others, and
+/// puts them together: the complex (numbered as before, dead vertices kept) and what it carries, plus in
+/// `seams` the vertices the fences held back, where the last pass over the whole starts. The result does
+/// not depend on the thread count.
+InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried, std::size_t count,
+                                   const DecimateOptions& options, DecimateReport& report, const Progress& progress,
+                                   std::vector<std::uint32_t>& seams)
+{
+    const auto began = std::chrono::steady_clock::now();
+    const std::vector<Slab> slabs = detail::cut_into_slabs(complex, count);
+    report.slabs = slabs.size();
+    std::vector<Piece> pieces(slabs.size());
+    // Wider than the gap: changes in neighbouring slabs stay further apart than the gap (slabs.h).
+    const double margin_mm = options.min_gap_mm + 0.01;
+    std::exception_ptr failure;
+    std::size_t done = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < slabs.size(); ++k) {
+        try {
+            detail::SlabPiece slab = detail::slab_piece(complex, slabs[k]);
+            Carried local = slab_carried(complex, carried, slab);
+            const double cell_mm = 2 * detail::mean_edge_length(slab.complex);
+            Decimator decimator(std::move(slab.complex), std::move(local), cell_mm, options, pieces[k].report,
+                                Fence{slabs[k], margin_mm});
+            decimator.collapse_all({});
+            decimator.hand_over(slab.from_vertex, pieces[k]);
+        } catch (...) {
+#pragma omp critical(decimate_failure)
+            if (!failure) failure = std::current_exception();
         }
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        for (const auto& [length, edge] : edges) {
-            const auto [a, b] = edge;
-            if (editor_.edge_multiplicity(a, b) == 0) continue;
-            const std::optional<std::uint32_t> m =
-                editor_.try_split(a, b, 0.5 * (editor_.position(a) + editor_.position(b)));
-            if (!m) continue;
-            ++report_.splits;
-            redistribute_samples(*m);
+#pragma omp critical(decimate_progress)
+        progress.update("decimate", 0.9 * static_cast<double>(++done) / static_cast<double>(slabs.size()));
+    }
+    if (failure) std::rethrow_exception(failure);
+    std::size_t samples_before = 0, samples_after = 0;
+    for (const std::vector<std::uint32_t>& samples : carried.samples) samples_before += samples.size();
+    InterfaceComplex whole;
+    whole.vertices = std::move(complex.vertices);
+    whole.names = std::move(complex.names);
+    whole.background = complex.background;
+    carried.samples.clear();
+    for (Piece& piece : pieces) {
+        for (std::size_t t = 0; t < piece.triangles.size(); ++t) {
+            whole.add_triangle(piece.triangles[t], piece.sides[t]);
+            samples_after += piece.samples[t].size();
+            carried.samples.push_back(std::move(piece.samples[t]));
         }
+        for (const auto& [v, quadric] : piece.quadrics) carried.quadrics[v] = quadric;
+        seams.insert(seams.end(), piece.fenced.begin(), piece.fenced.end());
+        report.collapses += piece.report.collapses;
+        report.refused_by_distance += piece.report.refused_by_distance;
+        report.refused_by_checks += piece.report.refused_by_checks;
+        report.max_distance_mm = std::max(report.max_distance_mm, piece.report.max_distance_mm);
+        detail::add_counters(report, {.topology = piece.report.refused_topology, .shape = piece.report.refused_shape,
+                              .normal = piece.report.refused_fold, .intersection = piece.report.refused_intersection,
+                              .gap = piece.report.refused_gap, .wedge = piece.report.refused_wedge});
     }
-
-    InterfaceComplex result() const { return editor_.result(); }
-    const ComplexEditor& editor() const { return editor_; }
-
-private:
-    /// Size mode: the target edge length for edge ab, the smallest over the tissue pairs around it.
-    double target_edge(std::uint32_t a, std::uint32_t b) const
-    {
-        double target = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
-        if (options_.target_edge_mm_by_pair.empty()) return target;
-        double by_pair = std::numeric_limits<double>::max();
-        for (const std::uint32_t t : editor_.star(a)) {
-            const Triangle& tri = editor_.triangle(t);
-            if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
-            const LabelPair& side = editor_.side(t);
-            for (const auto& key : {std::pair{side.from, side.to}, std::pair{side.to, side.from}})
-                if (const auto it = options_.target_edge_mm_by_pair.find(key); it != options_.target_edge_mm_by_pair.end())
-                    by_pair = std::min(by_pair, it->second);
-        }
-        return by_pair < std::numeric_limits<double>::max() ? by_pair : target;
-    }
-
-    /// The cost of collapsing v into w.
-    std::optional<double> cost(std::uint32_t v, std::uint32_t w) const
-    {
-        const Vec3& p = editor_.position(w);
-        if (options_.mode == DecimateMode::size) {
-            const double length = distance(editor_.position(v), p), target = target_edge(v, w);
-            if (length >= 0.8 * target) return std::nullopt;
-            return length / target;
-        }
-        Quadric q = quadrics_[v];
-        q += quadrics_[w];
-        return q(OpenMesh::Vec3d(p[0], p[1], p[2]));
-    }
-
-    /// Allowed targets of v (curve neighbours for curve vertices), cheapest first.
-    std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const
-    {
-        std::vector<std::pair<double, std::uint32_t>> targets;
-        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
-        std::sort(targets.begin(), targets.end());
-        return targets;
-    }
-
-    /// Calls visit(cost, w) for every allowed target w of v (curve neighbours for curve vertices).
-    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const
-    {
-        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return;
-        const bool curve = editor_.kind(v) == VertexKind::curve;
-        editor_.ring(v, ring_);
-        for (const ComplexEditor::RingEntry& e : ring_)
-            if (!curve || e.triangles >= 3)
-                if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
-    }
-
-    /// Queues v with the cost of its cheapest collapse (ties: the lowest target).
-    void enqueue(std::uint32_t v)
-    {
-        std::pair<double, std::uint32_t> best{0, 0};
-        bool any = false;
-        for_each_target(v, [&](double c, std::uint32_t w) {
-            if (!any || std::pair{c, w} < best) best = {c, w}, any = true;
-        });
-        if (!any) queue_.erase(v);
-        else queue_.set({best.first, v, best.second});
-    }
-
-    /// Tries v's collapses cheapest first; returns the target it collapsed into.
-    std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v)
-    {
-        for (const auto& [c, w] : targets_of(v))
-            if (collapse(v, w)) return w;
-        return std::nullopt;
-    }
-
-    /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
-    /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
-    /// (the answer is the same, most closest-point computations are saved).
-    bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
-                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
-    {
-        std::vector<std::pair<Vec3, double>>& spheres = spheres_;
-        spheres.clear();
-        for (const TriangleCorners& c : shapes) {
-            const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
-            spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
-        }
-        for (const std::uint32_t t : sources)
-            for (const std::uint32_t s : samples_[t]) {
-                const Vec3& p = editor_.position(s);
-                std::size_t nearest = 0;
-                double best = std::numeric_limits<double>::max();
-                for (std::size_t i = 0; i < shapes.size(); ++i) {
-                    if (distance(p, spheres[i].first) - spheres[i].second >= best) continue;
-                    const double d = distance(p, detail::closest_point_on_triangle(p, shapes[i]));
-                    if (d < best) best = d, nearest = i;
-                }
-                if (best > options_.max_distance_mm) return false;
-                worst = std::max(worst, best);
-                assignment.emplace_back(nearest, s);
-            }
-        return true;
-    }
-
-    /// Collapses v into w if the editor and the distance bound allow it. The bound is asked (through the
-    /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
-    bool collapse(std::uint32_t v, std::uint32_t w)
-    {
-        // Scratch kept between calls: collapses are tried millions of times.
-        std::vector<std::uint32_t>& targets = targets_;
-        std::vector<std::uint32_t>& sources = sources_;
-        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
-        std::vector<TriangleCorners>& shapes = shapes_;
-        targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
-        double worst = 0;
-        bool too_far = false;
-        const auto within_bound = [&] {
-            for (const std::uint32_t t : editor_.star(v)) {
-                sources.push_back(t);
-                const Triangle& tri = editor_.triangle(t);
-                if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
-                TriangleCorners c = editor_.corners(t);
-                for (int k = 0; k < 3; ++k)
-                    if (tri[k] == v) c[k] = editor_.position(w);
-                targets.push_back(t);
-                shapes.push_back(c);
-            }
-            for (const std::uint32_t t : editor_.star(w)) {
-                const Triangle& tri = editor_.triangle(t);
-                if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
-                targets.push_back(t);
-                shapes.push_back(editor_.corners(t));
-            }
-            // Every input vertex the changed triangles answer for must stay within the bound.
-            too_far = !assign_samples(sources, shapes, assignment, worst);
-            return !too_far;
-        };
-        if (!editor_.try_collapse(v, w, within_bound)) {
-            ++(too_far ? report_.refused_by_distance : report_.refused_by_checks);
-            return false;
-        }
-        for (const std::uint32_t t : sources) samples_[t].clear();
-        for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
-        quadrics_[w] += quadrics_[v];
-        report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
-        return true;
-    }
-
-    /// After a split at m, each sample of the split triangles goes to the nearer half.
-    void redistribute_samples(std::uint32_t m)
-    {
-        if (samples_.size() < editor_.triangle_slots()) samples_.resize(editor_.triangle_slots());
-        if (quadrics_.size() < editor_.vertex_slots()) quadrics_.resize(editor_.vertex_slots());
-        std::vector<std::uint32_t> pool;
-        const std::vector<std::uint32_t>& star = editor_.star(m);
-        for (const std::uint32_t t : star) {
-            pool.insert(pool.end(), samples_[t].begin(), samples_[t].end());
-            samples_[t].clear();
-        }
-        for (const std::uint32_t s : pool) {
-            const Vec3& p = editor_.position(s);
-            std::uint32_t nearest = star.front();
-            double best = std::numeric_limits<double>::max();
-            for (const std::uint32_t t : star) {
-                const double d = distance(p, detail::closest_point_on_triangle(p, editor_.corners(t)));
-                if (d < best) best = d, nearest = t;
-            }
-            samples_[nearest].push_back(s);
-        }
-    }
-
-    const DecimateOptions& options_;
-    DecimateReport& report_;
-    ComplexEditor editor_;
-    std::vector<Quadric> quadrics_;
-    std::vector<std::vector<std::uint32_t>> samples_;
-    detail::VertexQueue queue_;  ///< per vertex its cheapest collapse
-    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()
-    std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
-    std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
-    std::vector<TriangleCorners> shapes_;
-    mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
-    std::vector<ComplexEditor::RingEntry> around_;        ///< scratch of collapse_all()
-};
+    // Every input vertex is answered for by exactly one triangle: a slab that lost or doubled one would
+    // leave the distance bound unchecked there.
+    if (samples_after != samples_before)
+        throw AlgorithmError(concat("decimate: the slabs answer for ", samples_after, " input vertices instead of ",
+                                    samples_before, " (internal error)"));
+    std::sort(seams.begin(), seams.end());
+    seams.erase(std::unique(seams.begin(), seams.end()), seams.end());
+    progress.debug("decimate", concat(slabs.size(), " slabs: ", report.triangles_before, " -> ",
+                                      whole.triangle_count(), " triangles, ", seams.size(),
+                                      " vertices held back at the seams (",
+                                      format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1),
+                                      " s)"));
+    return whole;
+}
 
 } // namespace
 
@@ -306,18 +142,18 @@ DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& option
     validate_indices(complex, "decimate input");
     DecimateReport report;
     report.triangles_before = complex.triangle_count();
+    Carried carried = detail::initial_carried(complex);
+    // Large complexes: slabs side by side first, then one pass over the whole from the seams between them.
+    const std::size_t pieces = piece_count(complex, options);
+    std::vector<std::uint32_t> seams;
+    if (pieces > 1)
+        complex = decimate_in_slabs(std::move(complex), carried, pieces, options, report, progress, seams);
     const double cell_mm = 2 * detail::mean_edge_length(complex);
-    Decimator decimator(std::move(complex), cell_mm, options, report);
-    decimator.collapse_all(progress);
+    Decimator decimator(std::move(complex), std::move(carried), cell_mm, options, report);
+    decimator.collapse_all(progress, pieces > 1 ? &seams : nullptr);
     if (options.mode == DecimateMode::size) decimator.split_long_edges();
     complex = decimator.result();
-    const detail::EditCounters& counters = decimator.editor().counters();
-    report.refused_topology = counters.topology;
-    report.refused_shape = counters.shape;
-    report.refused_fold = counters.normal;
-    report.refused_intersection = counters.intersection;
-    report.refused_gap = counters.gap;
-    report.refused_wedge = counters.wedge;
+    detail::add_counters(report, decimator.editor().counters());
     report.triangles_after = complex.triangle_count();
     progress.info("decimate", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; ",
                                      report.refused_by_distance, " collapses refused by the distance bound, ",

@@ -31,6 +31,10 @@ struct DecimateOptions {
     double target_edge_mm = 0;
     /// Size mode: target edge length per tissue pair (either order), overriding target_edge_mm.
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
+    /// Slabs decimated side by side (in parallel) before one pass over the whole from the seams between
+    /// them; 0: one per 400 000 triangles, at most 8. The result depends on it, never on the thread count.
+    /// With target_triangles (a global count) there is one slab.
+    std::size_t slabs = 0;
 };
 
 /// What decimate() did.
@@ -39,6 +43,7 @@ struct DecimateReport {
     std::size_t triangles_after = 0;
     std::size_t collapses = 0;
     std::size_t splits = 0;
+    std::size_t slabs = 1;                ///< slabs decimated side by side (DecimateOptions::slabs)
     std::size_t refused_by_distance = 0;  ///< collapses that would leave an input vertex too far
     std::size_t refused_by_checks = 0;    ///< collapses refused as invalid (the five below)
     std::size_t refused_topology = 0;     ///< link condition, junction rules

@@ -43,6 +43,11 @@ int main(int argc, char** argv)
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
             app.add_option("--target-edge-mm", options.target_edge_mm, "Size mode: target edge length")
                 ->capture_default_str();
+            app.add_option("--slabs", options.slabs,
+                           "Slabs decimated side by side (in parallel), then one pass over their seams; 0: one per "
+                           "400 000 triangles, at most 8 (the result depends on it, not on the thread count; one "
+                           "with --target-triangles)")
+                ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
@@ -63,6 +68,7 @@ int main(int argc, char** argv)
                            {"triangles_after", report.triangles_after},
                            {"collapses", report.collapses},
                            {"splits", report.splits},
+                           {"slabs", report.slabs},
                            {"refused_by_distance", report.refused_by_distance},
                            {"refused_topology", report.refused_topology},
                            {"refused_shape", report.refused_shape},

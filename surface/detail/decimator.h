@@ -1,0 +1,387 @@
+// Decimator: the collapse loop of decimate() over one ComplexEditor (the whole complex, or one slab of it
+// fenced off from the others), with what it carries along: per vertex a quadric, per triangle the input
+// vertices it answers for (the distance bound). Included by decimate.cpp only.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include <OpenMesh/Core/Utils/vector_traits.hh>
+#include <OpenMesh/Core/Geometry/QuadricT.hh>
+#include <OpenMesh/Core/Geometry/VectorT.hh>
+
+#include "core/progress.h"
+#include "surface/decimate.h"
+#include "surface/detail/complex_editor.h"
+#include "surface/detail/slabs.h"
+#include "surface/detail/vertex_queue.h"
+
+namespace tissuemesh::surface::detail {
+
+using Quadric = OpenMesh::Geometry::QuadricT<double>;
+
+/// What decimation carries along besides the complex: per vertex the quadric of the planes merged into it,
+/// per triangle the input vertices it answers for (the distance bound).
+struct Carried {
+    std::vector<Quadric> quadrics;
+    std::vector<std::vector<std::uint32_t>> samples;
+};
+
+/// The quadric of each vertex's triangles (area-weighted planes); each vertex its own sample, held by the
+/// first triangle around it.
+inline Carried initial_carried(const InterfaceComplex& complex)
+{
+    Carried carried{std::vector<Quadric>(complex.vertices.size()),
+                    std::vector<std::vector<std::uint32_t>>(complex.triangles.size())};
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> first(complex.vertices.size(), none);
+    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t) {
+        const Triangle& tri = complex.triangles[t];
+        for (const std::uint32_t v : tri)
+            if (first[v] == none) first[v] = t;
+        const TriangleCorners c{complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]};
+        const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
+        const double area2 = norm(n);
+        if (area2 <= 0) continue;
+        const Vec3 u = (1.0 / area2) * n;  // the plane's sign does not matter to its quadric
+        Quadric plane(u[0], u[1], u[2], -dot(u, c[0]));
+        plane *= 0.5 * area2;  // area-weighted
+        for (const std::uint32_t v : tri) carried.quadrics[v] += plane;
+    }
+    for (std::uint32_t v = 0; v < complex.vertices.size(); ++v)
+        if (first[v] != none) carried.samples[first[v]].push_back(v);
+    return carried;
+}
+
+/// A slab's share of a decimation in pieces, numbered as the whole complex.
+struct Piece {
+    std::vector<Triangle> triangles;  ///< the alive triangles the slab owns (slabs.h)
+    std::vector<LabelPair> sides;
+    std::vector<std::vector<std::uint32_t>> samples;          ///< per owned triangle
+    std::vector<std::pair<std::uint32_t, Quadric>> quadrics;  ///< per alive vertex the slab owns
+    std::vector<std::uint32_t> fenced;  ///< alive vertices whose collapse the fence refused
+    DecimateReport report;              ///< counts of the slab's collapses and refusals
+};
+
+/// Adds the editor's refusal counts to a report.
+inline void add_counters(DecimateReport& report, const EditCounters& counters)
+{
+    report.refused_topology += counters.topology;
+    report.refused_shape += counters.shape;
+    report.refused_fold += counters.normal;
+    report.refused_intersection += counters.intersection;
+    report.refused_gap += counters.gap;
+    report.refused_wedge += counters.wedge;
+}
+
+/// Where a decimator may change triangles: only those whose boxes lie inside `slab` shrunk by `margin_mm`
+/// (see slabs.h).
+struct Fence {
+    Slab slab;
+    double margin_mm = 0;
+};
+
+class Decimator {
+public:
+    /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in. `carried` is indexed like
+    /// `complex`.
+    Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
+              DecimateReport& report, std::optional<Fence> fence = std::nullopt)
+        : options_(options), report_(report),
+          editor_(std::move(complex),
+                  {.min_angle_deg = options.min_angle_deg,
+                   .max_normal_change_deg = options.max_normal_change_deg,
+                   .min_gap_mm = options.min_gap_mm},
+                  cell_mm),
+          quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), fence_(fence)
+    {
+    }
+
+    /// Collapses cheapest first, starting from every vertex or, when given, from `seeds` only (the others
+    /// are tried when a collapse changes their neighbourhood).
+    void collapse_all(const Progress& progress, const std::vector<std::uint32_t>* seeds = nullptr)
+    {
+        if (seeds) {
+            for (const std::uint32_t v : *seeds) enqueue(v);
+        } else {
+            for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) enqueue(v);
+        }
+        const std::size_t start = editor_.triangle_count();
+        std::size_t next_rebuild = start / 2;
+        while (!queue_.empty()) {
+            if (options_.target_triangles > 0 && editor_.triangle_count() <= options_.target_triangles) break;
+            const VertexQueue::Entry c = queue_.top();
+            queue_.pop();
+            if (!editor_.vertex_alive(c.v)) continue;
+            const std::optional<std::uint32_t> w = collapse_cheapest(c.v);
+            if (!w) continue;
+            ++report_.collapses;
+            enqueue(*w);
+            editor_.ring(*w, around_);
+            for (const ComplexEditor::RingEntry& e : around_) enqueue(e.vertex);
+            if (editor_.triangle_count() < next_rebuild) {
+                editor_.rebuild_grid(2 * editor_.mean_edge_length());
+                next_rebuild = editor_.triangle_count() / 2;
+                progress.update("decimate", 1.0 - static_cast<double>(editor_.triangle_count()) / static_cast<double>(start));
+            }
+        }
+    }
+
+    void split_long_edges()
+    {
+        std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
+            if (!editor_.triangle_alive(t)) continue;
+            const Triangle& tri = editor_.triangle(t);
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
+                const double length = distance(editor_.position(a), editor_.position(b));
+                if (length > 4.0 / 3.0 * target_edge(a, b)) edges.push_back({-length, {a, b}});
+            }
+        }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        for (const auto& [length, edge] : edges) {
+            const auto [a, b] = edge;
+            if (editor_.edge_multiplicity(a, b) == 0) continue;
+            const std::optional<std::uint32_t> m =
+                editor_.try_split(a, b, 0.5 * (editor_.position(a) + editor_.position(b)));
+            if (!m) continue;
+            ++report_.splits;
+            redistribute_samples(*m);
+        }
+    }
+
+    InterfaceComplex result() const { return editor_.result(); }
+
+    /// A fenced decimator's share of the whole (numbered through `from_vertex`: per own vertex, its index
+    /// in the whole), into `piece`.
+    void hand_over(const std::vector<std::uint32_t>& from_vertex, Piece& piece) const
+    {
+        const Slab& slab = fence_->slab;
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
+            if (!editor_.triangle_alive(t)) continue;
+            const TriangleCorners c = editor_.corners(t);
+            if (!slab.owns(std::min({c[0][slab.axis], c[1][slab.axis], c[2][slab.axis]}))) continue;
+            Triangle tri = editor_.triangle(t);
+            for (std::uint32_t& v : tri) v = from_vertex[v];
+            piece.triangles.push_back(tri);
+            piece.sides.push_back(editor_.side(t));
+            std::vector<std::uint32_t>& samples = piece.samples.emplace_back();
+            for (const std::uint32_t s : samples_[t]) samples.push_back(from_vertex[s]);
+        }
+        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
+            if (editor_.vertex_alive(v) && slab.owns(editor_.position(v)[slab.axis]))
+                piece.quadrics.emplace_back(from_vertex[v], quadrics_[v]);
+        for (const std::uint32_t v : fenced_)
+            if (editor_.vertex_alive(v)) piece.fenced.push_back(from_vertex[v]);
+        add_counters(piece.report, editor_.counters());
+    }
+    const ComplexEditor& editor() const { return editor_; }
+
+private:
+    /// Size mode: the target edge length for edge ab, the smallest over the tissue pairs around it.
+    double target_edge(std::uint32_t a, std::uint32_t b) const
+    {
+        double target = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
+        if (options_.target_edge_mm_by_pair.empty()) return target;
+        double by_pair = std::numeric_limits<double>::max();
+        for (const std::uint32_t t : editor_.star(a)) {
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
+            const LabelPair& side = editor_.side(t);
+            for (const auto& key : {std::pair{side.from, side.to}, std::pair{side.to, side.from}})
+                if (const auto it = options_.target_edge_mm_by_pair.find(key); it != options_.target_edge_mm_by_pair.end())
+                    by_pair = std::min(by_pair, it->second);
+        }
+        return by_pair < std::numeric_limits<double>::max() ? by_pair : target;
+    }
+
+    /// The cost of collapsing v into w.
+    std::optional<double> cost(std::uint32_t v, std::uint32_t w) const
+    {
+        const Vec3& p = editor_.position(w);
+        if (options_.mode == DecimateMode::size) {
+            const double length = distance(editor_.position(v), p), target = target_edge(v, w);
+            if (length >= 0.8 * target) return std::nullopt;
+            return length / target;
+        }
+        Quadric q = quadrics_[v];
+        q += quadrics_[w];
+        return q(OpenMesh::Vec3d(p[0], p[1], p[2]));
+    }
+
+    /// Allowed targets of v (curve neighbours for curve vertices), cheapest first.
+    std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const
+    {
+        std::vector<std::pair<double, std::uint32_t>> targets;
+        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
+        std::sort(targets.begin(), targets.end());
+        return targets;
+    }
+
+    /// Calls visit(cost, w) for every allowed target w of v (curve neighbours for curve vertices).
+    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const
+    {
+        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return;
+        const bool curve = editor_.kind(v) == VertexKind::curve;
+        editor_.ring(v, ring_);
+        for (const ComplexEditor::RingEntry& e : ring_)
+            if (!curve || e.triangles >= 3)
+                if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
+    }
+
+    /// Queues v with the cost of its cheapest collapse (ties: the lowest target).
+    void enqueue(std::uint32_t v)
+    {
+        std::pair<double, std::uint32_t> best{0, 0};
+        bool any = false;
+        for_each_target(v, [&](double c, std::uint32_t w) {
+            if (!any || std::pair{c, w} < best) best = {c, w}, any = true;
+        });
+        if (!any) queue_.erase(v);
+        else queue_.set({best.first, v, best.second});
+    }
+
+    /// Tries v's collapses cheapest first; returns the target it collapsed into.
+    std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v)
+    {
+        for (const auto& [c, w] : targets_of(v))
+            if (collapse(v, w)) return w;
+        return std::nullopt;
+    }
+
+    /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
+    /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
+    /// (the answer is the same, most closest-point computations are saved).
+    bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
+                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
+    {
+        std::vector<std::pair<Vec3, double>>& spheres = spheres_;
+        spheres.clear();
+        for (const TriangleCorners& c : shapes) {
+            const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
+            spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
+        }
+        for (const std::uint32_t t : sources)
+            for (const std::uint32_t s : samples_[t]) {
+                const Vec3& p = editor_.position(s);
+                std::size_t nearest = 0;
+                double best = std::numeric_limits<double>::max();
+                for (std::size_t i = 0; i < shapes.size(); ++i) {
+                    if (distance(p, spheres[i].first) - spheres[i].second >= best) continue;
+                    const double d = distance(p, closest_point_on_triangle(p, shapes[i]));
+                    if (d < best) best = d, nearest = i;
+                }
+                if (best > options_.max_distance_mm) return false;
+                worst = std::max(worst, best);
+                assignment.emplace_back(nearest, s);
+            }
+        return true;
+    }
+
+    /// Collapses v into w if the editor and the distance bound allow it. The bound is asked (through the
+    /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
+    bool collapse(std::uint32_t v, std::uint32_t w)
+    {
+        if (fence_ && !inside_fence(v, w)) {
+            fenced_.push_back(v);
+            return false;
+        }
+        // Scratch kept between calls: collapses are tried millions of times.
+        std::vector<std::uint32_t>& targets = targets_;
+        std::vector<std::uint32_t>& sources = sources_;
+        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
+        std::vector<TriangleCorners>& shapes = shapes_;
+        targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
+        double worst = 0;
+        bool too_far = false;
+        const auto within_bound = [&] {
+            for (const std::uint32_t t : editor_.star(v)) {
+                sources.push_back(t);
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
+                TriangleCorners c = editor_.corners(t);
+                for (int k = 0; k < 3; ++k)
+                    if (tri[k] == v) c[k] = editor_.position(w);
+                targets.push_back(t);
+                shapes.push_back(c);
+            }
+            for (const std::uint32_t t : editor_.star(w)) {
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
+                targets.push_back(t);
+                shapes.push_back(editor_.corners(t));
+            }
+            // Every input vertex the changed triangles answer for must stay within the bound.
+            too_far = !assign_samples(sources, shapes, assignment, worst);
+            return !too_far;
+        };
+        if (!editor_.try_collapse(v, w, within_bound)) {
+            ++(too_far ? report_.refused_by_distance : report_.refused_by_checks);
+            return false;
+        }
+        for (const std::uint32_t t : sources) samples_[t].clear();
+        for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
+        quadrics_[w] += quadrics_[v];
+        report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
+        return true;
+    }
+
+    /// Whether every triangle the collapse of v into w changes or reassigns samples to lies inside the fence.
+    bool inside_fence(std::uint32_t v, std::uint32_t w) const
+    {
+        const int axis = fence_->slab.axis;
+        for (const std::uint32_t u : {v, w})
+            for (const std::uint32_t t : editor_.star(u)) {
+                const Triangle& tri = editor_.triangle(t);
+                const double a = editor_.position(tri[0])[axis], b = editor_.position(tri[1])[axis],
+                             c = editor_.position(tri[2])[axis];
+                if (!fence_->slab.holds(std::min({a, b, c}), std::max({a, b, c}), fence_->margin_mm)) return false;
+            }
+        return true;
+    }
+
+    /// After a split at m, each sample of the split triangles goes to the nearer half.
+    void redistribute_samples(std::uint32_t m)
+    {
+        if (samples_.size() < editor_.triangle_slots()) samples_.resize(editor_.triangle_slots());
+        if (quadrics_.size() < editor_.vertex_slots()) quadrics_.resize(editor_.vertex_slots());
+        std::vector<std::uint32_t> pool;
+        const std::vector<std::uint32_t>& star = editor_.star(m);
+        for (const std::uint32_t t : star) {
+            pool.insert(pool.end(), samples_[t].begin(), samples_[t].end());
+            samples_[t].clear();
+        }
+        for (const std::uint32_t s : pool) {
+            const Vec3& p = editor_.position(s);
+            std::uint32_t nearest = star.front();
+            double best = std::numeric_limits<double>::max();
+            for (const std::uint32_t t : star) {
+                const double d = distance(p, closest_point_on_triangle(p, editor_.corners(t)));
+                if (d < best) best = d, nearest = t;
+            }
+            samples_[nearest].push_back(s);
+        }
+    }
+
+    const DecimateOptions& options_;
+    DecimateReport& report_;
+    ComplexEditor editor_;
+    std::vector<Quadric> quadrics_;
+    std::vector<std::vector<std::uint32_t>> samples_;
+    std::optional<Fence> fence_;
+    std::vector<std::uint32_t> fenced_;  ///< vertices whose collapse the fence refused (repeats possible)
+    VertexQueue queue_;  ///< per vertex its cheapest collapse
+    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
+    std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
+    std::vector<TriangleCorners> shapes_;
+    mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
+    std::vector<ComplexEditor::RingEntry> around_;        ///< scratch of collapse_all()
+};
+
+} // namespace tissuemesh::surface::detail

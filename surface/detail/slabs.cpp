@@ -1,0 +1,68 @@
+#include "surface/detail/slabs.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace tissuemesh::surface::detail {
+
+std::pair<double, double> span(const InterfaceComplex& complex, std::uint32_t t, int axis)
+{
+    const Triangle& tri = complex.triangles[t];
+    const double a = complex.vertices[tri[0]][axis], b = complex.vertices[tri[1]][axis],
+                 c = complex.vertices[tri[2]][axis];
+    return {std::min({a, b, c}), std::max({a, b, c})};
+}
+
+std::vector<Slab> cut_into_slabs(const InterfaceComplex& complex, std::size_t count)
+{
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    Vec3 low{infinity, infinity, infinity}, high{-infinity, -infinity, -infinity};
+    for (const Triangle& tri : complex.triangles)
+        for (const std::uint32_t v : tri)
+            for (int a = 0; a < 3; ++a) {
+                low[a] = std::min(low[a], complex.vertices[v][a]);
+                high[a] = std::max(high[a], complex.vertices[v][a]);
+            }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (high[a] - low[a] > high[axis] - low[axis]) axis = a;
+    std::vector<double> starts(complex.triangles.size());
+    for (std::uint32_t t = 0; t < starts.size(); ++t) starts[t] = span(complex, t, axis).first;
+    std::sort(starts.begin(), starts.end());
+    std::vector<Slab> slabs;
+    double from = -infinity;
+    for (std::size_t k = 1; k <= count; ++k) {
+        const double to = k == count || starts.empty() ? infinity : starts[k * starts.size() / count];
+        if (to > from) slabs.push_back({axis, from, to});  // equal cuts (many equal starts) merge
+        from = std::max(from, to);
+    }
+    if (slabs.empty() || slabs.back().high != infinity) slabs.push_back({axis, from, infinity});
+    return slabs;
+}
+
+SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab)
+{
+    SlabPiece piece;
+    piece.complex.names = complex.names;
+    piece.complex.background = complex.background;
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> local(complex.vertices.size(), none);
+    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t) {
+        const auto [from, to] = span(complex, t, slab.axis);
+        if (to < slab.low || from > slab.high) continue;
+        Triangle tri = complex.triangles[t];
+        for (std::uint32_t& v : tri) {
+            if (local[v] == none) {
+                local[v] = static_cast<std::uint32_t>(piece.from_vertex.size());
+                piece.from_vertex.push_back(v);
+                piece.complex.vertices.push_back(complex.vertices[v]);
+            }
+            v = local[v];
+        }
+        piece.complex.add_triangle(tri, complex.sides[t]);
+        piece.from_triangle.push_back(t);
+    }
+    return piece;
+}
+
+} // namespace tissuemesh::surface::detail

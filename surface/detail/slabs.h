@@ -1,0 +1,46 @@
+// Slabs: a complex cut into pieces along one axis, for local edits that run on the pieces in parallel and
+// are put back together without conflict.
+//
+// The rule that makes it safe: a piece holds every triangle whose box reaches into its slab [low, high], and
+// an edit in it may change only triangles whose boxes lie inside [low + margin, high - margin]. With the
+// margin above the gap kept between triangles, two pieces never change triangles that could meet, crowd
+// each other or share a vertex, and every triangle an edit is judged against (the neighbours of its changed
+// triangles, the stars of their vertices) is in the piece. Each triangle then belongs to the slab holding
+// the low end of its box; a changed triangle belongs to the piece that changed it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/interface_complex.h"
+
+namespace tissuemesh::surface::detail {
+
+/// The part [low, high) of the axis that belongs to one piece (the first and last reach to infinity).
+struct Slab {
+    int axis = 0;
+    double low = 0;
+    double high = 0;
+    /// Whether the span [from, to] along the axis lies inside the slab shrunk by `margin` on both sides.
+    bool holds(double from, double to, double margin) const { return from >= low + margin && to <= high - margin; }
+    /// Whether a triangle whose box starts at `from` along the axis belongs to this slab.
+    bool owns(double from) const { return from >= low && from < high; }
+};
+
+/// Cuts the complex into `count` slabs across its longest side, each owning about as many triangles
+/// (by the low ends of their boxes). Depends only on the complex and the count.
+/// @pre count >= 1
+std::vector<Slab> cut_into_slabs(const InterfaceComplex& complex, std::size_t count);
+
+/// The low and high end of triangle t's box along `axis`.
+std::pair<double, double> span(const InterfaceComplex& complex, std::uint32_t t, int axis);
+
+/// The triangles whose boxes reach into a slab, as a complex of its own.
+struct SlabPiece {
+    InterfaceComplex complex;                 ///< the slab's triangles over its own vertex numbering
+    std::vector<std::uint32_t> from_vertex;   ///< per piece vertex: its index in the whole complex
+    std::vector<std::uint32_t> from_triangle; ///< per piece triangle: its index in the whole complex
+};
+SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab);
+
+} // namespace tissuemesh::surface::detail
