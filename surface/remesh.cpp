@@ -1,13 +1,16 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <optional>
 
 #include "core/error.h"
 #include "surface/detail/complex_editor.h"
 #include "surface/detail/mesh_measures.h"
+#include "surface/detail/slabs.h"
 
 namespace tissuemesh::surface {
 namespace {
@@ -16,6 +19,7 @@ using detail::BoxIndex;
 using detail::Box3;
 using detail::CompactBox;
 using detail::ComplexEditor;
+using detail::Slab;
 using detail::TriangleCorners;
 using detail::VertexKind;
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
@@ -139,16 +143,18 @@ private:
 
 class Remesher {
 public:
-    Remesher(InterfaceComplex&& complex, const InterfaceComplex& input, const RemeshOptions& options, double cell_mm,
-             RemeshReport& report)
+    /// `reference`: the input surface, to project onto; `fence`: where edits may happen (nullopt: anywhere).
+    Remesher(InterfaceComplex&& complex, const Reference& reference, const RemeshOptions& options, double cell_mm,
+             RemeshReport& report, const std::optional<detail::EditFence>& fence = std::nullopt)
         : options_(options), report_(report),
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
                    .max_normal_change_deg = options.max_normal_change_deg,
                    .min_gap_mm = options.min_gap_mm},
                   cell_mm),
-          reference_(input, cell_mm)
+          reference_(reference)
     {
+        editor_.set_fence(fence);
     }
 
     void run(const Progress& progress)
@@ -164,6 +170,21 @@ public:
     }
 
     const ComplexEditor& editor() const { return editor_; }
+
+    void split_long_edges()
+    {
+        std::vector<std::pair<double, Edge>> long_edges;
+        for (const Edge& e : edges())
+            if (const double l = length(e); l > 4.0 / 3.0 * target(e.first, e.second)) long_edges.push_back({-l, e});
+        std::sort(long_edges.begin(), long_edges.end());
+        for (const auto& [l, e] : long_edges) {
+            if (editor_.edge_multiplicity(e.first, e.second) == 0) continue;
+            if (editor_.try_split(e.first, e.second, 0.5 * (editor_.position(e.first) + editor_.position(e.second))))
+                ++report_.splits;
+            else
+                ++report_.refused;
+        }
+    }
 
 private:
     /// The target length of edge ab: the smallest target of the patches around it.
@@ -195,21 +216,6 @@ private:
     }
 
     double length(const Edge& e) const { return distance(editor_.position(e.first), editor_.position(e.second)); }
-
-    void split_long_edges()
-    {
-        std::vector<std::pair<double, Edge>> long_edges;
-        for (const Edge& e : edges())
-            if (const double l = length(e); l > 4.0 / 3.0 * target(e.first, e.second)) long_edges.push_back({-l, e});
-        std::sort(long_edges.begin(), long_edges.end());
-        for (const auto& [l, e] : long_edges) {
-            if (editor_.edge_multiplicity(e.first, e.second) == 0) continue;
-            if (editor_.try_split(e.first, e.second, 0.5 * (editor_.position(e.first) + editor_.position(e.second))))
-                ++report_.splits;
-            else
-                ++report_.refused;
-        }
-    }
 
     /// Whether collapsing v into w keeps every edge at w below 4/3 of its target.
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
@@ -324,15 +330,14 @@ private:
     const RemeshOptions& options_;
     RemeshReport& report_;
     ComplexEditor editor_;
-    Reference reference_;
+    const Reference& reference_;
     mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any
 /// input triangle), for the report.
-double distance_to_input(const InterfaceComplex& result, const InterfaceComplex& input, double cell_mm)
+double distance_to_input(const InterfaceComplex& result, const Reference& reference, double cell_mm)
 {
-    Reference reference(input, cell_mm);
     double largest = 0;
     std::vector<char> seen(result.vertex_count(), 0);
     for (std::size_t t = 0; t < result.triangle_count(); ++t)
@@ -346,6 +351,93 @@ double distance_to_input(const InterfaceComplex& result, const InterfaceComplex&
     return largest;
 }
 
+/// How many slabs to remesh side by side: options.slabs, or one per 125 000 triangles (at most 8).
+std::size_t slab_count(const InterfaceComplex& complex, const RemeshOptions& options)
+{
+    if (options.slabs > 0) return options.slabs;
+    return std::clamp<std::size_t>(complex.triangle_count() / 125'000, 1, 8);
+}
+
+/// Remeshes the slabs marked in `run` side by side (in parallel), each behind its fence (the slab shrunk by
+/// more than the gap: slabs.h), and puts the whole together. Independent of the thread count.
+InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs, const std::vector<char>& run,
+                              const Reference& reference, const RemeshOptions& options, double cell_mm,
+                              RemeshReport& report)
+{
+    std::vector<detail::EditedSlab> edited(slabs.size());
+    std::vector<RemeshReport> reports(slabs.size());
+    const double margin_mm = options.min_gap_mm + 0.01;
+    std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < slabs.size(); ++k) {
+        edited[k].slab = slabs[k];
+        if (!run[k]) continue;
+        try {
+            detail::SlabPiece piece = detail::slab_piece(complex, slabs[k]);
+            Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k],
+                              detail::EditFence{slabs[k].axis, slabs[k].low + margin_mm, slabs[k].high - margin_mm});
+            remesher.run({});
+            edited[k].edited = remesher.editor().snapshot();
+            edited[k].from_vertex = std::move(piece.from_vertex);
+        } catch (...) {
+#pragma omp critical(remesh_failure)
+            if (!failure) failure = std::current_exception();
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
+    for (const RemeshReport& part : reports) {
+        report.splits += part.splits;
+        report.collapses += part.collapses;
+        report.flips += part.flips;
+        report.moves += part.moves;
+        report.refused += part.refused;
+    }
+    return detail::merge_slabs(complex, edited);
+}
+
+/// Bands around the cuts between `slabs`, to remesh what their fences held back: half-width `reach` (at most
+/// 0.45 of either neighbour's width), with the rest between them left as it is (run 0).
+std::vector<std::pair<Slab, char>> seam_bands(const std::vector<Slab>& slabs, double reach)
+{
+    const auto width = [](const Slab& slab) {
+        return std::isfinite(slab.high - slab.low) ? slab.high - slab.low : std::numeric_limits<double>::max();
+    };
+    std::vector<std::pair<Slab, char>> bands;
+    const int axis = slabs.front().axis;
+    double from = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k + 1 < slabs.size(); ++k) {
+        const double cut = slabs[k].high, half = std::min({reach, 0.45 * width(slabs[k]), 0.45 * width(slabs[k + 1])});
+        bands.push_back({{axis, from, cut - half}, 0});
+        bands.push_back({{axis, cut - half, cut + half}, 1});
+        from = cut + half;
+    }
+    bands.push_back({{axis, from, std::numeric_limits<double>::infinity()}, 0});
+    return bands;
+}
+
+/// The largest target edge length of any patch.
+double largest_target(const RemeshOptions& options)
+{
+    double target = options.target_edge_mm;
+    for (const auto& [pair, length] : options.target_edge_mm_by_pair) target = std::max(target, length);
+    return target;
+}
+
+/// Slabs to remesh side by side: `count` (see slab_count()), fewer while one would be narrower than six
+/// target edges (its fence would hold back much of it). Widths are measured within the complex's extent.
+std::vector<Slab> cut_for_remeshing(const InterfaceComplex& complex, std::size_t count, const RemeshOptions& options)
+{
+    for (;; --count) {
+        std::vector<Slab> slabs = detail::cut_into_slabs(complex, count);
+        const int axis = slabs.front().axis;
+        double low = std::numeric_limits<double>::max(), high = -low;
+        for (const Vec3& p : complex.vertices) low = std::min(low, p[axis]), high = std::max(high, p[axis]);
+        double narrowest = std::numeric_limits<double>::max();
+        for (const Slab& slab : slabs) narrowest = std::min(narrowest, std::min(slab.high, high) - std::max(slab.low, low));
+        if (slabs.size() <= 1 || narrowest >= 6 * largest_target(options)) return slabs;
+    }
+}
+
 } // namespace
 
 RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, const Progress& progress)
@@ -357,13 +449,43 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     report.min_angle_before_deg = smallest_angle_deg(complex);
     const InterfaceComplex input = complex;
     const double cell_mm = 2 * std::max(detail::mean_edge_length(complex), options.target_edge_mm);
-    Remesher remesher(std::move(complex), input, options, cell_mm, report);
-    remesher.run(progress);
-    complex = remesher.editor().result();
+    const Reference reference(input, cell_mm);
+    const auto began = std::chrono::steady_clock::now();
+    const auto seconds = [&] { return format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1); };
+    const std::size_t count = slab_count(complex, options);
+    if (count > 1) {
+        // Long edges are split first, over the whole: no triangle is then so long that the fences of the
+        // slabs hold it back everywhere.
+        Remesher splitter(std::move(complex), reference, options, cell_mm, report);
+        splitter.split_long_edges();
+        complex = splitter.editor().result();
+        progress.debug("remesh", concat("long edges split over the whole: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+    }
+    const std::vector<Slab> slabs = count > 1 ? cut_for_remeshing(complex, count, options) : std::vector<Slab>{};
+    if (slabs.size() > 1) {
+        // Slabs side by side, then bands around the cuts between them (slabs.h).
+        report.slabs = slabs.size();
+        complex = remesh_slabs(complex, slabs, std::vector<char>(slabs.size(), 1), reference, options, cell_mm, report);
+        progress.debug("remesh", concat(slabs.size(), " slabs remeshed: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+        progress.update("remesh", 0.8);
+        std::vector<Slab> bands;
+        std::vector<char> run;
+        // What the fences held back lies within about one edge (at most 4/3 of the target after the split)
+        // of each cut: bands of 2.5 target edges either side hold it, and their own fences lie where the
+        // slabs were remeshed.
+        for (const auto& [band, edit] : seam_bands(slabs, 2.5 * largest_target(options) + options.min_gap_mm))
+            bands.push_back(band), run.push_back(edit);
+        complex = remesh_slabs(complex, bands, run, reference, options, cell_mm, report);
+        progress.debug("remesh", concat("the bands around the cuts remeshed: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+    } else {
+        Remesher remesher(std::move(complex), reference, options, cell_mm, report);
+        remesher.run(progress);
+        complex = remesher.editor().result();
+    }
     report.triangles_after = complex.triangle_count();
     report.min_angle_after_deg = smallest_angle_deg(complex);
     report.mean_edge_after_mm = detail::mean_edge_length(complex);
-    report.max_distance_mm = distance_to_input(complex, input, cell_mm);
+    report.max_distance_mm = distance_to_input(complex, reference, cell_mm);
     progress.info("remesh", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; smallest angle ",
                                    format_mm(report.min_angle_before_deg, 2), " -> ",
                                    format_mm(report.min_angle_after_deg, 2), " deg"));

@@ -21,6 +21,9 @@ struct RemeshOptions {
     double min_angle_deg = 15;           ///< no edit may create an angle below this (unless not worse)
     double max_normal_change_deg = 30;   ///< one edit may tilt a triangle at most this much
     double min_gap_mm = 0.1;             ///< distance kept between patches (unless closer before)
+    /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
+    /// 125 000 triangles, at most 8. The result depends on it, never on the thread count.
+    std::size_t slabs = 0;
 };
 
 /// What remesh() did.
@@ -31,7 +34,8 @@ struct RemeshReport {
     std::size_t collapses = 0;
     std::size_t flips = 0;
     std::size_t moves = 0;
-    std::size_t refused = 0;              ///< edits the validity checks refused
+    std::size_t refused = 0;              ///< edits the validity checks (or the slabs' fences) refused
+    std::size_t slabs = 1;                ///< slabs remeshed side by side (RemeshOptions::slabs)
     double min_angle_before_deg = 0;      ///< smallest triangle angle
     double min_angle_after_deg = 0;
     double mean_edge_after_mm = 0;

@@ -78,6 +78,10 @@ int main(int argc, char** argv)
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle an edit may create")
                 ->capture_default_str();
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
+            app.add_option("--slabs", options.slabs,
+                           "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
+                           "triangles, at most 8 (the result depends on it, not on the thread count)")
+                ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
             tools::require_complex_output(output);
@@ -101,6 +105,7 @@ int main(int argc, char** argv)
                            {"flips", report.flips},
                            {"moves", report.moves},
                            {"refused", report.refused},
+                           {"slabs", report.slabs},
                            {"min_angle_before_deg", report.min_angle_before_deg},
                            {"min_angle_after_deg", report.min_angle_after_deg},
                            {"mean_edge_after_mm", report.mean_edge_after_mm},

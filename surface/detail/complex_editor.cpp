@@ -178,6 +178,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         std::replace(moved.begin(), moved.end(), v, w);
         changes.push_back({t, moved, corners(t)});
     }
+    if (!inside_fence(changes, removed)) return false;
     // Most refused collapses fold or squeeze a triangle (on raw terraces 15 for every one the link
     // condition refuses): those tests go first, the grid search last.
     for (const Change& change : changes)
@@ -282,6 +283,17 @@ bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
     apply(changes, {});
     for (const std::uint32_t u : {v, w, a, b}) kinds_[u] = classify(u);
     return true;
+}
+
+InterfaceComplex ComplexEditor::snapshot() const
+{
+    InterfaceComplex out;
+    out.background = background_;
+    out.names = names_;
+    out.vertices = positions_;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) out.add_triangle(triangles_[t], sides_[t]);
+    return out;
 }
 
 InterfaceComplex ComplexEditor::result() const

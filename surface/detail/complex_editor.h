@@ -53,6 +53,15 @@ struct EditCounters {
     std::size_t intersection = 0;  ///< would meet another triangle
     std::size_t gap = 0;           ///< would come too close to another triangle
     std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex
+    std::size_t fence = 0;         ///< would change a triangle outside the fence (not a defect)
+};
+
+/// Where edits may happen: only to triangles whose boxes, before and after the edit, lie within [low, high]
+/// along `axis`. For editing slabs of a complex side by side (slabs.h).
+struct EditFence {
+    int axis = 0;
+    double low = 0;
+    double high = 0;
 };
 
 class ComplexEditor {
@@ -100,6 +109,8 @@ public:
         max_tilt_ = AngleLimit(limits.max_normal_change_deg);
     }
     const EditCounters& counters() const { return counters_; }
+    /// Confines the edits (not move_together()) to a fence; nullopt: anywhere.
+    void set_fence(const std::optional<EditFence>& fence) { fence_ = fence; }
 
     // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
     /// Moves v to p (junction-curve and corner rules are the caller's business: see VertexKind).
@@ -127,6 +138,8 @@ public:
 
     /// The edited complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
+    /// The alive triangles over every vertex slot (dead vertices kept, new ones after the original ones).
+    InterfaceComplex snapshot() const;
 
 private:
     struct Change {
@@ -137,6 +150,8 @@ private:
     };
     LabelPair side_of(const Change& change) const;
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
+    /// Whether every triangle the edit changes or removes lies inside the fence, before and after.
+    bool inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
     /// Whether triangles a and b (at corners pa, pb: the current positions) meet other than where they share
@@ -187,6 +202,7 @@ private:
     std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)
+    std::optional<EditFence> fence_;
     EditCounters counters_;
 };
 

@@ -142,8 +142,27 @@ LabelPair ComplexEditor::side_of(const Change& change) const
     return change.slot < sides_.size() ? sides_[change.slot] : change.side;
 }
 
+bool ComplexEditor::inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
+{
+    if (!fence_) return true;
+    const int axis = fence_->axis;
+    const auto inside = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+        return std::min({a[axis], b[axis], c[axis]}) >= fence_->low && std::max({a[axis], b[axis], c[axis]}) <= fence_->high;
+    };
+    bool ok = true;
+    for (const Change& change : changes) {
+        const Triangle& t = change.triangle;
+        ok = ok && inside(change.before[0], change.before[1], change.before[2]) &&
+             inside(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
+    }
+    for (const std::uint32_t t : removed) ok = ok && inside(positions_[triangles_[t][0]], positions_[triangles_[t][1]], positions_[triangles_[t][2]]);
+    if (!ok) ++counters_.fence;
+    return ok;
+}
+
 bool ComplexEditor::acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
+    if (!inside_fence(changes, removed)) return false;
     for (const Change& change : changes)
         if (!shape_ok(change)) return false;
     std::vector<std::uint32_t> excluded = removed;

@@ -65,4 +65,48 @@ SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab)
     return piece;
 }
 
+InterfaceComplex merge_slabs(const InterfaceComplex& whole, const std::vector<EditedSlab>& slabs)
+{
+    InterfaceComplex merged;
+    merged.names = whole.names;
+    merged.background = whole.background;
+    merged.vertices = whole.vertices;
+    for (const EditedSlab& slab : slabs) {
+        const InterfaceComplex& source = slab.edited ? *slab.edited : whole;
+        // New vertices of the piece go after the whole's (a vertex a piece moved or made lies inside its
+        // fence, so no other piece holds it).
+        std::vector<std::uint32_t> added(slab.edited ? source.vertices.size() : 0, std::numeric_limits<std::uint32_t>::max());
+        for (std::uint32_t t = 0; t < source.triangles.size(); ++t) {
+            if (!slab.slab.owns(span(source, t, slab.slab.axis).first)) continue;
+            Triangle tri = source.triangles[t];
+            if (slab.edited)
+                for (std::uint32_t& v : tri) {
+                    if (v < slab.from_vertex.size()) {
+                        merged.vertices[slab.from_vertex[v]] = source.vertices[v];
+                        v = slab.from_vertex[v];
+                        continue;
+                    }
+                    if (added[v] == std::numeric_limits<std::uint32_t>::max()) {
+                        added[v] = static_cast<std::uint32_t>(merged.vertices.size());
+                        merged.vertices.push_back(source.vertices[v]);
+                    }
+                    v = added[v];
+                }
+            merged.add_triangle(tri, source.sides[t]);
+        }
+    }
+    // Drop the vertices no triangle uses any more, keeping the order.
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> index(merged.vertices.size(), none);
+    for (const Triangle& tri : merged.triangles)
+        for (const std::uint32_t v : tri) index[v] = 0;
+    std::vector<Vec3> kept;
+    for (std::uint32_t v = 0; v < merged.vertices.size(); ++v)
+        if (index[v] != none) index[v] = static_cast<std::uint32_t>(kept.size()), kept.push_back(merged.vertices[v]);
+    merged.vertices = std::move(kept);
+    for (Triangle& tri : merged.triangles)
+        for (std::uint32_t& v : tri) v = index[v];
+    return merged;
+}
+
 } // namespace tissuemesh::surface::detail

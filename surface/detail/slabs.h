@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/interface_complex.h"
@@ -42,5 +43,17 @@ struct SlabPiece {
     std::vector<std::uint32_t> from_triangle; ///< per piece triangle: its index in the whole complex
 };
 SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab);
+
+/// A slab after editing its piece: the edited complex over the piece's vertices (in the piece's order, new
+/// ones after), or nullopt when the slab was left as it was.
+struct EditedSlab {
+    Slab slab;
+    std::optional<InterfaceComplex> edited;
+    std::vector<std::uint32_t> from_vertex;  ///< the piece's (SlabPiece::from_vertex)
+};
+
+/// The whole complex again: each triangle from the slab that owns it (slabs of `slabs` cover the axis),
+/// vertices that came from the whole numbered as there, new ones after, unused ones dropped (order kept).
+InterfaceComplex merge_slabs(const InterfaceComplex& whole, const std::vector<EditedSlab>& slabs);
 
 } // namespace tissuemesh::surface::detail
