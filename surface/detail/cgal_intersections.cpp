@@ -298,8 +298,8 @@ std::vector<TrianglePair> find_intersecting_pairs(const std::vector<Vec3>& verti
                                                   const std::vector<std::uint32_t>& candidates)
 {
     // Every pair whose boxes overlap is decided exactly; the boxes (single precision, rounded outward)
-    // only select the pairs. Each triangle asks the index for the boxes its own box meets and keeps the
-    // later ones, on all threads; the pairs are sorted at the end, so the threads do not matter.
+    // only select the pairs. Each triangle asks the index for the boxes its own box meets that come after
+    // it (each pair once), on all threads; the pairs are sorted at the end, so the threads do not matter.
     std::vector<CompactBox> boxes(triangles.size());
     for (const std::uint32_t t : candidates) boxes[t] = compact(bounding_box(corners_of(vertices, triangles[t])));
     const BoxIndex index(boxes, candidates);
@@ -312,8 +312,9 @@ std::vector<TrianglePair> find_intersecting_pairs(const std::vector<Vec3>& verti
 #pragma omp for schedule(dynamic, 4096) nowait
         for (std::int64_t n = 0; n < count; ++n) {
             const std::uint32_t t = candidates[static_cast<std::size_t>(n)];
-            index.visit(bounding_box(corners_of(vertices, triangles[t])), [&](std::uint32_t u) {
-                if (u > t && test.intersects(t, u)) found.emplace_back(t, u);
+            index.visit_later(t, bounding_box(corners_of(vertices, triangles[t])), [&](std::uint32_t u) {
+                const std::uint32_t first = std::min(t, u), second = std::max(t, u);
+                if (test.intersects(first, second)) found.emplace_back(first, second);
             });
         }
 #pragma omp critical

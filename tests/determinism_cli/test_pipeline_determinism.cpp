@@ -43,9 +43,9 @@ void run_pipeline(const TempDir& dir, const std::string& threads)
         {"tm-extract", {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("interfaces.ply"),
                         "--per-tissue", at("tissues")}},
         {"tm-smooth", {"-i", at("interfaces.ply"), "--image", at("clean.nii.gz"), "-o", at("smooth.ply")}},
-        // In slabs (decimated in parallel, one per thread at a time): the bytes must not depend on the threads.
+        // Decimation and remeshing in slabs (in parallel): the bytes must not depend on the threads.
         {"tm-decimate", {"-i", at("smooth.ply"), "-o", at("decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
-        {"tm-remesh", {"-i", at("decimated.ply"), "-o", at("remeshed.ply"), "--edge-mm", "4"}},
+        {"tm-remesh", {"-i", at("decimated.ply"), "-o", at("remeshed.ply"), "--edge-mm", "4", "--slabs", "2"}},
         {"tm-tetra", {"-i", at("remeshed.ply"), "-o", at("mesh.msh")}},
         {"tm-assess", {"-i", at("mesh.msh"), "--image", at("clean.nii.gz"), "-o", at("assessed.vtu")}},
         {"tm-refine", {"-i", at("mesh.msh"), "--image", at("clean.nii.gz"), "-o", at("refined.msh"), "--iterations", "2",
