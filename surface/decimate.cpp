@@ -13,7 +13,6 @@ namespace {
 
 using detail::Carried;
 using detail::Decimator;
-using detail::Fence;
 using detail::Piece;
 using detail::Quadric;
 using detail::Slab;
@@ -74,8 +73,6 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
     const std::vector<Slab> slabs = detail::cut_into_slabs(complex, count);
     report.slabs = slabs.size();
     std::vector<Piece> pieces(slabs.size());
-    // Wider than the gap: changes in neighbouring slabs stay further apart than the gap (slabs.h).
-    const double margin_mm = options.min_gap_mm + 0.01;
     std::exception_ptr failure;
     std::size_t done = 0;
 #pragma omp parallel for schedule(dynamic, 1)
@@ -85,7 +82,7 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
             Carried local = slab_carried(complex, carried, slab);
             const double cell_mm = 2 * detail::mean_edge_length(slab.complex);
             Decimator decimator(std::move(slab.complex), std::move(local), cell_mm, options, pieces[k].report,
-                                Fence{slabs[k], margin_mm});
+                                slabs[k]);
             decimator.collapse_all({});
             decimator.hand_over(slab.from_vertex, pieces[k]);
         } catch (...) {

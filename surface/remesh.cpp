@@ -16,9 +16,6 @@
 namespace tissuemesh::surface {
 namespace {
 
-using detail::BoxIndex;
-using detail::Box3;
-using detail::CompactBox;
 using detail::ComplexEditor;
 using detail::Reference;
 using detail::unordered;
@@ -275,7 +272,6 @@ InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector
 {
     std::vector<detail::EditedSlab> edited(slabs.size());
     std::vector<RemeshReport> reports(slabs.size());
-    const double margin_mm = options.min_gap_mm + 0.01;
     std::exception_ptr failure;
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t k = 0; k < slabs.size(); ++k) {
@@ -284,7 +280,7 @@ InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector
         try {
             detail::SlabPiece piece = detail::slab_piece(complex, slabs[k]);
             Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k],
-                              detail::EditFence{slabs[k].axis, slabs[k].low + margin_mm, slabs[k].high - margin_mm});
+                              slabs[k].fence(options.min_gap_mm));
             remesher.run({});
             edited[k].edited = remesher.editor().snapshot();
             edited[k].from_vertex = std::move(piece.from_vertex);

@@ -32,46 +32,10 @@ public:
     /// bool). Order: by cell, then as filed. Reads only.
     template <class Visit> void visit(const Box3& box, Visit visit) const
     {
-        const auto stop = [&](std::uint32_t id) {
+        scan(box, 0, 0, [&](std::uint32_t id) {
             if constexpr (std::is_same_v<decltype(visit(id)), bool>) return visit(id);
             else return visit(id), false;
-        };
-        if (counts_[0] == 0) return;
-        const auto low = cell_of(box.low), high = cell_of(box.high);
-        // In single precision: u.low <= box.high exactly when u.low <= the largest float not above box.high.
-        const std::array<float, 3> below{float_down(box.high[0]), float_down(box.high[1]), float_down(box.high[2])};
-        const std::array<float, 3> above{float_up(box.low[0]), float_up(box.low[1]), float_up(box.low[2])};
-        // A small box overlapping `box` has its low corner at most one cell below box.low: in each row of
-        // cells along x, one contiguous run of entries.
-        const std::int64_t from_i = std::max<std::int64_t>(low[0] - 1, 0);
-        for (std::int64_t k = std::max<std::int64_t>(low[2] - 1, 0); k <= high[2]; ++k)
-            for (std::int64_t j = std::max<std::int64_t>(low[1] - 1, 0); j <= high[1]; ++j) {
-                const std::int64_t row = counts_[0] * (j + counts_[1] * k);
-                const std::uint32_t end = small_start_[static_cast<std::size_t>(row + high[0] + 1)];
-                for (std::uint32_t e = small_start_[static_cast<std::size_t>(row + from_i)]; e < end; ++e) {
-                    const Entry& b = small_[e];
-                    if ((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) & (b.box.low[1] <= below[1]) &
-                        (b.box.high[1] >= above[1]) & (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2]))
-                        if (stop(b.id)) return;
-                }
-            }
-        if (big_.empty()) return;
-        // Boxes filed in every cell they overlap: each reported from the cell of the overlap's low corner only.
-        for (std::int64_t k = low[2]; k <= high[2]; ++k)
-            for (std::int64_t j = low[1]; j <= high[1]; ++j)
-                for (std::int64_t i = low[0]; i <= high[0]; ++i) {
-                    const auto cell = static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
-                    for (std::uint32_t e = big_start_[cell]; e < big_start_[cell + 1]; ++e) {
-                        const Entry& b = big_[e];
-                        if (!((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) & (b.box.low[1] <= below[1]) &
-                              (b.box.high[1] >= above[1]) & (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2])))
-                            continue;
-                        const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.box.low[0])),
-                                                  std::max(box.low[1], static_cast<double>(b.box.low[1])),
-                                                  std::max(box.low[2], static_cast<double>(b.box.low[2]))});
-                        if (ref[0] == i && ref[1] == j && ref[2] == k && stop(b.id)) return;
-                    }
-                }
+        });
     }
 
     /// Like visit(box, ...) with the box filed as `id`, but reporting only the ids that come after `id`: for
@@ -81,43 +45,13 @@ public:
     {
         const std::uint32_t self = where_[id];
         if (self & big_bit) {
-            this->visit(box, [&](std::uint32_t other) {
+            scan(box, 0, 0, [&](std::uint32_t other) {
                 if (other > id) visit(other);
+                return false;
             });
             return;
         }
-        const auto low = cell_of(box.low), high = cell_of(box.high);
-        const std::array<float, 3> below{float_down(box.high[0]), float_down(box.high[1]), float_down(box.high[2])};
-        const std::array<float, 3> above{float_up(box.low[0]), float_up(box.low[1]), float_up(box.low[2])};
-        const std::int64_t from_i = std::max<std::int64_t>(low[0] - 1, 0);
-        for (std::int64_t k = std::max<std::int64_t>(low[2] - 1, 0); k <= high[2]; ++k)
-            for (std::int64_t j = std::max<std::int64_t>(low[1] - 1, 0); j <= high[1]; ++j) {
-                const std::int64_t row = counts_[0] * (j + counts_[1] * k);
-                const std::uint32_t end = small_start_[static_cast<std::size_t>(row + high[0] + 1)];
-                for (std::uint32_t e = std::max(small_start_[static_cast<std::size_t>(row + from_i)], self + 1); e < end; ++e) {
-                    const Entry& b = small_[e];
-                    if ((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) & (b.box.low[1] <= below[1]) &
-                        (b.box.high[1] >= above[1]) & (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2]))
-                        visit(b.id);
-                }
-            }
-        if (big_.empty()) return;
-        for (std::int64_t k = low[2]; k <= high[2]; ++k)
-            for (std::int64_t j = low[1]; j <= high[1]; ++j)
-                for (std::int64_t i = low[0]; i <= high[0]; ++i) {
-                    const auto cell = static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
-                    for (std::uint32_t e = big_start_[cell]; e < big_start_[cell + 1]; ++e) {
-                        const Entry& b = big_[e];
-                        if (b.id < id || !((b.box.low[0] <= below[0]) & (b.box.high[0] >= above[0]) &
-                                           (b.box.low[1] <= below[1]) & (b.box.high[1] >= above[1]) &
-                                           (b.box.low[2] <= below[2]) & (b.box.high[2] >= above[2])))
-                            continue;
-                        const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.box.low[0])),
-                                                  std::max(box.low[1], static_cast<double>(b.box.low[1])),
-                                                  std::max(box.low[2], static_cast<double>(b.box.low[2]))});
-                        if (ref[0] == i && ref[1] == j && ref[2] == k) visit(b.id);
-                    }
-                }
+        scan(box, self + 1, id + 1, [&](std::uint32_t other) { return visit(other), false; });
     }
 
     double cell_mm() const { return cell_mm_; }
@@ -126,6 +60,47 @@ public:
     const CompactBox& filed_box(std::uint32_t id) const;
 
 private:
+    /// Calls stop(id) for every filed id whose box overlaps `box`, small ones only from entry `first_small` on,
+    /// big ones only from id `first_big` on, until stop returns true.
+    template <class Stop>
+    void scan(const Box3& box, std::uint32_t first_small, std::uint32_t first_big, Stop stop) const
+    {
+        if (counts_[0] == 0) return;
+        const auto low = cell_of(box.low), high = cell_of(box.high);
+        // In single precision: u.low <= box.high exactly when u.low <= the largest float not above box.high.
+        const std::array<float, 3> below{float_down(box.high[0]), float_down(box.high[1]), float_down(box.high[2])};
+        const std::array<float, 3> above{float_up(box.low[0]), float_up(box.low[1]), float_up(box.low[2])};
+        const auto overlaps = [&](const CompactBox& b) {
+            return (b.low[0] <= below[0]) & (b.high[0] >= above[0]) & (b.low[1] <= below[1]) & (b.high[1] >= above[1]) &
+                   (b.low[2] <= below[2]) & (b.high[2] >= above[2]);
+        };
+        // A small box overlapping `box` has its low corner at most one cell below box.low: in each row of
+        // cells along x, one contiguous run of entries.
+        const std::int64_t from_i = std::max<std::int64_t>(low[0] - 1, 0);
+        for (std::int64_t k = std::max<std::int64_t>(low[2] - 1, 0); k <= high[2]; ++k)
+            for (std::int64_t j = std::max<std::int64_t>(low[1] - 1, 0); j <= high[1]; ++j) {
+                const std::int64_t row = counts_[0] * (j + counts_[1] * k);
+                const std::uint32_t end = small_start_[static_cast<std::size_t>(row + high[0] + 1)];
+                for (std::uint32_t e = std::max(small_start_[static_cast<std::size_t>(row + from_i)], first_small); e < end; ++e)
+                    if (overlaps(small_[e].box) && stop(small_[e].id)) return;
+            }
+        if (big_.empty()) return;
+        // Boxes filed in every cell they overlap: each reported from the cell of the overlap's low corner only.
+        for (std::int64_t k = low[2]; k <= high[2]; ++k)
+            for (std::int64_t j = low[1]; j <= high[1]; ++j)
+                for (std::int64_t i = low[0]; i <= high[0]; ++i) {
+                    const auto cell = static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
+                    for (std::uint32_t e = big_start_[cell]; e < big_start_[cell + 1]; ++e) {
+                        const Entry& b = big_[e];
+                        if (b.id < first_big || !overlaps(b.box)) continue;
+                        const auto ref = cell_of({std::max(box.low[0], static_cast<double>(b.box.low[0])),
+                                                  std::max(box.low[1], static_cast<double>(b.box.low[1])),
+                                                  std::max(box.low[2], static_cast<double>(b.box.low[2]))});
+                        if (ref[0] == i && ref[1] == j && ref[2] == k && stop(b.id)) return;
+                    }
+                }
+    }
+
     /// A filed box: single precision, rounded outward (CompactBox), next to its id.
     struct Entry {
         CompactBox box;

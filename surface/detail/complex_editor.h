@@ -24,6 +24,7 @@
 
 #include "core/interface_complex.h"
 #include "surface/detail/box_index.h"
+#include "surface/detail/slabs.h"
 #include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
 
@@ -54,14 +55,6 @@ struct EditCounters {
     std::size_t gap = 0;           ///< would come too close to another triangle
     std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex
     std::size_t fence = 0;         ///< would change a triangle outside the fence (not a defect)
-};
-
-/// Where edits may happen: only to triangles whose boxes, before and after the edit, lie within [low, high]
-/// along `axis`. For editing slabs of a complex side by side (slabs.h).
-struct EditFence {
-    int axis = 0;
-    double low = 0;
-    double high = 0;
 };
 
 class ComplexEditor {

@@ -77,26 +77,20 @@ inline void add_counters(DecimateReport& report, const EditCounters& counters)
     report.refused_wedge += counters.wedge;
 }
 
-/// Where a decimator may change triangles: only those whose boxes lie inside `slab` shrunk by `margin_mm`
-/// (see slabs.h).
-struct Fence {
-    Slab slab;
-    double margin_mm = 0;
-};
-
 class Decimator {
 public:
     /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in. `carried` is indexed like
-    /// `complex`.
+    /// `complex`. With `slab`, collapses change only triangles inside its fence (Slab::fence()).
     Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
-              DecimateReport& report, std::optional<Fence> fence = std::nullopt)
+              DecimateReport& report, std::optional<Slab> slab = std::nullopt)
         : options_(options), report_(report),
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
                    .max_normal_change_deg = options.max_normal_change_deg,
                    .min_gap_mm = options.min_gap_mm},
                   cell_mm),
-          quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), fence_(fence)
+          quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab),
+          fence_(slab ? std::optional(slab->fence(options.min_gap_mm)) : std::nullopt)
     {
     }
 
@@ -161,7 +155,7 @@ public:
     /// in the whole), into `piece`.
     void hand_over(const std::vector<std::uint32_t>& from_vertex, Piece& piece) const
     {
-        const Slab& slab = fence_->slab;
+        const Slab& slab = *slab_;
         for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
             if (!editor_.triangle_alive(t)) continue;
             const TriangleCorners c = editor_.corners(t);
@@ -334,13 +328,10 @@ private:
     /// Whether every triangle the collapse of v into w changes or reassigns samples to lies inside the fence.
     bool inside_fence(std::uint32_t v, std::uint32_t w) const
     {
-        const int axis = fence_->slab.axis;
         for (const std::uint32_t u : {v, w})
             for (const std::uint32_t t : editor_.star(u)) {
                 const Triangle& tri = editor_.triangle(t);
-                const double a = editor_.position(tri[0])[axis], b = editor_.position(tri[1])[axis],
-                             c = editor_.position(tri[2])[axis];
-                if (!fence_->slab.holds(std::min({a, b, c}), std::max({a, b, c}), fence_->margin_mm)) return false;
+                if (!fence_->holds(editor_.position(tri[0]), editor_.position(tri[1]), editor_.position(tri[2]))) return false;
             }
         return true;
     }
@@ -373,7 +364,8 @@ private:
     ComplexEditor editor_;
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
-    std::optional<Fence> fence_;
+    std::optional<Slab> slab_;        ///< the slab this decimator works on, if any
+    std::optional<EditFence> fence_;  ///< its fence
     std::vector<std::uint32_t> fenced_;  ///< vertices whose collapse the fence refused (repeats possible)
     VertexQueue queue_;  ///< per vertex its cheapest collapse
     mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()

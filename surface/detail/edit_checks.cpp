@@ -145,17 +145,16 @@ LabelPair ComplexEditor::side_of(const Change& change) const
 bool ComplexEditor::inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
     if (!fence_) return true;
-    const int axis = fence_->axis;
-    const auto inside = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
-        return std::min({a[axis], b[axis], c[axis]}) >= fence_->low && std::max({a[axis], b[axis], c[axis]}) <= fence_->high;
-    };
     bool ok = true;
     for (const Change& change : changes) {
         const Triangle& t = change.triangle;
-        ok = ok && inside(change.before[0], change.before[1], change.before[2]) &&
-             inside(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
+        ok = ok && fence_->holds(change.before[0], change.before[1], change.before[2]) &&
+             fence_->holds(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
     }
-    for (const std::uint32_t t : removed) ok = ok && inside(positions_[triangles_[t][0]], positions_[triangles_[t][1]], positions_[triangles_[t][2]]);
+    for (const std::uint32_t t : removed) {
+        const Triangle& tri = triangles_[t];
+        ok = ok && fence_->holds(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]);
+    }
     if (!ok) ++counters_.fence;
     return ok;
 }

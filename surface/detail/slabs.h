@@ -9,6 +9,7 @@
 // the low end of its box; a changed triangle belongs to the piece that changed it.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -17,15 +18,28 @@
 
 namespace tissuemesh::surface::detail {
 
+/// Where edits may happen: only to triangles whose boxes, before and after the edit, lie within [low, high]
+/// along `axis` (ComplexEditor::set_fence()).
+struct EditFence {
+    int axis = 0;
+    double low = 0;
+    double high = 0;
+    /// Whether the triangle abc lies inside.
+    bool holds(const Vec3& a, const Vec3& b, const Vec3& c) const
+    {
+        return std::min({a[axis], b[axis], c[axis]}) >= low && std::max({a[axis], b[axis], c[axis]}) <= high;
+    }
+};
+
 /// The part [low, high) of the axis that belongs to one piece (the first and last reach to infinity).
 struct Slab {
     int axis = 0;
     double low = 0;
     double high = 0;
-    /// Whether the span [from, to] along the axis lies inside the slab shrunk by `margin` on both sides.
-    bool holds(double from, double to, double margin) const { return from >= low + margin && to <= high - margin; }
     /// Whether a triangle whose box starts at `from` along the axis belongs to this slab.
     bool owns(double from) const { return from >= low && from < high; }
+    /// The fence of an edit in this slab: the slab shrunk by more than the gap kept between triangles.
+    EditFence fence(double min_gap_mm) const { return {axis, low + min_gap_mm + 0.01, high - min_gap_mm - 0.01}; }
 };
 
 /// Cuts the complex into `count` slabs across its longest side, each owning about as many triangles
