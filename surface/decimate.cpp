@@ -28,6 +28,9 @@ void validate(const DecimateOptions& options)
     if (!(options.min_gap_mm >= 0)) throw InputError("decimate: min gap must not be negative");
     if (options.mode == DecimateMode::size && !(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
         throw InputError("decimate: size mode needs a target edge length (target_edge_mm or per tissue pair)");
+    if (options.slabs > options.max_slabs)
+        throw InputError(concat("decimate: ", options.slabs, " slabs is more than the ", options.max_slabs,
+                                " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));
     for (const auto& [pair, length] : options.target_edge_mm_by_pair)
         if (!(length > 0))
             throw InputError(concat("decimate: target edge length ", length, " mm for tissues ", pair.first, '|',

@@ -33,8 +33,9 @@ struct DecimateOptions {
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
     /// Slabs decimated side by side (in parallel) before one pass over the whole from the seams between
     /// them; 0: one per 400 000 triangles, at most 8. The result depends on it, never on the thread count.
-    /// With target_triangles (a global count) there is one slab.
+    /// With target_triangles (a global count) there is one slab. At most max_slabs.
     std::size_t slabs = 0;
+    static constexpr std::size_t max_slabs = 64;  ///< each slab costs a pass over the whole complex
 };
 
 /// What decimate() did.

@@ -34,6 +34,9 @@ void validate(const RemeshOptions& options)
         if (!(length > 0))
             throw InputError(concat("remesh: target edge length ", length, " mm for tissues ", pair.first, '|',
                                     pair.second, " must be positive"));
+    if (options.slabs > options.max_slabs)
+        throw InputError(concat("remesh: ", options.slabs, " slabs is more than the ", options.max_slabs,
+                                " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));
     if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
         throw InputError(concat("remesh: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
 }

@@ -22,8 +22,9 @@ struct RemeshOptions {
     double max_normal_change_deg = 30;   ///< one edit may tilt a triangle at most this much
     double min_gap_mm = 0.1;             ///< distance kept between patches (unless closer before)
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
-    /// 125 000 triangles, at most 8. The result depends on it, never on the thread count.
+    /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
+    static constexpr std::size_t max_slabs = 64;  ///< each slab costs a pass over the whole complex
 };
 
 /// What remesh() did.

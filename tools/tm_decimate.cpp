@@ -45,8 +45,9 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--slabs", options.slabs,
                            "Slabs decimated side by side (in parallel), then one pass over their seams; 0: one per "
-                           "400 000 triangles, at most 8 (the result depends on it, not on the thread count; one "
+                           "400 000 triangles, at most 8; 64 at most (the result depends on it, not on the thread count; one "
                            "with --target-triangles)")
+                ->check(CLI::Range(0, 64))
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {

@@ -89,6 +89,7 @@ TEST(Decimate, RejectsBadOptions)
     InterfaceComplex complex;
     EXPECT_THROW(surface::decimate(complex, {.max_distance_mm = 0}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size}), InputError);
+    EXPECT_THROW(surface::decimate(complex, {.slabs = surface::DecimateOptions::max_slabs + 1}), InputError);
 }
 
 } // namespace
