@@ -205,8 +205,9 @@ void validate_options(const CheckOptions& options, std::size_t triangles)
 std::string_view to_string(DefectKind kind)
 {
     static constexpr std::array<std::string_view, defect_kind_count> names{
-        "open-edge",          "orientation-conflict", "non-manifold-edge", "inverted-tissue",    "degenerate-triangle",
-        "duplicate-triangle", "duplicate-vertex",     "self-intersection", "patch-intersection", "needle-triangle"};
+        "open-edge",           "orientation-conflict", "non-manifold-edge", "inverted-tissue",
+        "tangled-junction",    "degenerate-triangle",  "duplicate-triangle", "duplicate-vertex",
+        "self-intersection",   "patch-intersection",   "needle-triangle"};
     return names[static_cast<std::size_t>(kind)];
 }
 
@@ -249,7 +250,7 @@ CheckReport check_complex(const InterfaceComplex& complex, const CheckOptions& o
     progress.update("check", 0.1);
 
     detail::check_tissue_surfaces(log, report);
-    detail::count_edges(complex, report);
+    detail::check_edges(log, merged, skip, report);
     progress.update("check", 0.3);
 
     std::set<Label> crossing;
@@ -285,7 +286,8 @@ std::string repair_hint(const CheckReport& report)
                                 "tm-smooth, tm-decimate and tm-remesh, which keep it fit";
     // Doubled vertices and triangles open edges that merging them closes again: then the open edges say nothing.
     const bool doubles = report.count(DefectKind::duplicate_vertex) + report.count(DefectKind::duplicate_triangle) > 0;
-    for (const DefectKind kind : {DefectKind::open_edge, DefectKind::non_manifold_edge, DefectKind::inverted_tissue})
+    for (const DefectKind kind : {DefectKind::open_edge, DefectKind::non_manifold_edge, DefectKind::inverted_tissue,
+                                  DefectKind::tangled_junction})
         if (report.count(kind) > 0 && !doubles)
             return concat("tm-repair cannot fix ", to_string(kind), " defects (it changes no topology): ", extract);
     return concat("tm-repair may fix it (it merges coincident vertices, drops repeated and zero-area triangles, turns "

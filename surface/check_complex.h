@@ -20,6 +20,7 @@ enum class DefectKind {
     orientation_conflict,  ///< a tissue's surface uses an edge twice in the same direction (flipped triangle)
     non_manifold_edge,     ///< a tissue touches itself along an edge (more than 2 of its triangles share it)
     inverted_tissue,       ///< a closed tissue encloses a negative volume (labels swapped, or unbounded)
+    tangled_junction,      ///< around a junction edge the triangles turn in an order their tissues contradict
     degenerate_triangle,   ///< repeated vertex or exactly collinear vertices (zero area)
     duplicate_triangle,    ///< two triangles on the same three vertices
     duplicate_vertex,      ///< two vertex indices at the same coordinates, both used by triangles
@@ -27,7 +28,7 @@ enum class DefectKind {
     patch_intersection,    ///< triangles of two different patches intersect
     needle_triangle,       ///< warning: an angle below CheckOptions::needle_angle_deg
 };
-inline constexpr std::size_t defect_kind_count = 10;
+inline constexpr std::size_t defect_kind_count = 11;
 
 /// Kebab-case name of a kind ("open-edge", "patch-intersection").
 std::string_view to_string(DefectKind kind);
@@ -89,7 +90,8 @@ struct CheckOptions {
 
 /// Checks that `complex` is fit for tetrahedralization: every tissue's outward surface is closed and
 /// consistently oriented and encloses a positive volume (negative for the background), no tissue
-/// touches itself along an edge, no degenerate or duplicate triangle, no duplicate vertex, and no two
+/// touches itself along an edge, around every junction edge the tissue between neighbouring triangles
+/// is the same seen from both (edge_fan.h), no degenerate or duplicate triangle, no duplicate vertex, and no two
 /// triangles meet other than at shared vertices and edges (exact predicates). Needles are warnings.
 /// Runs in O(T log T); a million triangles take seconds.
 /// @throws InputError when indices are out of range, sizes disagree or a coordinate is not finite

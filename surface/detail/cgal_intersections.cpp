@@ -293,6 +293,12 @@ bool are_collinear(const Vec3& a, const Vec3& b, const Vec3& c)
     return CGAL::collinear(to_point(a), to_point(b), to_point(c));
 }
 
+int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
+{
+    if (const int sure = certain_side(a, b, c, d); sure != 0) return sure;
+    return static_cast<int>(CGAL::orientation(to_point(a), to_point(b), to_point(c), to_point(d)));
+}
+
 std::vector<TrianglePair> find_intersecting_pairs(const std::vector<Vec3>& vertices,
                                                   const std::vector<Triangle>& triangles,
                                                   const std::vector<std::uint32_t>& candidates)

@@ -17,6 +17,10 @@ using TrianglePair = std::pair<std::uint32_t, std::uint32_t>;
 /// True when the three points lie on one line (or coincide); exact.
 bool are_collinear(const Vec3& a, const Vec3& b, const Vec3& c);
 
+/// Sign of dot((b - a) x (c - a), d - a), exact: +1 when d lies on the side of the plane abc its
+/// right-hand normal points to, -1 on the other side, 0 in the plane.
+int orientation(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
 /// The pairs among `candidates` (indices into `triangles`) whose triangles meet anywhere other than
 /// at the vertices and edges they share by index; sorted ascending. Exact predicates throughout.
 /// Shared vertices are recognised by index only: give `triangles` with coincident vertices already

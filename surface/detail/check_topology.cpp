@@ -1,7 +1,10 @@
 #include "surface/detail/check_topology.h"
 
+#include <algorithm>
 #include <functional>
 #include <numeric>
+
+#include "surface/detail/edge_fan.h"
 
 namespace tissuemesh::surface::detail {
 namespace {
@@ -225,28 +228,62 @@ void check_volume_signs(DefectLog& log, const CheckReport& report, const std::se
         if (crossing.count(tissue) == 0) check_sign(log, tissue, check);
 }
 
-void count_edges(const InterfaceComplex& complex, CheckReport& report)
+void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std::vector<char>& skip, CheckReport& report)
 {
+    const InterfaceComplex& complex = log.complex();
     const auto for_each_edge = [&](auto action) {
-        for (const Triangle& tri : complex.triangles)
-            for (int k = 0; k < 3; ++k)
-                if (tri[k] != tri[(k + 1) % 3]) action(std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3]));
+        for (std::uint32_t t = 0; t < merged.size(); ++t)
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t a = merged[t][k], b = merged[t][(k + 1) % 3];
+                if (a != b) action(std::min(a, b), std::max(a, b), t);
+            }
     };
-    // The higher end of every edge use, filed by the lower end.
+    // Every edge use, (higher end, triangle), filed by the lower end.
     std::vector<std::uint32_t> sizes(complex.vertices.size(), 0);
-    for_each_edge([&](std::uint32_t low, std::uint32_t) { ++sizes[low]; });
+    for_each_edge([&](std::uint32_t low, std::uint32_t, std::uint32_t) { ++sizes[low]; });
     const std::vector<std::uint32_t> start = bucket_starts(complex.vertices.size(), sizes);
-    std::vector<std::uint32_t> highs(start.back());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> uses(start.back());
     std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for_each_edge([&](std::uint32_t low, std::uint32_t high) { highs[next[low]++] = high; });
-    sort_buckets(highs, start, std::less<>());
+    for_each_edge([&](std::uint32_t low, std::uint32_t high, std::uint32_t t) { uses[next[low]++] = {high, t}; });
+    sort_buckets(uses, start, std::less<>());
     report.edges = 0;
     report.junction_edges = 0;
-    for (std::size_t v = 0; v + 1 < start.size(); ++v)
+    std::vector<FanBlade> blades;
+    std::vector<std::uint32_t> fan;
+    for (std::uint32_t v = 0; v + 1 < start.size(); ++v)
         for (std::uint32_t begin = start[v], end = start[v]; begin < start[v + 1]; begin = end) {
-            while (end < start[v + 1] && highs[end] == highs[begin]) ++end;
+            while (end < start[v + 1] && uses[end].first == uses[begin].first) ++end;
             ++report.edges;
-            if (end - begin >= 3) ++report.junction_edges;
+            if (end - begin < 3) continue;
+            ++report.junction_edges;
+            const std::uint32_t w = uses[begin].first;
+            blades.clear();
+            fan.clear();
+            for (std::uint32_t i = begin; i < end; ++i) {
+                const std::uint32_t t = uses[i].second;
+                if (skip[t]) continue;
+                const Triangle& tri = merged[t];
+                const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
+                const std::uint32_t apex = tri[0] != v && tri[0] != w ? tri[0] : tri[1] != v && tri[1] != w ? tri[1] : tri[2];
+                blades.push_back({complex.vertices[apex], complex.sides[t], tri[(k + 1) % 3] == w});
+                fan.push_back(t);
+            }
+            if (blades.size() < 3 || fan_order(complex.vertices[v], complex.vertices[w], blades) != FanOrder::out_of_order)
+                continue;
+            log.add(DefectKind::tangled_junction, [&] {
+                Defect defect;
+                defect.location_mm = 0.5 * (complex.vertices[v] + complex.vertices[w]);
+                defect.triangles = fan;
+                for (const std::uint32_t t : fan) defect.tissues.insert(defect.tissues.end(), {complex.sides[t].from, complex.sides[t].to});
+                std::sort(defect.tissues.begin(), defect.tissues.end());
+                defect.tissues.erase(std::unique(defect.tissues.begin(), defect.tissues.end()), defect.tissues.end());
+                std::string names;
+                for (const std::uint32_t t : fan) names += concat(names.empty() ? "" : ", ", log.triangle(t));
+                defect.description = concat("tangled junction edge ", v, '-', w, ": its ", fan.size(), " triangles (", names,
+                                            ") turn about it in an order their tissues contradict, a pocket turned "
+                                            "inside out ", DefectLog::near(defect.location_mm));
+                return defect;
+            });
         }
 }
 

@@ -19,7 +19,11 @@ void check_tissue_surfaces(DefectLog& log, CheckReport& report);
 /// skipped: the volume of a self-crossing surface says nothing about its orientation.
 void check_volume_signs(DefectLog& log, const CheckReport& report, const std::set<Label>& crossing);
 
-/// Sets report.edges (distinct undirected edges) and report.junction_edges (shared by 3+ triangles).
-void count_edges(const InterfaceComplex& complex, CheckReport& report);
+/// Sets report.edges (distinct undirected edges of `merged`: the triangles with coincident vertices
+/// merged) and report.junction_edges (shared by 3+ triangles), and logs every junction edge around which
+/// the triangles not marked in `skip` turn in an order their tissues contradict (edge_fan.h). Triangles
+/// lying on one another along an edge are left to the intersection test.
+void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std::vector<char>& skip,
+                 CheckReport& report);
 
 } // namespace tissuemesh::surface::detail

@@ -191,7 +191,7 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
     set_budget(stars_[v]);
     excluded = removed;
     for (const Change& change : changes) excluded.push_back(change.slot);
-    if (!clear_of_others(changes, excluded)) return false;
+    if (!fans_in_order(changes, excluded) || !clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
     update_kinds(w);
     return true;

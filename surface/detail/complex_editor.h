@@ -13,7 +13,8 @@
 //    and EditLimits::min_angle_deg, tilts by more than EditLimits::max_normal_change_deg, or meets any
 //    other triangle other than at shared vertices and edges (exact predicates, candidates from a grid);
 //    and none comes closer than EditLimits::min_gap_mm to a triangle it shares no vertex with, unless it
-//    was already that close (so thin layers keep a positive thickness).
+//    was already that close (so thin layers keep a positive thickness); around every junction edge the
+//    triangles keep an order their tissues agree with (edge_fan.h: no pocket turns inside out).
 // So an edit sequence applied to a complex that passes check_complex() yields one that passes it too.
 #pragma once
 
@@ -24,6 +25,7 @@
 
 #include "core/interface_complex.h"
 #include "surface/detail/box_index.h"
+#include "surface/detail/edge_fan.h"
 #include "surface/detail/slabs.h"
 #include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
@@ -42,6 +44,8 @@ struct EditLimits {
                                            ///< wedge_angle.h), unless not thinner than before
     /// For repair(): an edit may leave intersections that were already there, as long as the changed
     /// triangles meet no more other triangles than before the edit (never more; none when there were none).
+    /// The order around junction edges is then not judged per edit (a crossing tangles the junctions it
+    /// passes, and undoing it may pass through tangles); repair() checks the whole at the end.
     bool tolerate_existing_intersections = false;
 };
 
@@ -53,7 +57,8 @@ struct EditCounters {
     std::size_t normal = 0;        ///< tilted too much (a fold)
     std::size_t intersection = 0;  ///< would meet another triangle
     std::size_t gap = 0;           ///< would come too close to another triangle
-    std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex
+    std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex, or turn the
+                                   ///< triangles around a junction edge out of order (edge_fan.h)
     std::size_t fence = 0;         ///< would change a triangle outside the fence (not a defect)
 };
 
@@ -147,6 +152,16 @@ private:
     bool inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    /// Whether, around every junction edge of a changed triangle, the triangles still turn in the order
+    /// their tissues demand (edge_fan.h): the alive ones except `excluded`, and the changes. Always true in
+    /// tolerant mode.
+    bool fans_in_order(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
+    /// The junction edges of `triangles` (both ends on junction curves), each once, into `out`.
+    void junction_edges_of(const std::vector<Triangle>& triangles, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const;
+    /// How the triangles around edge pq lie at the current positions: the alive ones except `excluded`
+    /// (when given) and the `changes` (when given). With `members`, appends the alive ones to it.
+    FanOrder fan_around(std::uint32_t p, std::uint32_t q, const std::vector<Change>* changes,
+                        const std::vector<std::uint32_t>* excluded, std::vector<std::uint32_t>* members) const;
     /// Whether triangles a and b (at corners pa, pb: the current positions) meet other than where they share
     /// vertices; exact (triangles_intersect), with the plane test (certainly_apart) in front.
     bool meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb) const;

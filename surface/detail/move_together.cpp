@@ -14,7 +14,8 @@
 namespace tissuemesh::surface::detail {
 namespace {
 
-enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule, wedge_rule };
+/// From intersection_rule on, a rule involves other triangles (partners), whose moves go back too.
+enum Rule : std::uint8_t { none = 0, shape_rule, normal_rule, intersection_rule, gap_rule, wedge_rule, fan_rule };
 
 TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t)
 {
@@ -32,6 +33,17 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
     case TriangleRule::shape: return shape_rule;
     case TriangleRule::tilt: return normal_rule;
     case TriangleRule::none: break;
+    }
+    // Around a junction edge every triangle of the fan is a partner: all their moves go back together,
+    // which restores the order the fan had (edge_fan.h).
+    thread_local std::vector<std::uint32_t> fan;
+    for (int k = 0; k < 3; ++k) {
+        const std::uint32_t p = tri[k], q = tri[(k + 1) % 3];
+        if (kinds_[p] == VertexKind::patch || kinds_[q] == VertexKind::patch) continue;
+        fan.clear();
+        if (fan_around(p, q, nullptr, nullptr, &fan) == FanOrder::in_order) continue;
+        if (partners) partners->insert(partners->end(), fan.begin(), fan.end());
+        return fan_rule;
     }
     const double gap = limits_.min_gap_mm;
     const Box3 box = bounding_box(now, gap), tight = bounding_box(now);

@@ -1,0 +1,36 @@
+// The triangles around one edge, in the order they turn about it. Along a junction curve three or more
+// patches share an edge, and the tissue between two neighbouring triangles must be the same seen from
+// either of them. A vertex that passes through the plane of a flat pocket (four triangles around a small
+// tissue region, seen on the usc19-5 scalp) turns the pocket inside out: no triangle meets another, no
+// tissue surface opens, yet around the pocket's edges the order of the triangles now contradicts their
+// tissues, and TetGen finds a tetrahedron between interfaces that disagree. The checker and every edit
+// test this order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "core/interface_complex.h"
+#include "core/vec3.h"
+
+namespace tissuemesh::surface::detail {
+
+/// One triangle on the edge from a to b: its third corner, its tissues, and whether its vertex order
+/// runs from a to b. A forward triangle's normal, and so the tissue in front of it (`side.to`), faces the
+/// way a right-hand turn about b - a moves it; a backward one's faces against that turn.
+struct FanBlade {
+    Vec3 apex{0, 0, 0};
+    LabelPair side{};
+    bool forward = true;
+};
+
+enum class FanOrder : std::uint8_t {
+    in_order,      ///< going round, the tissue ahead of each triangle is the tissue behind the next one
+    out_of_order,  ///< two neighbouring triangles disagree on the tissue between them: a wedge turned inside out
+    overlapping,   ///< two triangles lie in one half-plane about the edge, or one is flat on it
+};
+
+/// How the triangles `blades` (at least two) lie around the edge from a to b; exact predicates.
+FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades);
+
+} // namespace tissuemesh::surface::detail
