@@ -193,7 +193,14 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
     for (const Change& change : changes) excluded.push_back(change.slot);
     if (!fans_in_order(changes, excluded) || !clear_of_others(changes, excluded)) return false;
     apply(changes, removed);
-    update_kinds(w);
+    // Only w and the common neighbours of v and w (the third vertices of the triangles on vw) can change
+    // kind: any other neighbour of v trades its edge to v for one to w with the same triangles on it.
+    thread_local std::vector<std::uint32_t> common;
+    common.clear();
+    for (const std::uint32_t t : removed)
+        for (const std::uint32_t u : triangles_[t])
+            if (u != v && u != w) common.push_back(u);
+    update_kinds(w, &common);
     return true;
 }
 

@@ -92,6 +92,9 @@ public:
     /// The neighbours of v, in no particular order, each with its edge's multiplicity (into `out`, without
     /// allocating once `out` has grown): for loops that ask for neighbours and multiplicities of many vertices.
     void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
+    /// The vertices whose kind the last collapse or split changed (the kept or new vertex and its
+    /// neighbours are classified again).
+    const std::vector<std::uint32_t>& reclassified() const { return reclassified_; }
     /// The neighbours of v across junction edges (two for a curve vertex).
     std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
     /// Number of alive triangles on edge vw (0: no such edge; 3 or more: a junction edge).
@@ -186,7 +189,8 @@ private:
     void ensure_grid();
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
-    void update_kinds(std::uint32_t v);
+    /// Classifies v and `others` again (every neighbour of v when not given), recording changes in reclassified_.
+    void update_kinds(std::uint32_t v, const std::vector<std::uint32_t>* others = nullptr);
     VertexKind classify(std::uint32_t v) const;
     std::uint32_t add_vertex(const Vec3& p);
 
@@ -201,6 +205,7 @@ private:
     std::vector<char> alive_;
     std::vector<std::vector<std::uint32_t>> stars_;
     std::vector<VertexKind> kinds_;
+    std::vector<std::uint32_t> reclassified_;  ///< see reclassified()
     std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
     double grid_cell_mm_ = 1;   ///< cell size asked of the grid

@@ -69,12 +69,22 @@ VertexKind ComplexEditor::classify(std::uint32_t v) const
     return around.size() == star.size() ? VertexKind::patch : VertexKind::corner;
 }
 
-void ComplexEditor::update_kinds(std::uint32_t v)
+void ComplexEditor::update_kinds(std::uint32_t v, const std::vector<std::uint32_t>* others)
 {
-    kinds_[v] = classify(v);
+    reclassified_.clear();
+    const auto update = [&](std::uint32_t u) {
+        const VertexKind kind = classify(u);
+        if (kind != kinds_[u]) reclassified_.push_back(u);
+        kinds_[u] = kind;
+    };
+    update(v);
+    if (others) {
+        for (const std::uint32_t u : *others) update(u);
+        return;
+    }
     thread_local std::vector<RingEntry> around;
     ring(v, around);
-    for (const RingEntry& e : around) kinds_[e.vertex] = classify(e.vertex);
+    for (const RingEntry& e : around) update(e.vertex);
 }
 
 /// Lk(v) n Lk(w) = Lk(vw): the common neighbours are exactly the third vertices of triangles on vw, and

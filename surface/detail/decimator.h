@@ -115,7 +115,7 @@ public:
             ++report_.collapses;
             enqueue(*w);
             editor_.ring(*w, around_);
-            for (const ComplexEditor::RingEntry& e : around_) enqueue(e.vertex);
+            for (const ComplexEditor::RingEntry& e : around_) requeue_neighbour(e.vertex, c.v, *w, e.triangles);
             if (editor_.triangle_count() < next_rebuild) {
                 editor_.rebuild_grid(2 * editor_.mean_edge_length());
                 next_rebuild = editor_.triangle_count() / 2;
@@ -238,6 +238,26 @@ private:
         });
         if (!any) queue_.erase(v);
         else queue_.set({best.first, v, best.second});
+    }
+
+    /// Queues u, a neighbour of w after the collapse of v into w (`multiplicity`: triangles on edge uw), as
+    /// enqueue(u) would. The collapse changed, of u's collapses, only the one into w (w's quadric grew, and
+    /// w may be new to u's ring) and removed the one into v; the others keep their costs (the quadrics and
+    /// positions they read are unchanged). So unless u's entry went to v or w, or u changed kind, or u was not
+    /// queued, the new entry is the cheaper of the old one and the collapse into w: the same entry at a
+    /// fraction of the cost (a ring and a quadric per neighbour, seven neighbours per collapse).
+    void requeue_neighbour(std::uint32_t u, std::uint32_t v, std::uint32_t w, std::uint32_t multiplicity)
+    {
+        const VertexQueue::Entry* old = queue_.find(u);
+        const std::vector<std::uint32_t>& changed = editor_.reclassified();
+        if (old == nullptr || old->w == v || old->w == w || std::find(changed.begin(), changed.end(), u) != changed.end()) {
+            enqueue(u);
+            return;
+        }
+        const VertexKind kind = editor_.kind(u);
+        if (kind == VertexKind::corner || (kind == VertexKind::curve && multiplicity < 3)) return;
+        if (const std::optional<double> c = cost(u, w); c && std::pair{*c, w} < std::pair{old->cost, old->w})
+            queue_.set({*c, u, w});
     }
 
     /// Tries v's collapses cheapest first; returns the target it collapsed into.

@@ -26,6 +26,12 @@ public:
     bool empty() const { return heap_.empty(); }
     const Entry& top() const { return heap_.front(); }
 
+    /// v's entry, or nullptr when v is not queued.
+    const Entry* find(std::uint32_t v) const
+    {
+        return v < where_.size() && where_[v] != none ? &heap_[where_[v]] : nullptr;
+    }
+
     /// Sets v's entry (adding or replacing it).
     void set(const Entry& entry)
     {
