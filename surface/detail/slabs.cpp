@@ -40,6 +40,21 @@ std::vector<Slab> cut_into_slabs(const InterfaceComplex& complex, std::size_t co
     return slabs;
 }
 
+std::vector<Slab> slabs_between(const std::vector<Slab>& slabs)
+{
+    std::vector<Slab> between;
+    if (slabs.size() < 3) return between;
+    const int axis = slabs.front().axis;
+    double from = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k + 1 < slabs.size(); ++k) {
+        const double to = 0.5 * (slabs[k].low + slabs[k].high);
+        between.push_back({axis, from, to});
+        from = to;
+    }
+    between.push_back({axis, from, std::numeric_limits<double>::infinity()});
+    return between;
+}
+
 SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab)
 {
     SlabPiece piece;

@@ -47,6 +47,10 @@ struct Slab {
 /// @pre count >= 1
 std::vector<Slab> cut_into_slabs(const InterfaceComplex& complex, std::size_t count);
 
+/// Slabs cut halfway between the cuts of `slabs` (one fewer): each old cut lies in the middle of a new
+/// slab, half an old slab from its ends. Empty for fewer than three slabs.
+std::vector<Slab> slabs_between(const std::vector<Slab>& slabs);
+
 /// The low and high end of triangle t's box along `axis`.
 std::pair<double, double> span(const InterfaceComplex& complex, std::uint32_t t, int axis);
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 
 #include "image/phantom.h"
 #include "surface/check_complex.h"
@@ -104,6 +105,26 @@ TEST(DecimateSlabs, SlabsOwnEveryTriangleOnceAndHoldWhatReachesThem)
         EXPECT_NEAR(static_cast<double>(owned), all / 3.0, 0.05 * all);
     }
     for (std::uint32_t t = 0; t < complex.triangle_count(); ++t) EXPECT_EQ(owners[t], 1) << "triangle " << t;
+}
+
+// The second round of slabs: each cut of the first lies in the middle of a slab of the second, half a
+// first slab from its ends, so the seams the first fences left are decimated away from any fence.
+TEST(DecimateSlabs, SlabsBetweenPutEveryCutInTheMiddleOfASlab)
+{
+    constexpr double infinity = std::numeric_limits<double>::infinity();
+    const std::vector<surface::detail::Slab> first{{1, -infinity, 10}, {1, 10, 20}, {1, 20, 40}, {1, 40, infinity}};
+    const std::vector<surface::detail::Slab> between = surface::detail::slabs_between(first);
+    ASSERT_EQ(between.size(), 3u);
+    EXPECT_EQ(between[0].axis, 1);
+    EXPECT_EQ(between[0].low, -infinity);
+    EXPECT_EQ(between[0].high, 15.0);
+    EXPECT_EQ(between[1].low, 15.0);
+    EXPECT_EQ(between[1].high, 30.0);
+    EXPECT_EQ(between[2].low, 30.0);
+    EXPECT_EQ(between[2].high, infinity);
+    // Each first cut inside one second slab: 10 in (-inf, 15), 20 in [15, 30), 40 in [30, inf).
+    EXPECT_TRUE(between[0].owns(10) && between[1].owns(20) && between[2].owns(40));
+    EXPECT_TRUE(surface::detail::slabs_between({first[0], first[3]}).empty());
 }
 
 } // namespace
