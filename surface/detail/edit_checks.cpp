@@ -85,7 +85,9 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         }
     grid_.query(all, nearby_);
     for (const std::uint32_t t : nearby_) {
-        if (!alive_[t] || !boxes_overlap(all, boxes_[t]) ||
+        // The box first: most candidates end there, and the grid holds only alive triangles anyway (one cache
+        // miss fewer per candidate).
+        if (!boxes_overlap(all, boxes_[t]) || !alive_[t] ||
             std::find(excluded.begin(), excluded.end(), t) != excluded.end())
             continue;
         const TriangleCorners cb = corners(t);
