@@ -104,6 +104,7 @@ std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merg
 {
     const InterfaceComplex& complex = log.complex();
     std::vector<char> degenerate(merged.size(), 0);
+    const detail::AngleLimit needle(needle_angle_deg);
     for (std::uint32_t t = 0; t < merged.size(); ++t) {
         const Triangle& tri = merged[t];
         const std::array<Vec3, 3> p{complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]};
@@ -115,11 +116,12 @@ std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merg
             });
             continue;
         }
+        // The exact angle only where it is below the limit (has_angle_below decides most without atan2).
+        if (!detail::has_angle_below(p, needle)) continue;
         const double angle = detail::smallest_angle_deg(p);
-        if (angle < needle_angle_deg)
-            log.add(DefectKind::needle_triangle, [&] {
-                return triangle_defect(log, t, concat("needle (smallest angle ", format_mm(angle, 4), " deg)"));
-            });
+        log.add(DefectKind::needle_triangle, [&] {
+            return triangle_defect(log, t, concat("needle (smallest angle ", format_mm(angle, 4), " deg)"));
+        });
     }
     return degenerate;
 }
@@ -127,6 +129,22 @@ std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merg
 /// Logs every non-degenerate triangle on the same vertex set as an earlier one, and marks it in `skip`.
 void check_duplicates(DefectLog& log, const std::vector<Triangle>& merged, std::vector<char>& skip)
 {
+    // The common answer "none" by hashing (a pass), the sort below only when some triangle repeats.
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t t = 0; t < merged.size(); ++t)
+        if (!skip[t]) kept.push_back(t);
+    const auto vertex_set = [&](std::uint32_t i) {
+        Triangle k = merged[kept[i]];
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    const auto set_hash = [&](std::uint32_t i) {
+        std::uint64_t h = 0;
+        for (const std::uint32_t v : vertex_set(i)) h = mix(h, v);
+        return static_cast<std::size_t>(h);
+    };
+    if (!has_repeats(kept.size(), set_hash, [&](std::uint32_t a, std::uint32_t b) { return vertex_set(a) == vertex_set(b); }))
+        return;
     std::vector<std::pair<Triangle, std::uint32_t>> sorted;
     for (std::uint32_t t = 0; t < merged.size(); ++t) {
         if (skip[t]) continue;

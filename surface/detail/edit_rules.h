@@ -44,19 +44,6 @@ inline double angle_between_deg(const Vec3& a, const Vec3& b)
     return std::atan2(norm(cross(a, b)), dot(a, b)) * 180.0 / 3.14159265358979323846;
 }
 
-/// Whether smallest_angle_deg(t) < limit.deg() (as that function computes it).
-inline bool has_angle_below(const TriangleCorners& t, const AngleLimit& limit)
-{
-    bool unsure = false;
-    for (int k = 0; k < 3; ++k) {
-        const Vec3 u = t[(k + 1) % 3] - t[k], w = t[(k + 2) % 3] - t[k];
-        const int order = limit.compare(norm(cross(u, w)), dot(u, w));
-        if (order < 0) return true;
-        unsure = unsure || order == 0;
-    }
-    return unsure && smallest_angle_deg(t) < limit.deg();
-}
-
 /// Whether angle_between_deg(a, b) > limit.deg().
 inline bool tilts_beyond(const Vec3& a, const Vec3& b, const AngleLimit& limit)
 {
