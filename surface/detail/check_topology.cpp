@@ -262,10 +262,7 @@ void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std:
             for (std::uint32_t i = begin; i < end; ++i) {
                 const std::uint32_t t = uses[i].second;
                 if (skip[t]) continue;
-                const Triangle& tri = merged[t];
-                const int k = tri[0] == v ? 0 : tri[1] == v ? 1 : 2;
-                const std::uint32_t apex = tri[0] != v && tri[0] != w ? tri[0] : tri[1] != v && tri[1] != w ? tri[1] : tri[2];
-                blades.push_back({complex.vertices[apex], complex.sides[t], tri[(k + 1) % 3] == w});
+                blades.push_back(blade_on(merged[t], v, w, complex.vertices, complex.sides[t]));
                 fan.push_back(t);
             }
             if (blades.size() < 3 || fan_order(complex.vertices[v], complex.vertices[w], blades) != FanOrder::out_of_order)

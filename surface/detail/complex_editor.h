@@ -159,8 +159,12 @@ private:
     /// their tissues demand (edge_fan.h): the alive ones except `excluded`, and the changes. Always true in
     /// tolerant mode.
     bool fans_in_order(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
-    /// The junction edges of `triangles` (both ends on junction curves), each once, into `out`.
-    void junction_edges_of(const std::vector<Triangle>& triangles, std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const;
+    /// False when edge pq is certainly no junction edge: both ends of one lie on junction curves, so edits
+    /// inside patches skip the fans.
+    bool may_be_junction_edge(std::uint32_t p, std::uint32_t q) const
+    {
+        return kinds_[p] != VertexKind::patch && kinds_[q] != VertexKind::patch;
+    }
     /// How the triangles around edge pq lie at the current positions: the alive ones except `excluded`
     /// (when given) and the `changes` (when given). With `members`, appends the alive ones to it.
     FanOrder fan_around(std::uint32_t p, std::uint32_t q, const std::vector<Change>* changes,

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/interface_complex.h"
 #include "core/vec3.h"
@@ -29,6 +30,16 @@ enum class FanOrder : std::uint8_t {
     out_of_order,  ///< two neighbouring triangles disagree on the tissue between them: a wedge turned inside out
     overlapping,   ///< two triangles lie in one half-plane about the edge, or one is flat on it
 };
+
+/// The blade of triangle `tri` (with tissues `side`, corners in `positions`) on its edge from a to b.
+/// @pre tri holds a and b
+inline FanBlade blade_on(const Triangle& tri, std::uint32_t a, std::uint32_t b, const std::vector<Vec3>& positions,
+                         const LabelPair& side)
+{
+    const int k = tri[0] == a ? 0 : tri[1] == a ? 1 : 2;
+    const bool forward = tri[(k + 1) % 3] == b;
+    return {positions[tri[forward ? (k + 2) % 3 : (k + 1) % 3]], side, forward};
+}
 
 /// How the triangles `blades` (at least two) lie around the edge from a to b; exact predicates.
 FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades);

@@ -166,35 +166,17 @@ FanOrder ComplexEditor::fan_around(std::uint32_t p, std::uint32_t q, const std::
 {
     thread_local std::vector<FanBlade> blades;  // scratch: asked for every junction edge an edit touches
     blades.clear();
-    const auto add = [&](const Triangle& tri, const LabelPair& side) {
-        const int k = tri[0] == p ? 0 : tri[1] == p ? 1 : 2;
-        const std::uint32_t apex = tri[(k + 1) % 3] == q ? tri[(k + 2) % 3] : tri[(k + 1) % 3];
-        blades.push_back({positions_[apex], side, tri[(k + 1) % 3] == q});
-    };
     for (const std::uint32_t t : stars_[p]) {
         if (!contains(triangles_[t], q) || (excluded && std::find(excluded->begin(), excluded->end(), t) != excluded->end()))
             continue;
-        add(triangles_[t], sides_[t]);
+        blades.push_back(blade_on(triangles_[t], p, q, positions_, sides_[t]));
         if (members) members->push_back(t);
     }
     if (changes)
         for (const Change& change : *changes)
-            if (contains(change.triangle, p) && contains(change.triangle, q)) add(change.triangle, side_of(change));
+            if (contains(change.triangle, p) && contains(change.triangle, q))
+                blades.push_back(blade_on(change.triangle, p, q, positions_, side_of(change)));
     return blades.size() < 3 ? FanOrder::in_order : fan_order(positions_[p], positions_[q], blades);
-}
-
-void ComplexEditor::junction_edges_of(const std::vector<Triangle>& triangles,
-                                      std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const
-{
-    // Both ends of a junction edge lie on junction curves: edits inside patches skip the fans.
-    out.clear();
-    for (const Triangle& tri : triangles)
-        for (int k = 0; k < 3; ++k) {
-            const std::uint32_t p = tri[k], q = tri[(k + 1) % 3];
-            if (kinds_[p] != VertexKind::patch && kinds_[q] != VertexKind::patch) out.emplace_back(std::min(p, q), std::max(p, q));
-        }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 bool ComplexEditor::fans_in_order(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
@@ -203,11 +185,15 @@ bool ComplexEditor::fans_in_order(const std::vector<Change>& changes, const std:
     // states on the way (measured: with a budget of "no more than before" per edit, a bulge through the thin
     // phantom's shell was left crossing), and its final check_complex() refuses any tangle left.
     if (limits_.tolerate_existing_intersections) return true;
-    thread_local std::vector<Triangle> touched;
-    thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-    touched.clear();
-    for (const Change& change : changes) touched.push_back(change.triangle);
-    junction_edges_of(touched, edges);
+    thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // each once
+    edges.clear();
+    for (const Change& change : changes)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t p = change.triangle[k], q = change.triangle[(k + 1) % 3];
+            if (may_be_junction_edge(p, q)) edges.emplace_back(std::min(p, q), std::max(p, q));
+        }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     for (const auto& [p, q] : edges)
         if (fan_around(p, q, &changes, &excluded, nullptr) != FanOrder::in_order) {
             ++counters_.wedge;

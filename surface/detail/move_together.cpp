@@ -39,7 +39,7 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
     thread_local std::vector<std::uint32_t> fan;
     for (int k = 0; k < 3; ++k) {
         const std::uint32_t p = tri[k], q = tri[(k + 1) % 3];
-        if (kinds_[p] == VertexKind::patch || kinds_[q] == VertexKind::patch) continue;
+        if (!may_be_junction_edge(p, q)) continue;
         fan.clear();
         if (fan_around(p, q, nullptr, nullptr, &fan) == FanOrder::in_order) continue;
         if (partners) partners->insert(partners->end(), fan.begin(), fan.end());
