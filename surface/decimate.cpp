@@ -22,6 +22,8 @@ void validate(const DecimateOptions& options)
 {
     if (!(options.max_distance_mm > 0))
         throw InputError(concat("decimate: max distance ", options.max_distance_mm, " mm must be positive"));
+    if (!(options.max_edge_mm >= 0))
+        throw InputError(concat("decimate: max edge ", options.max_edge_mm, " mm must not be negative (0: no bound)"));
     if (!(options.max_normal_change_deg > 0 && options.max_normal_change_deg <= 180))
         throw InputError(concat("decimate: max normal change ", options.max_normal_change_deg, " deg is outside (0, 180]"));
     if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
@@ -123,6 +125,7 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
         seams.insert(seams.end(), piece.fenced.begin(), piece.fenced.end());
         report.collapses += piece.report.collapses;
         report.refused_by_distance += piece.report.refused_by_distance;
+        report.refused_by_length += piece.report.refused_by_length;
         report.refused_by_checks += piece.report.refused_by_checks;
         report.max_distance_mm = std::max(report.max_distance_mm, piece.report.max_distance_mm);
         detail::add_counters(report, {.topology = piece.report.refused_topology, .shape = piece.report.refused_shape,

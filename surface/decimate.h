@@ -24,6 +24,10 @@ struct DecimateOptions {
     /// No vertex of the input may end up further than this from the output surface (a one-sided
     /// Hausdorff bound, tracked through every collapse).
     double max_distance_mm = 0.5;
+    /// Curvature mode: no collapse may leave an edge longer than this (0: no bound). Before remeshing to a
+    /// target edge L, 4/3 L spares the remeshing from splitting the long edges of flat places (which it
+    /// would then collapse again) and the decimation from the collapses that make them.
+    double max_edge_mm = 0;
     double max_normal_change_deg = 20;   ///< a collapse may tilt a triangle at most this much
     double min_angle_deg = 5;            ///< no collapse may create an angle below this (unless not worse)
     double min_gap_mm = 0.1;             ///< triangles sharing no vertex keep this distance (unless closer before)
@@ -47,6 +51,7 @@ struct DecimateReport {
     std::size_t splits = 0;
     std::size_t slabs = 1;                ///< slabs decimated side by side (DecimateOptions::slabs)
     std::size_t refused_by_distance = 0;  ///< collapses that would leave an input vertex too far
+    std::size_t refused_by_length = 0;    ///< collapses that would leave an edge longer than max_edge_mm
     std::size_t refused_by_checks = 0;    ///< collapses refused as invalid (the five below)
     std::size_t refused_topology = 0;     ///< link condition, junction rules
     std::size_t refused_shape = 0;        ///< small angle or degenerate

@@ -36,6 +36,10 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
                 ->capture_default_str();
+            app.add_option("--max-edge-mm", options.max_edge_mm,
+                           "Curvature mode: no collapse may leave an edge longer than this (0: no bound); before tm-remesh "
+                           "--edge-mm L, 4/3 L saves both steps work")
+                ->capture_default_str();
             app.add_option("--max-normal-change-deg", options.max_normal_change_deg, "Tilt allowed per collapse")
                 ->capture_default_str();
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle a collapse may create")
@@ -72,6 +76,7 @@ int main(int argc, char** argv)
                            {"splits", report.splits},
                            {"slabs", report.slabs},
                            {"refused_by_distance", report.refused_by_distance},
+                           {"refused_by_length", report.refused_by_length},
                            {"refused_topology", report.refused_topology},
                            {"refused_shape", report.refused_shape},
                            {"refused_fold", report.refused_fold},

@@ -305,6 +305,10 @@ private:
             fenced_.push_back(v);
             return false;
         }
+        if (options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0 && !keeps_edges_short(v, w)) {
+            ++report_.refused_by_length;
+            return false;
+        }
         // Scratch kept between calls: collapses are tried millions of times.
         std::vector<std::uint32_t>& targets = targets_;
         std::vector<std::uint32_t>& sources = sources_;
@@ -342,6 +346,22 @@ private:
         for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
         quadrics_[w] += quadrics_[v];
         report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
+        return true;
+    }
+
+    /// Whether the collapse of v into w leaves every new edge at w (from a neighbour of v that is none of w)
+    /// no longer than max_edge_mm, or no longer than the edge to v it replaces.
+    bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
+    {
+        editor_.ring(v, ring_);
+        const Vec3& p = editor_.position(w);
+        for (const ComplexEditor::RingEntry& e : ring_) {
+            const Vec3& q = editor_.position(e.vertex);
+            const double length = distance(p, q);
+            if (e.vertex != w && length > options_.max_edge_mm && length > distance(editor_.position(v), q) &&
+                editor_.edge_multiplicity(w, e.vertex) == 0)
+                return false;
+        }
         return true;
     }
 

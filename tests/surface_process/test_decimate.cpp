@@ -1,6 +1,7 @@
 // decimate(): fewer triangles, within the distance bound, and a complex that still passes the checker
 // with the same pieces per tissue; junction curves collapse only along themselves.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <iostream>
 
 #include "core/error.h"
@@ -84,11 +85,44 @@ TEST(Decimate, TargetTriangleCountStopsEarly)
     EXPECT_TRUE(surface::check_complex(complex).ok());
 }
 
+double longest_edge_mm(const InterfaceComplex& complex)
+{
+    double longest = 0;
+    for (const Triangle& t : complex.triangles)
+        for (int k = 0; k < 3; ++k)
+            longest = std::max(longest, distance(complex.vertices[t[k]], complex.vertices[t[(k + 1) % 3]]));
+    return longest;
+}
+
+/// The edge bound of curvature mode: unbounded, the flat faces of the boxes end in edges far longer than
+/// the bound; bounded, no edge is longer than the bound (the raw edges are all shorter) and the complex
+/// still passes the checker.
+TEST(Decimate, MaxEdgeBoundsTheEdgesCollapsesLeave)
+{
+    const image::Phantom phantom = image::make_phantom("boxes", {.voxel_mm = 2.0});
+    const InterfaceComplex raw = surface::extract_interfaces(phantom.image);
+    constexpr double bound = 5.0;
+    ASSERT_LT(longest_edge_mm(raw), bound);
+    InterfaceComplex free = raw, bounded = raw;
+    surface::decimate(free, {.max_distance_mm = 1.0});
+    const surface::DecimateReport report = surface::decimate(bounded, {.max_distance_mm = 1.0, .max_edge_mm = bound});
+    std::cout << "[ figures  ] boxes at 2 mm: longest edge " << longest_edge_mm(raw) << " mm raw, "
+              << longest_edge_mm(free) << " mm decimated (" << free.triangle_count() << " triangles), "
+              << longest_edge_mm(bounded) << " mm with a " << bound << " mm bound (" << bounded.triangle_count()
+              << " triangles, " << report.refused_by_length << " collapses refused by it)\n";
+    EXPECT_GT(longest_edge_mm(free), 2 * bound);
+    EXPECT_LE(longest_edge_mm(bounded), bound);
+    EXPECT_GT(report.refused_by_length, 0u);
+    EXPECT_LT(bounded.triangle_count(), raw.triangle_count() / 4);
+    EXPECT_TRUE(surface::check_complex(bounded).ok());
+}
+
 TEST(Decimate, RejectsBadOptions)
 {
     InterfaceComplex complex;
     EXPECT_THROW(surface::decimate(complex, {.max_distance_mm = 0}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size}), InputError);
+    EXPECT_THROW(surface::decimate(complex, {.max_edge_mm = -1}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.slabs = surface::DecimateOptions::max_slabs + 1}), InputError);
 }
 
