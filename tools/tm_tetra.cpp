@@ -156,11 +156,15 @@ int main(int argc, char** argv)
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
                                report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",
                                format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ", format_mm(report.max_radius_edge_ratio, 2)));
+            if (report.split_interface_triangles > 0 && options.preserve_interfaces)
+                context.progress.warn("tm-tetra", concat("TetGen split ", report.split_interface_triangles, " interface triangles "
+                                                         "despite -Y (the interfaces are unchanged: the parts cover them)"));
             if (report.tets_over_volume_bound > 0)
                 context.progress.warn("tm-tetra", concat(report.tets_over_volume_bound, " tets exceed their volume bound (interface "
                                                          "triangles too large for it: remesh finer, or --allow-steiner)"));
             context.summary = {{"input_triangles", report.input_triangles}, {"tets", report.tets}, {"nodes", report.nodes},
                                {"steiner_points", report.steiner_points}, {"interface_faces", report.interface_faces},
+                               {"split_interface_triangles", report.split_interface_triangles},
                                {"min_dihedral_deg", report.min_dihedral_deg}, {"max_radius_edge_ratio", report.max_radius_edge_ratio},
                                {"tets_over_volume_bound", report.tets_over_volume_bound}, {"tetgen_switches", report.switches},
                                {"tetrahedralize_seconds", report.seconds}};

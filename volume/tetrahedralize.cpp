@@ -255,6 +255,10 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
         report->tets = mesh.tets.size();
         report->steiner_points = out.points.size() / 3 - complex.vertices.size();
         report->interface_faces = mesh.faces.size();
+        std::vector<std::uint32_t> faces_of(complex.triangles.size(), 0);
+        for (const int marker : out.face_markers) ++faces_of[static_cast<std::size_t>(marker - 1)];
+        report->split_interface_triangles =
+            static_cast<std::size_t>(std::count_if(faces_of.begin(), faces_of.end(), [](std::uint32_t n) { return n > 1; }));
         report->switches = input.switches;
         report->min_dihedral_deg = 180;
         for (std::size_t t = 0; t < mesh.tets.size(); ++t) {

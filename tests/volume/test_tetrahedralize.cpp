@@ -81,6 +81,7 @@ TEST(Tetrahedralize, NestedBoxesGetExactTissueVolumesAndPositiveTets)
     EXPECT_NEAR(volumes.at(2), 64.0, 1e-9);
     EXPECT_EQ(volumes.count(0), 0u) << "the background outside the object must not be meshed";
     EXPECT_EQ(report.tets, mesh.tets.size());
+    EXPECT_EQ(report.split_interface_triangles, 0u) << "-Y keeps every input triangle whole here";
 }
 
 TEST(Tetrahedralize, PreservedInterfacesAreTetFacesWithTheirTissues)
@@ -180,6 +181,8 @@ TEST(Tetrahedralize, QualityBoundsHoldWhereInterfacesMaySplit)
     EXPECT_NEAR(volumes.at(2), 64.0, 1e-9);
     EXPECT_NEAR(volumes.at(1), 1000.0 - 64.0, 1e-9);
     EXPECT_GT(mesh.vertices.size(), nested_boxes().vertices.size());
+    EXPECT_GT(report.split_interface_triangles, 0u) << "without -Y the bound splits the boxes' faces";
+    EXPECT_GT(report.interface_faces, nested_boxes().triangles.size());
     EXPECT_LE(report.max_radius_edge_ratio, 1.1 * 1.5);
     EXPECT_GE(report.min_dihedral_deg, 5.0);
 }
