@@ -31,6 +31,10 @@ void validate(const DecimateOptions& options)
     if (!(options.min_gap_mm >= 0)) throw InputError("decimate: min gap must not be negative");
     if (options.mode == DecimateMode::size && !(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
         throw InputError("decimate: size mode needs a target edge length (target_edge_mm or per tissue pair)");
+    if (options.mode == DecimateMode::size && options.max_edge_mm > 0)
+        throw InputError(concat("decimate: a max edge (", options.max_edge_mm, " mm) bounds curvature mode only; size "
+                                "mode splits every edge longer than 4/3 of its target edge length anyway: drop the "
+                                "max edge, or lower the target"));
     if (options.slabs > options.max_slabs)
         throw InputError(concat("decimate: ", options.slabs, " slabs is more than the ", options.max_slabs,
                                 " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));

@@ -24,9 +24,10 @@ struct DecimateOptions {
     /// No vertex of the input may end up further than this from the output surface (a one-sided
     /// Hausdorff bound, tracked through every collapse).
     double max_distance_mm = 0.5;
-    /// Curvature mode: no collapse may leave an edge longer than this (0: no bound). Before remeshing to a
-    /// target edge L, 4/3 L spares the remeshing from splitting the long edges of flat places (which it
-    /// would then collapse again) and the decimation from the collapses that make them.
+    /// Curvature mode only (size mode refuses it): no collapse may leave an edge longer than this (0: no
+    /// bound). Before remeshing to a target edge L, 4/3 L spares the remeshing from splitting the long
+    /// edges of flat places (which it would then collapse again) and the decimation from the collapses
+    /// that make them.
     double max_edge_mm = 0;
     double max_normal_change_deg = 20;   ///< a collapse may tilt a triangle at most this much
     double min_angle_deg = 5;            ///< no collapse may create an angle below this (unless not worse)

@@ -37,8 +37,8 @@ int main(int argc, char** argv)
             app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
                 ->capture_default_str();
             app.add_option("--max-edge-mm", options.max_edge_mm,
-                           "Curvature mode: no collapse may leave an edge longer than this (0: no bound); before tm-remesh "
-                           "--edge-mm L, 4/3 L saves both steps work")
+                           "Curvature mode only: no collapse may leave an edge longer than this (0: no bound); before "
+                           "tm-remesh --edge-mm L, 4/3 L saves both steps work")
                 ->capture_default_str();
             app.add_option("--max-normal-change-deg", options.max_normal_change_deg, "Tilt allowed per collapse")
                 ->capture_default_str();

@@ -84,6 +84,10 @@ TEST(SmoothDecimateCli, RefusesUnfitInputBadOptionsAndLossyFormats)
     const auto size = run_cli("tm-decimate", {"-i", in.surface, "-o", (dir / "out.ply").string(), "--mode", "size"});
     EXPECT_EQ(size.exit_code, 2);
     EXPECT_NE(size.err.find("size mode needs a target edge length"), std::string::npos) << size.err;
+    const auto both = run_cli("tm-decimate", {"-i", in.surface, "-o", (dir / "out.ply").string(), "--mode", "size",
+                                              "--target-edge-mm", "2", "--max-edge-mm", "3"});
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_NE(both.err.find("bounds curvature mode only"), std::string::npos) << both.err;
     const auto lambda = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "out.ply").string(),
                                               "--max-depth-voxels", "3"});
     EXPECT_EQ(lambda.exit_code, 2);

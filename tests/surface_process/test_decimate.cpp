@@ -123,6 +123,9 @@ TEST(Decimate, RejectsBadOptions)
     EXPECT_THROW(surface::decimate(complex, {.max_distance_mm = 0}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.max_edge_mm = -1}), InputError);
+    // Size mode bounds its edges by its target; a second bound there would be silently ignored.
+    EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size, .max_edge_mm = 3, .target_edge_mm = 2}),
+                 InputError);
     EXPECT_THROW(surface::decimate(complex, {.slabs = surface::DecimateOptions::max_slabs + 1}), InputError);
 }
 
