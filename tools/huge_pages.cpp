@@ -1,5 +1,6 @@
-// Big blocks on transparent huge pages, for every tm-<verb> program (this file replaces the global
-// operator new and delete of the programs it is linked into; the libraries and tests keep the default).
+// Big blocks on transparent huge pages, for the tm-<verb> programs where that was measured to pay (the
+// list, and why not everywhere, in tools/CMakeLists.txt). This file replaces the global operator new and
+// delete of the programs it is linked into; the libraries and the other programs keep the default.
 //
 // Why: the surface steps hold a 1 mm head's millions of vertices and triangles in arrays of tens to
 // hundreds of MiB, made and dropped many times (a copy of the positions per smoothing step, the checker's
