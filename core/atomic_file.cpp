@@ -47,15 +47,20 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     }
 }
 
-void write_text_atomically(const fs::path& path, const std::string& text)
+void write_stream_atomically(const fs::path& path, const std::function<void(std::ostream&)>& write)
 {
     write_atomically(path, [&](const fs::path& temporary) {
         std::ofstream out(temporary, std::ios::binary);
         if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
-        out << text;
+        write(out);
         out.close();
         if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });
+}
+
+void write_text_atomically(const fs::path& path, const std::string& text)
+{
+    write_stream_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
 std::string read_file_bytes(const fs::path& path)

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <ostream>
 #include <string>
 
 namespace tissuemesh {
@@ -14,6 +15,11 @@ namespace tissuemesh {
 /// @throws IoError when the directory does not exist or the rename fails.
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(const std::filesystem::path& temporary)>& write);
+
+/// Writes `path` atomically through a binary stream: `write` fills it; the file is kept only when the
+/// stream opened, `write` returned and the bytes reached the disk.
+/// @throws IoError naming `path` when it cannot be opened or written (permissions, a full disk).
+void write_stream_atomically(const std::filesystem::path& path, const std::function<void(std::ostream& out)>& write);
 
 /// Writes `text` to `path` atomically.
 void write_text_atomically(const std::filesystem::path& path, const std::string& text);

@@ -1,6 +1,5 @@
 #include "io/surface_io.h"
 
-#include <fstream>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -37,16 +36,12 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
     const std::string extension = extension_of(path);
     validate_indices(complex, path.string());
     // Every format goes to the temporary file in chunks of about 1 MB, never whole in memory.
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
+    write_stream_atomically(path, [&](std::ostream& out) {
         if (extension == ".ply") detail::write_ply(complex, out, ply_comments);
         if (extension == ".vtp") detail::write_vtp(complex, out);
         if (extension == ".off") detail::write_off(complex, out);
         if (extension == ".stl") detail::write_stl(complex, out);
         if (extension == ".obj") detail::write_obj(complex, out);
-        out.close();
-        if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
     });
 }
 

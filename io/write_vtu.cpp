@@ -5,13 +5,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string_view>
 #include <type_traits>
 #include <zlib.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/detail/chunked_output.h"
 
 namespace tissuemesh::io {
 namespace {
@@ -30,13 +30,15 @@ double finite(double value) { return std::isfinite(value) ? value : (value > 0 ?
 /// of a 2.9 M-tet mesh is 430 MB; built as one string first it cost three times that at the peak.
 class ArrayWriter {
 public:
-    ArrayWriter(std::ostream& out, VtuEncoding encoding) : out_(out), encoding_(encoding) {}
+    ArrayWriter(std::ostream& out, VtuEncoding encoding) : out_(out), chunks_(out), encoding_(encoding) {}
+
+    VtuEncoding encoding() const { return encoding_; }
 
     /// XML text, written in chunks of about a MiB.
     void text(std::string_view piece)
     {
-        buffer_ += piece;
-        if (buffer_.size() >= chunk_bytes) flush();
+        chunks_.text += piece;
+        chunks_.flush_if_full();
     }
 
     /// One DataArray of `values` (numbers of type T), `per_line` values to an ASCII line.
@@ -56,12 +58,12 @@ public:
             if constexpr (std::is_floating_point_v<T>) {
                 char number[32];
                 std::snprintf(number, sizeof(number), "%.17g", values[i]);
-                buffer_ += number;
+                chunks_.text += number;
             } else {
-                buffer_ += std::to_string(values[i]);
+                chunks_.text += std::to_string(values[i]);
             }
-            buffer_ += (i + 1) % per_line == 0 ? '\n' : ' ';
-            if (buffer_.size() >= chunk_bytes) flush();
+            chunks_.text += (i + 1) % per_line == 0 ? '\n' : ' ';
+            chunks_.flush_if_full();
         }
         text("</DataArray>\n");
     }
@@ -71,23 +73,15 @@ public:
     {
         if (encoding_ == VtuEncoding::compressed) {
             text("<AppendedData encoding=\"raw\">\n_");
-            flush();
+            chunks_.flush();
             out_.write(appended_.data(), static_cast<std::streamsize>(appended_.size()));
             text("\n</AppendedData>\n");
         }
         text("</VTKFile>\n");
-        flush();
+        chunks_.flush();
     }
 
 private:
-    static constexpr std::size_t chunk_bytes = 1 << 20;
-
-    void flush()
-    {
-        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-        buffer_.clear();
-    }
-
     /// VTK's compressed layout: UInt64 header [#blocks, block size, last block size, compressed sizes...],
     /// then the zlib streams of the blocks.
     void append_compressed(const void* data, std::size_t bytes)
@@ -120,8 +114,8 @@ private:
     }
 
     std::ostream& out_;
+    detail::ChunkedOutput chunks_;
     VtuEncoding encoding_;
-    std::string buffer_;
     std::string appended_;
 };
 
@@ -139,11 +133,11 @@ void add_array(ArrayWriter& writer, const VtuArray& array)
 }
 
 void write_grid(const TetMesh& mesh, const std::vector<VtuArray>& point_arrays, const std::vector<VtuArray>& cell_arrays,
-                ArrayWriter& writer, VtuEncoding encoding)
+                ArrayWriter& writer)
 {
     writer.text(concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
                        "header_type=\"UInt64\"",
-                       encoding == VtuEncoding::compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", ">\n",
+                       writer.encoding() == VtuEncoding::compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", ">\n",
                        "<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(), "\" NumberOfCells=\"",
                        mesh.tets.size(), "\">\n<Points>\n"));
     std::vector<double> points;
@@ -179,13 +173,9 @@ void write_vtu(const TetMesh& mesh, const std::filesystem::path& path, const std
     validate_indices(mesh, path.string());
     for (const VtuArray& array : point_arrays) check_size(array, mesh.vertices.size(), "points", path);
     for (const VtuArray& array : cell_arrays) check_size(array, mesh.tets.size(), "cells", path);
-    write_atomically(path, [&](const std::filesystem::path& temporary) {
-        std::ofstream out(temporary, std::ios::binary);
-        if (!out) throw IoError(concat(path.string(), ": cannot open for writing; check the permissions"));
+    write_stream_atomically(path, [&](std::ostream& out) {
         ArrayWriter writer(out, encoding);
-        write_grid(mesh, point_arrays, cell_arrays, writer, encoding);
-        out.close();
-        if (!out) throw IoError(concat(path.string(), ": write failed (disk full?)"));
+        write_grid(mesh, point_arrays, cell_arrays, writer);
     });
 }
 

@@ -4,12 +4,13 @@
 //
 // Why: the surface steps hold a 1 mm head's millions of vertices and triangles in arrays of tens to
 // hundreds of MiB, made and dropped many times (a copy of the positions per smoothing step, the checker's
-// tables). Each new block is faulted in page by page, and with 4 KiB pages on a virtual machine the faults
-// took over half of tm-check-surface's time. The whole 2 MiB pages inside each block of 8 MiB and more
-// are therefore marked MADV_HUGEPAGE, so they fault in 2 MiB at a time where the kernel allows transparent
-// huge pages (Debian's default "madvise" mode); elsewhere the advice is refused and nothing changes.
-// (Aligning the blocks to 2 MiB instead, with aligned_alloc, cost 40% more peak memory in tm-check-surface.) Measured in the
-// README (Performance). Same results, byte for byte: only where memory comes from changes.
+// tables). Each new block is faulted in page by page, and 4 KiB faults are dear on these virtual machines
+// (tm-check-surface on the head: 19.7 s with them, 7.3 s without). The whole 2 MiB pages inside each block
+// of 2 MiB or more are therefore marked MADV_HUGEPAGE, so they fault in 2 MiB at a time where the kernel
+// allows transparent huge pages (Debian's default "madvise" mode); elsewhere the advice is refused and
+// nothing changes. Aligning the blocks to 2 MiB (aligned_alloc) was as fast but cost 40% more peak memory.
+// Figures in the README (the surface chain's sixth round). Same results, byte for byte: only where memory
+// comes from changes.
 //
 // Not under AddressSanitizer, whose own operator new checks that blocks are freed the way they were made.
 #if !defined(__SANITIZE_ADDRESS__)
@@ -23,14 +24,12 @@
 namespace {
 
 constexpr std::size_t huge_page = std::size_t{2} << 20;
-constexpr std::size_t smallest_advised_block = huge_page;
 
-/// A block of `size` bytes, or nullptr; the huge pages inside a big one advised.
+/// A block of `size` bytes, or nullptr; the whole huge pages inside it advised.
 void* try_allocate(std::size_t size)
 {
-    if (size < smallest_advised_block) return std::malloc(size == 0 ? 1 : size);
-    void* block = std::malloc(size);
-    if (block != nullptr) {
+    void* block = std::malloc(size == 0 ? 1 : size);
+    if (block != nullptr && size >= huge_page) {
         const auto start = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) / huge_page * huge_page;
         const auto end = (reinterpret_cast<std::uintptr_t>(block) + size) / huge_page * huge_page;
         if (end > start)  // refused (EINVAL) without THP: harmless

@@ -1,5 +1,5 @@
-// tools/huge_pages.cpp, linked into this test program as into every tm-<verb> program: big blocks get
-// the kernel's huge-page advice, and failure still throws std::bad_alloc.
+// tools/huge_pages.cpp, linked into this test program as into the tm-<verb> programs that use it: big
+// blocks get the kernel's huge-page advice, and failure still throws std::bad_alloc.
 #include <gtest/gtest.h>
 
 #include <cstdint>
