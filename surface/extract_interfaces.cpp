@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "surface/detail/extraction_labels.h"
 #include "surface/detail/priority_cube.h"
 
 namespace tissuemesh::surface {
@@ -353,50 +354,16 @@ private:
     std::vector<bool> seen_ = std::vector<bool>(std::size_t{1} << 16, false);
 };
 
-/// The label each image label becomes: itself when kept, `background` otherwise.
-std::vector<Label> label_map(const LabelImage& image, const ExtractOptions& options)
-{
-    std::vector<Label> map(std::size_t{1} << 16);
-    for (std::size_t l = 0; l < map.size(); ++l) map[l] = static_cast<Label>(l);
-    if (options.tissues.empty()) return map;
-    const std::map<Label, std::size_t> present = count_labels(image);
-    const std::set<Label> kept(options.tissues.begin(), options.tissues.end());
-    for (const Label tissue : kept) {
-        if (tissue == options.background)
-            throw InputError(concat("extract_interfaces: tissue ", tissue, " is also the background label; "
-                                    "choose another background or drop it from the tissue list"));
-        if (!present.contains(tissue))
-            throw InputError(concat("extract_interfaces: tissue ", tissue, " does not occur in the image; "
-                                    "check the tissue list against tm-info"));
-    }
-    for (std::size_t l = 0; l < map.size(); ++l)
-        if (!kept.contains(static_cast<Label>(l))) map[l] = options.background;
-    return map;
-}
-
 } // namespace
 
 void extract_interfaces(const LabelImage& image, const ExtractOptions& options, InterfaceSink& sink,
                         const Progress& progress)
 {
-    if (image.empty()) throw InputError("extract_interfaces: the image has no voxels; give a non-empty image");
-    std::vector<Label> map = label_map(image, options);
-    std::set<Label> tissues;
-    for (const auto& [label, count] : count_labels(image))
-        if (map[label] != options.background) tissues.insert(map[label]);
-    if (tissues.empty())
-        throw InputError(concat("extract_interfaces: the image holds only background (label ", options.background,
-                                "); there is no tissue to extract. Check --background and --tissues"));
-    if (!options.priority.empty() &&
-        std::max({image.dims()[0], image.dims()[1], image.dims()[2]}) > max_priority_side)
-        throw InputError(concat("extract_interfaces: the image has a side over ", max_priority_side,
-                                " voxels, too large for the priority rule's vertex keys; crop the image or "
-                                "drop the priority"));
-    for (const auto& [label, value] : options.priority)
-        if (!tissues.contains(label) && label != options.background)
-            throw InputError(concat("extract_interfaces: priority given for label ", label, " (priority ", value,
-                                    "), which is not a tissue of the image; check the priority list against "
-                                    "tm-info"));
+    detail::ExtractionLabels labels = detail::prepare_extraction(image, options.tissues, options.background,
+                                                                 options.priority, max_priority_side,
+                                                                 "extract_interfaces");
+    const std::set<Label>& tissues = labels.tissues;
+    std::vector<Label> map = std::move(labels.map);
     SlabExtractor extractor(image, std::move(map), options.background, options.priority);
     extractor.run(sink, progress);
     // No tissue may be lost: padding gives every tissue a boundary, so this is a guard against bugs.

@@ -14,6 +14,7 @@
 #include "io/surface_io.h"
 #include "io/write_surface_streamed.h"
 #include "surface/extract_interfaces.h"
+#include "surface/extract_surface_nets.h"
 #include "surface/summarize_interfaces.h"
 #include "surface/tissue_surface.h"
 #include "tools/run_tool.h"
@@ -145,7 +146,8 @@ void check_memory(const tools::ToolContext& context, const std::string& input, c
 
 int main(int argc, char** argv)
 {
-    std::string input, output, per_tissue_dir, per_tissue_format = "stl";
+    std::string input, output, per_tissue_dir, per_tissue_format = "stl", method = "marching-cubes";
+    surface::NetSmoothOptions smoothing;
     std::vector<std::string> priority;
     io::ReadImageOptions read_options;
     surface::ExtractOptions options;
@@ -171,6 +173,21 @@ int main(int argc, char** argv)
                            "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
                            "one-voxel layer in one piece), e.g. csf=2,3=1")
                 ->delimiter(',');
+            app.add_option("--method", method,
+                           "marching-cubes: the dual of Freudenthal's tetrahedra, 6-8 triangles per voxel face, "
+                           "unsmoothed; surface-nets: one vertex per grid cube, about 2 triangles per voxel face, "
+                           "smoothed inside its cube (no tm-smooth needed). Same topology, same rules")
+                ->check(CLI::IsMember({"marching-cubes", "surface-nets"}))
+                ->capture_default_str();
+            app.add_option("--smooth-iterations", smoothing.iterations,
+                           "surface-nets: Taubin lambda|mu pairs (0: vertices at the cube centres)")
+                ->check(CLI::Range(0, 10000))->capture_default_str();
+            app.add_option("--margin-voxels", smoothing.margin_voxels,
+                           "surface-nets: distance a vertex keeps from its cube's faces (voxels)")
+                ->check(CLI::Range(0.01, 0.4))->capture_default_str();
+            app.add_option("--max-depth-voxels", smoothing.max_depth_voxels,
+                           "surface-nets: a vertex stays within this distance of the voxels of each of its tissues")
+                ->check(CLI::Range(0.01, 1.0))->capture_default_str();
             app.add_option("--labels", read_options.names_json, "Tissue names JSON ({\"1\": \"scalp\"})");
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
@@ -190,14 +207,22 @@ int main(int argc, char** argv)
             const double read_seconds = seconds_since(start);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
             // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
-            const bool streamed = extension == ".ply" && per_tissue_dir.empty();
+            const bool nets = method == "surface-nets";
+            const bool streamed = !nets && extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
             options.priority = parse_priority(priority, image);
             surface::InterfaceSummarizer counter;
             CollectingSink collector;
+            surface::SurfaceNetsReport nets_report;
             const auto extract = [&](InterfaceSink& sink) {
                 TeeSink both(sink, counter);
-                tools::with_source(input, [&] { surface::extract_interfaces(image, options, both, ctx.progress); });
+                tools::with_source(input, [&] {
+                    if (!nets) return surface::extract_interfaces(image, options, both, ctx.progress);
+                    InterfaceComplex complex = surface::extract_surface_nets(image, options, smoothing, ctx.progress,
+                                                                             &nets_report);
+                    both.start(complex.names, complex.background);
+                    both.add({0, complex.vertices, complex.triangles, complex.sides});
+                });
             };
             start = std::chrono::steady_clock::now();
             double extract_seconds = 0;
@@ -224,6 +249,15 @@ int main(int argc, char** argv)
                            {"priority", priority_summary(options.priority)},
                            {"per_tissue", per_tissue},              {"streamed", streamed},
                            {"seconds_read", read_seconds},          {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start) - extract_seconds}};
+                           {"seconds_write", seconds_since(start) - extract_seconds}, {"method", method}};
+            if (nets)
+                ctx.summary["surface_nets"] = {{"mixed_cubes", nets_report.mixed_cubes},
+                                               {"fallback_cubes", nets_report.fallback_cubes},
+                                               {"smooth_iterations", nets_report.iterations},
+                                               {"moves", nets_report.moves},
+                                               {"refused_by_image", nets_report.refused_by_image},
+                                               {"refused_by_checks", nets_report.refused_by_checks},
+                                               {"mean_displacement_mm", nets_report.mean_displacement_mm},
+                                               {"max_displacement_mm", nets_report.max_displacement_mm}};
         });
 }
