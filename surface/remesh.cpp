@@ -1,6 +1,7 @@
 #include "surface/remesh.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -8,7 +9,7 @@
 #include <optional>
 
 #include "core/error.h"
-#include "surface/detail/complex_editor.h"
+#include "surface/detail/local_editor.h"
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/remesh_reference.h"
 #include "surface/detail/slabs.h"
@@ -16,7 +17,7 @@
 namespace tissuemesh::surface {
 namespace {
 
-using detail::ComplexEditor;
+using detail::LocalEditor;
 using detail::Reference;
 using detail::unordered;
 using detail::Slab;
@@ -58,7 +59,7 @@ public:
         : options_(options), report_(report),
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
-                   .max_normal_change_deg = options.max_normal_change_deg,
+                   .max_tilt_deg = options.max_normal_change_deg,
                    .min_gap_mm = options.min_gap_mm},
                   cell_mm),
           reference_(reference)
@@ -73,12 +74,17 @@ public:
             collapse_short_edges();
             editor_.rebuild_grid(2 * editor_.mean_edge_length());
             flip_towards_valence_six();
+            flip_towards_delaunay();
             relax();
             progress.update("remesh", static_cast<double>(i + 1) / static_cast<double>(options_.iterations));
         }
+        for (int pass = 0; pass < 3; ++pass) {
+            remove_bad_triangles();
+            flip_towards_delaunay();
+        }
     }
 
-    const ComplexEditor& editor() const { return editor_; }
+    const LocalEditor& editor() const { return editor_; }
 
     void split_long_edges()
     {
@@ -88,7 +94,7 @@ public:
         std::sort(long_edges.begin(), long_edges.end());
         for (const auto& [l, e] : long_edges) {
             if (editor_.edge_multiplicity(e.first, e.second) == 0) continue;
-            if (editor_.try_split(e.first, e.second, 0.5 * (editor_.position(e.first) + editor_.position(e.second))))
+            if (editor_.try_split(e.first, e.second, split_point(e.first, e.second)))
                 ++report_.splits;
             else
                 ++report_.refused;
@@ -96,6 +102,21 @@ public:
     }
 
 private:
+    /// Where edge ab splits: its midpoint, moved onto the input surface (its junction curves for a junction
+    /// edge, else the patch of the edge's tissue pair), so new vertices start on the surface they stand for.
+    Vec3 split_point(std::uint32_t a, std::uint32_t b) const
+    {
+        const Vec3 middle = 0.5 * (editor_.position(a) + editor_.position(b));
+        const double reach = distance(editor_.position(a), editor_.position(b));
+        if (editor_.edge_multiplicity(a, b) >= 3) return reference_.onto_curve(middle, reach);
+        for (const std::uint32_t t : editor_.star(a)) {
+            const Triangle& tri = editor_.triangle(t);
+            if (std::find(tri.begin(), tri.end(), b) != tri.end())
+                return reference_.onto_patch(middle, unordered(editor_.side(t)), reach);
+        }
+        return middle;
+    }
+
     /// The target length of edge ab: the smallest target of the patches around it.
     double target(std::uint32_t a, std::uint32_t b) const
     {
@@ -130,7 +151,7 @@ private:
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
     {
         editor_.ring(v, ring_);
-        for (const ComplexEditor::RingEntry& e : ring_)
+        for (const LocalEditor::RingEntry& e : ring_)
             if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
                 return false;
         return true;
@@ -158,6 +179,61 @@ private:
                 ++report_.collapses;
             else
                 ++report_.refused;
+        }
+    }
+
+    /// Triangles with an angle below the limit that Botsch and Kobbelt's loop leaves behind, mostly along
+    /// junction curves (where edges may not flip and vertices slide along the curve only): a cap (an angle
+    /// over 120 degrees) flips its longest edge, or else its apex collapses into an end of that edge; a
+    /// needle collapses its shortest edge. Either way as far as the junction rules, the editor's checks and
+    /// 1.6 times the target length allow.
+    void remove_bad_triangles()
+    {
+        constexpr double bad_deg = 25;
+        std::vector<std::pair<double, std::uint32_t>> bad;
+        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t)
+            if (editor_.triangle_alive(t))
+                if (const double a = detail::smallest_angle_deg(editor_.corners(t)); a < bad_deg) bad.emplace_back(a, t);
+        std::sort(bad.begin(), bad.end());
+        const auto may = [&](std::uint32_t v, std::uint32_t w) {
+            const VertexKind kind = editor_.kind(v);
+            if (kind == VertexKind::corner || (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3)) return false;
+            editor_.ring(v, ring_);
+            for (const LocalEditor::RingEntry& e : ring_)
+                if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 1.6 * target(v, e.vertex))
+                    return false;
+            return true;
+        };
+        const auto collapse_either = [&](std::uint32_t a, std::uint32_t b) {
+            return (may(a, b) && editor_.try_collapse(a, b)) || (may(b, a) && editor_.try_collapse(b, a));
+        };
+        for (const auto& [angle, t] : bad) {
+            if (!editor_.triangle_alive(t)) continue;
+            const Triangle tri = editor_.triangle(t);
+            const TriangleCorners c = editor_.corners(t);
+            int apex = 0, shortest = 0;  // the corner of the largest angle; the shortest edge (from corner k)
+            double largest = 0, lengths[3];
+            for (int k = 0; k < 3; ++k) {
+                const Vec3 u = c[(k + 1) % 3] - c[k], w = c[(k + 2) % 3] - c[k];
+                const double at = std::atan2(norm(cross(u, w)), dot(u, w));
+                if (at > largest) largest = at, apex = k;
+                lengths[k] = norm(u);
+            }
+            for (int k = 1; k < 3; ++k)
+                if (lengths[k] < lengths[shortest]) shortest = k;
+            bool fixed = false;
+            if (largest > 2.0944) {  // 120 degrees: a cap
+                const std::uint32_t x = tri[(apex + 1) % 3], y = tri[(apex + 2) % 3];
+                fixed = (editor_.edge_multiplicity(x, y) == 2 && editor_.try_flip(x, y)) ||
+                        (may(tri[apex], x) && editor_.try_collapse(tri[apex], x)) ||
+                        (may(tri[apex], y) && editor_.try_collapse(tri[apex], y));
+                if (fixed && editor_.vertex_alive(tri[apex]) ) ++report_.flips;
+                else if (fixed) ++report_.collapses;
+            } else if (lengths[shortest] < 0.5 * std::max({lengths[0], lengths[1], lengths[2]})) {
+                fixed = collapse_either(tri[shortest], tri[(shortest + 1) % 3]);
+                if (fixed) ++report_.collapses;
+            }
+            if (!fixed) ++report_.refused;
         }
     }
 
@@ -200,6 +276,40 @@ private:
         }
     }
 
+    /// Flips edges of one patch whose two opposite angles add up to more than a half turn, where the two
+    /// triangles lie nearly in one plane: each such flip raises the smaller of the pair's smallest angles
+    /// (the Delaunay criterion), and surfaces with larger smallest angles give TetGen better tetrahedra.
+    void flip_towards_delaunay()
+    {
+        constexpr double max_fold_cos = 0.9659;  // the two triangles' normals within 15 degrees
+        for (const Edge& e : edges()) {
+            const auto [v, w] = e;
+            if (editor_.edge_multiplicity(v, w) != 2) continue;
+            std::array<std::uint32_t, 2> apex{}, pair{};
+            int n = 0;
+            for (const std::uint32_t t : editor_.star(v)) {
+                const Triangle& tri = editor_.triangle(t);
+                if (std::find(tri.begin(), tri.end(), w) == tri.end() || n == 2) continue;
+                pair[n] = t;
+                for (const std::uint32_t u : tri)
+                    if (u != v && u != w) apex[n] = u;
+                ++n;
+            }
+            if (n != 2 || !(editor_.side(pair[0]) == editor_.side(pair[1]))) continue;
+            const Vec3 &pv = editor_.position(v), &pw = editor_.position(w);
+            const auto angle_at = [&](std::uint32_t a) {
+                const Vec3 x = pv - editor_.position(a), y = pw - editor_.position(a);
+                return std::atan2(norm(cross(x, y)), dot(x, y));
+            };
+            if (angle_at(apex[0]) + angle_at(apex[1]) <= 3.14159265358979323846 + 1e-9) continue;
+            const TriangleCorners c0 = editor_.corners(pair[0]), c1 = editor_.corners(pair[1]);
+            const Vec3 n0 = cross(c0[1] - c0[0], c0[2] - c0[0]), n1 = cross(c1[1] - c1[0], c1[2] - c1[0]);
+            if (dot(n0, n1) < max_fold_cos * norm(n0) * norm(n1)) continue;
+            if (editor_.try_flip(v, w)) ++report_.flips;
+            else ++report_.refused;
+        }
+    }
+
     /// Area-weighted normal of v's star.
     Vec3 normal_at(std::uint32_t v) const
     {
@@ -238,9 +348,9 @@ private:
 
     const RemeshOptions& options_;
     RemeshReport& report_;
-    ComplexEditor editor_;
+    LocalEditor editor_;
     const Reference& reference_;
-    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch
+    mutable std::vector<LocalEditor::RingEntry> ring_;  ///< scratch
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any

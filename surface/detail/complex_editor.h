@@ -25,15 +25,13 @@
 
 #include "core/interface_complex.h"
 #include "surface/detail/box_index.h"
+#include "surface/detail/edit_types.h"
 #include "surface/detail/edge_fan.h"
 #include "surface/detail/slabs.h"
 #include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
 
 namespace tissuemesh::surface::detail {
-
-/// Where a vertex may go: anywhere on its patch, only along its junction curve, or nowhere.
-enum class VertexKind : std::uint8_t { patch, curve, corner };
 
 /// Geometric limits every edit must respect. Lengths in mm, angles in degrees.
 struct EditLimits {
@@ -47,19 +45,6 @@ struct EditLimits {
     /// The order around junction edges is then not judged per edit (a crossing tangles the junctions it
     /// passes, and undoing it may pass through tangles); repair() checks the whole at the end.
     bool tolerate_existing_intersections = false;
-};
-
-/// Why edits were refused, for reports.
-struct EditCounters {
-    std::size_t accepted = 0;
-    std::size_t topology = 0;      ///< link condition, junction rules, valence
-    std::size_t shape = 0;         ///< degenerate or too small an angle
-    std::size_t normal = 0;        ///< tilted too much (a fold)
-    std::size_t intersection = 0;  ///< would meet another triangle
-    std::size_t gap = 0;           ///< would come too close to another triangle
-    std::size_t wedge = 0;         ///< would close the wedge with a triangle sharing one vertex, or turn the
-                                   ///< triangles around a junction edge out of order (edge_fan.h)
-    std::size_t fence = 0;         ///< would change a triangle outside the fence (not a defect)
 };
 
 class ComplexEditor {

@@ -1,4 +1,4 @@
-// Decimator: the collapse loop of decimate() over one ComplexEditor (the whole complex, or one slab of it
+// Decimator: the collapse loop of decimate() over one LocalEditor (the whole complex, or one slab of it
 // fenced off from the others), with what it carries along: per vertex a quadric, per triangle the input
 // vertices it answers for (the distance bound). Included by decimate.cpp only.
 #pragma once
@@ -15,7 +15,8 @@
 
 #include "core/progress.h"
 #include "surface/decimate.h"
-#include "surface/detail/complex_editor.h"
+#include "surface/detail/local_editor.h"
+#include "surface/detail/triangle_distance.h"
 #include "surface/detail/slabs.h"
 #include "surface/detail/vertex_queue.h"
 
@@ -86,7 +87,7 @@ public:
         : options_(options), report_(report),
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
-                   .max_normal_change_deg = options.max_normal_change_deg,
+                   .max_tilt_deg = options.max_normal_change_deg,
                    .min_gap_mm = options.min_gap_mm},
                   cell_mm),
           quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab),
@@ -115,7 +116,7 @@ public:
             ++report_.collapses;
             enqueue(*w);
             editor_.ring(*w, around_);
-            for (const ComplexEditor::RingEntry& e : around_) requeue_neighbour(e.vertex, c.v, *w, e.triangles);
+            for (const LocalEditor::RingEntry& e : around_) requeue_neighbour(e.vertex, c.v, *w, e.triangles);
             if (editor_.triangle_count() < next_rebuild) {
                 editor_.rebuild_grid(2 * editor_.mean_edge_length());
                 next_rebuild = editor_.triangle_count() / 2;
@@ -174,7 +175,7 @@ public:
             if (editor_.vertex_alive(v)) piece.fenced.push_back(from_vertex[v]);
         add_counters(piece.report, editor_.counters());
     }
-    const ComplexEditor& editor() const { return editor_; }
+    const LocalEditor& editor() const { return editor_; }
 
 private:
     /// Size mode: the target edge length for edge ab, the smallest over the tissue pairs around it.
@@ -223,21 +224,30 @@ private:
         if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return;
         const bool curve = editor_.kind(v) == VertexKind::curve;
         editor_.ring(v, ring_);
-        for (const ComplexEditor::RingEntry& e : ring_)
-            if (!curve || e.triangles >= 3)
-                if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
+        for (const LocalEditor::RingEntry& e : ring_) {
+            if (curve && e.triangles < 3) continue;
+            if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
+        }
     }
 
-    /// Queues v with the cost of its cheapest collapse (ties: the lowest target).
+    /// Queues v with its cheapest collapse that keeps edges within the bound (ties: the lowest target);
+    /// cheaper ones that would not are counted as refused by the length and never tried.
     void enqueue(std::uint32_t v)
     {
-        std::pair<double, std::uint32_t> best{0, 0};
-        bool any = false;
-        for_each_target(v, [&](double c, std::uint32_t w) {
-            if (!any || std::pair{c, w} < best) best = {c, w}, any = true;
-        });
-        if (!any) queue_.erase(v);
-        else queue_.set({best.first, v, best.second});
+        std::vector<std::pair<double, std::uint32_t>>& targets = enqueue_scratch_;
+        targets.clear();
+        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
+        std::sort(targets.begin(), targets.end());
+        const bool bounded = options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0;
+        for (const auto& [c, w] : targets) {
+            if (bounded && !short_enough(v, w)) {  // ring_ still holds v's ring
+                ++report_.refused_by_length;
+                continue;
+            }
+            queue_.set({c, v, w});
+            return;
+        }
+        queue_.erase(v);
     }
 
     /// Queues u, a neighbour of w after the collapse of v into w (`multiplicity`: triangles on edge uw), as
@@ -256,8 +266,10 @@ private:
         }
         const VertexKind kind = editor_.kind(u);
         if (kind == VertexKind::corner || (kind == VertexKind::curve && multiplicity < 3)) return;
-        if (const std::optional<double> c = cost(u, w); c && std::pair{*c, w} < std::pair{old->cost, old->w})
-            queue_.set({*c, u, w});
+        const std::optional<double> c = cost(u, w);
+        if (!c || !(std::pair{*c, w} < std::pair{old->cost, old->w})) return;
+        if (options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0 && !keeps_edges_short(u, w)) return;
+        queue_.set({*c, u, w});
     }
 
     /// Tries v's collapses cheapest first; returns the target it collapsed into.
@@ -354,8 +366,14 @@ private:
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
     {
         editor_.ring(v, ring_);
+        return short_enough(v, w);
+    }
+
+    /// keeps_edges_short() with the ring of v already in ring_.
+    bool short_enough(std::uint32_t v, std::uint32_t w) const
+    {
         const Vec3& p = editor_.position(w);
-        for (const ComplexEditor::RingEntry& e : ring_) {
+        for (const LocalEditor::RingEntry& e : ring_) {
             const Vec3& q = editor_.position(e.vertex);
             const double length = distance(p, q);
             if (e.vertex != w && length > options_.max_edge_mm && length > distance(editor_.position(v), q) &&
@@ -401,19 +419,20 @@ private:
 
     const DecimateOptions& options_;
     DecimateReport& report_;
-    ComplexEditor editor_;
+    LocalEditor editor_;
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
     std::optional<Slab> slab_;        ///< the slab this decimator works on, if any
     std::optional<EditFence> fence_;  ///< its fence
     std::vector<std::uint32_t> fenced_;  ///< vertices whose collapse the fence refused (repeats possible)
     VertexQueue queue_;  ///< per vertex its cheapest collapse
-    mutable std::vector<ComplexEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    mutable std::vector<LocalEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    std::vector<std::pair<double, std::uint32_t>> enqueue_scratch_;
     std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
     std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
     std::vector<TriangleCorners> shapes_;
     mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
-    std::vector<ComplexEditor::RingEntry> around_;        ///< scratch of collapse_all()
+    std::vector<LocalEditor::RingEntry> around_;        ///< scratch of collapse_all()
 };
 
 } // namespace tissuemesh::surface::detail

@@ -43,6 +43,10 @@ void run_pipeline(const TempDir& dir, const std::string& threads)
         {"tm-extract", {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("interfaces.ply"),
                         "--per-tissue", at("tissues")}},
         {"tm-smooth", {"-i", at("interfaces.ply"), "--image", at("clean.nii.gz"), "-o", at("smooth.ply")}},
+        // Surface nets: extraction with its smoothing (Jacobi steps, checked on all threads), then decimated.
+        {"tm-extract", {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("nets.ply"),
+                        "--method", "surface-nets"}},
+        {"tm-decimate", {"-i", at("nets.ply"), "-o", at("nets-decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
         // Decimation and remeshing in slabs (in parallel): the bytes must not depend on the threads.
         {"tm-decimate", {"-i", at("smooth.ply"), "-o", at("decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
         {"tm-remesh", {"-i", at("decimated.ply"), "-o", at("remeshed.ply"), "--edge-mm", "4", "--slabs", "2"}},

@@ -1,0 +1,395 @@
+#include "surface/detail/local_editor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "surface/detail/edge_fan.h"
+#include "surface/detail/local_geometry.h"
+#include "surface/detail/star_check.h"
+#include "surface/detail/triangle_distance.h"
+
+namespace tissuemesh::surface::detail {
+constexpr double pi = 3.14159265358979323846;
+
+LocalEditor::LocalEditor(InterfaceComplex complex, const LocalLimits& limits, double cell_mm)
+    : background_(complex.background), names_(std::move(complex.names)), positions_(std::move(complex.vertices)),
+      triangles_(std::move(complex.triangles)), sides_(std::move(complex.sides)), cell_mm_(cell_mm)
+{
+    set_limits(limits);
+    if (!(cell_mm > 0)) cell_mm = 1;
+    alive_.assign(triangles_.size(), 1);
+    alive_count_ = triangles_.size();
+    stars_.resize(positions_.size());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        for (const std::uint32_t v : triangles_[t]) stars_[v].push_back(t);
+    roles_.resize(positions_.size());
+    for (std::uint32_t v = 0; v < positions_.size(); ++v) roles_[v] = classify(v);
+    filed_.resize(triangles_.size());
+    stamp_.assign(triangles_.size(), 0);
+    rebuild_grid(cell_mm);
+}
+
+void LocalEditor::set_limits(const LocalLimits& limits)
+{
+    limits_ = limits;
+    cos_min_angle_ = std::cos(limits.min_angle_deg * pi / 180);
+    cos_max_tilt_ = std::cos(limits.max_tilt_deg * pi / 180);
+}
+
+void LocalEditor::ring(std::uint32_t v, std::vector<RingEntry>& out) const
+{
+    out.clear();
+    for (const std::uint32_t t : stars_[v])
+        for (const std::uint32_t w : triangles_[t]) {
+            if (w == v) continue;
+            auto it = std::find_if(out.begin(), out.end(), [&](const RingEntry& n) { return n.vertex == w; });
+            if (it == out.end()) out.push_back({w, 1});
+            else ++it->triangles;
+        }
+}
+
+std::uint32_t LocalEditor::edge_multiplicity(std::uint32_t v, std::uint32_t w) const
+{
+    std::uint32_t count = 0;
+    for (const std::uint32_t t : stars_[v]) count += has(triangles_[t], w);
+    return count;
+}
+
+VertexKind LocalEditor::classify(std::uint32_t v) const
+{
+    const auto& star = stars_[v];
+    if (star.empty()) return VertexKind::corner;
+    thread_local std::vector<RingEntry> around;
+    ring(v, around);
+    std::size_t junction = 0;
+    for (const RingEntry& n : around) {
+        if (n.triangles >= 3) ++junction;
+        else if (n.triangles != 2) return VertexKind::corner;
+    }
+    if (junction == 2) return VertexKind::curve;
+    if (junction != 0) return VertexKind::corner;
+    for (const std::uint32_t t : star)
+        if (!(sides_[t] == sides_[star.front()])) return VertexKind::corner;
+    // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
+    return around.size() == star.size() ? VertexKind::patch : VertexKind::corner;
+}
+
+void LocalEditor::reclassify_around(std::uint32_t v)
+{
+    reclassified_.clear();
+    const auto update = [&](std::uint32_t u) {
+        const VertexKind kind = classify(u);
+        if (kind != roles_[u]) reclassified_.push_back(u);
+        roles_[u] = kind;
+    };
+    update(v);
+    thread_local std::vector<RingEntry> around;
+    ring(v, around);
+    for (const RingEntry& n : around) update(n.vertex);
+}
+
+double LocalEditor::mean_edge_length() const
+{
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) sum += distance(positions_[triangles_[t][0]], positions_[triangles_[t][1]]), ++count;
+    return count ? sum / static_cast<double>(count) : 1.0;
+}
+
+void LocalEditor::rebuild_grid(double cell_mm)
+{
+    if (!(cell_mm > 0)) return;
+    Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    Vec3 high = -1.0 * low;
+    for (std::uint32_t v = 0; v < positions_.size(); ++v)
+        if (!stars_[v].empty())
+            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], positions_[v][a]), high[a] = std::max(high[a], positions_[v][a]);
+    if (low[0] > high[0]) low = high = {0, 0, 0};
+    cell_mm_ = cell_mm;
+    const auto size = [&] {
+        for (int a = 0; a < 3; ++a) {
+            grid_origin_[a] = low[a] - 2 * cell_mm_;
+            grid_dims_[a] = std::min<std::size_t>(60000, static_cast<std::size_t>((high[a] - low[a]) / cell_mm_) + 5);
+        }
+        return static_cast<double>(grid_dims_[0]) * static_cast<double>(grid_dims_[1]) * static_cast<double>(grid_dims_[2]);
+    };
+    // Keep the grid within memory's reach: cells grow when the box is large for the cell asked for.
+    while (size() > 4e7) cell_mm_ *= 1.5;
+    cells_.assign(grid_dims_[0] * grid_dims_[1] * grid_dims_[2], {});
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) file(t);
+}
+
+bool LocalEditor::shape_ok(const Triangle& now, const Triangle& before, bool check_tilt)
+{
+    const TriangleCorners a{positions_[now[0]], positions_[now[1]], positions_[now[2]]};
+    const Vec3 na = cross(a[1] - a[0], a[2] - a[0]);
+    const double scale = std::max({dot(a[1] - a[0], a[1] - a[0]), dot(a[2] - a[0], a[2] - a[0]), dot(a[2] - a[1], a[2] - a[1])});
+    if (!(dot(na, na) > 1e-20 * scale * scale)) return false;  // degenerate (or nearly so)
+    const auto& b = before;
+    const TriangleCorners c{positions_[b[0]], positions_[b[1]], positions_[b[2]]};
+    if (check_tilt) {
+        const Vec3 nb = cross(c[1] - c[0], c[2] - c[0]);
+        if (dot(na, nb) < cos_max_tilt_ * norm(na) * norm(nb)) {
+            ++counters_.normal;
+            return false;
+        }
+    }
+    const double cosine = smallest_angle_cosine(a);
+    if (cosine > cos_min_angle_ && cosine > smallest_angle_cosine(c)) {
+        ++counters_.shape;
+        return false;
+    }
+    return true;
+}
+
+bool LocalEditor::inside_fence(const std::vector<std::uint32_t>& triangles) const
+{
+    if (!fence_) return true;
+    for (const std::uint32_t t : triangles) {
+        const Triangle& tri = triangles_[t];
+        if (!fence_->holds(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]])) return false;
+    }
+    return true;
+}
+
+std::vector<std::uint32_t> LocalEditor::curve_neighbours(std::uint32_t v) const
+{
+    thread_local std::vector<RingEntry> around;
+    ring(v, around);
+    std::vector<std::uint32_t> out;
+    for (const RingEntry& e : around)
+        if (e.triangles >= 3) out.push_back(e.vertex);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+std::vector<std::uint32_t> LocalEditor::neighbours(std::uint32_t v) const
+{
+    std::vector<std::uint32_t> out;
+    for (const std::uint32_t t : stars_[v])
+        for (const std::uint32_t w : triangles_[t])
+            if (w != v) out.push_back(w);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+LocalEditor::Box LocalEditor::box_of(const Triangle& t) const
+{
+    Box b{positions_[t[0]], positions_[t[0]]};
+    for (int k = 1; k < 3; ++k)
+        for (int a = 0; a < 3; ++a)
+            b.low[a] = std::min(b.low[a], positions_[t[k]][a]), b.high[a] = std::max(b.high[a], positions_[t[k]][a]);
+    return b;
+}
+
+bool LocalEditor::overlap(const Box& a, const Box& b)
+{
+    for (int axis = 0; axis < 3; ++axis)
+        if (a.high[axis] < b.low[axis] || b.high[axis] < a.low[axis]) return false;
+    return true;
+}
+
+std::uint16_t LocalEditor::cell_at(double x, int axis) const
+{
+    const double c = std::floor((x - grid_origin_[axis]) / cell_mm_);
+    return static_cast<std::uint16_t>(std::clamp(c, 0.0, static_cast<double>(grid_dims_[axis] - 1)));
+}
+
+LocalEditor::CellRange LocalEditor::cells_of(const Triangle& t) const
+{
+    CellRange range{};
+    for (int a = 0; a < 3; ++a) {
+        double low = positions_[t[0]][a], high = low;
+        for (int k = 1; k < 3; ++k) low = std::min(low, positions_[t[k]][a]), high = std::max(high, positions_[t[k]][a]);
+        low -= limits_.min_gap_mm, high += limits_.min_gap_mm;
+        const auto cell = [&](double x) {
+            const double c = std::floor((x - grid_origin_[a]) / cell_mm_);
+            return static_cast<std::uint16_t>(std::clamp(c, 0.0, static_cast<double>(grid_dims_[a] - 1)));
+        };
+        range[a] = cell(low);
+        range[3 + a] = cell(high);
+    }
+    return range;
+}
+
+void LocalEditor::file(std::uint32_t t)
+{
+    const CellRange r = cells_of(triangles_[t]);
+    filed_[t] = r;
+    for (std::size_t k = r[2]; k <= r[5]; ++k)
+        for (std::size_t j = r[1]; j <= r[4]; ++j)
+            for (std::size_t i = r[0]; i <= r[3]; ++i) cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)].push_back(t);
+}
+
+void LocalEditor::unfile(std::uint32_t t)
+{
+    const CellRange& r = filed_[t];
+    for (std::size_t k = r[2]; k <= r[5]; ++k)
+        for (std::size_t j = r[1]; j <= r[4]; ++j)
+            for (std::size_t i = r[0]; i <= r[3]; ++i) {
+                auto& cell = cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)];
+                const auto it = std::find(cell.begin(), cell.end(), t);
+                if (it != cell.end()) {
+                    *it = cell.back();
+                    cell.pop_back();
+                }
+            }
+}
+
+void LocalEditor::save(std::uint32_t t) { saved_.push_back({t, triangles_[t], alive_[t]}); }
+
+void LocalEditor::remove_from_star(std::uint32_t v, std::uint32_t t)
+{
+    auto& star = stars_[v];
+    const auto it = std::find(star.begin(), star.end(), t);
+    if (it != star.end()) star.erase(it);
+}
+
+std::uint32_t LocalEditor::new_triangle(const Triangle& t, const LabelPair& side)
+{
+    triangles_.push_back(t);
+    sides_.push_back(side);
+    alive_.push_back(1);
+    filed_.push_back({});
+    stamp_.push_back(0);
+    const auto id = static_cast<std::uint32_t>(triangles_.size() - 1);
+    for (const std::uint32_t v : t) stars_[v].push_back(id);
+    return id;
+}
+
+void LocalEditor::undo()
+{
+    for (auto it = saved_.rbegin(); it != saved_.rend(); ++it) {
+        triangles_[it->triangle] = it->corners;
+        alive_[it->triangle] = it->alive;
+    }
+    for (auto it = saved_stars_.rbegin(); it != saved_stars_.rend(); ++it) stars_[it->first] = std::move(it->second);
+    triangles_.resize(triangles_before_edit_);
+    sides_.resize(triangles_before_edit_);
+    alive_.resize(triangles_before_edit_);
+    filed_.resize(triangles_before_edit_);
+    stamp_.resize(triangles_before_edit_);
+    positions_.resize(vertices_before_edit_);
+    stars_.resize(vertices_before_edit_);
+    roles_.resize(vertices_before_edit_);
+}
+
+TriangleCorners LocalEditor::corners(const Triangle& t) const
+{
+    return {positions_[t[0]], positions_[t[1]], positions_[t[2]]};
+}
+
+bool LocalEditor::same_sheet_direction(std::uint32_t t, std::uint32_t u) const
+{
+    if (!(sides_[t] == sides_[u])) return false;
+    const TriangleCorners a = corners(triangles_[t]), b = corners(triangles_[u]);
+    const Vec3 na = cross(a[1] - a[0], a[2] - a[0]), nb = cross(b[1] - b[0], b[2] - b[0]);
+    return dot(na, nb) > 0.8 * norm(na) * norm(nb);
+}
+
+bool LocalEditor::gap_ok(std::uint32_t t, const std::vector<Prior>& before, std::uint32_t other) const
+{
+    const TriangleCorners now = corners(triangles_[t]), q = corners(triangles_[other]);
+    // Apart by more than the gap along some axis (their normals, the line between their centroids): no need
+    // of the distance.
+    const auto apart_along = [&](const Vec3& axis) {
+        const double length = norm(axis);
+        if (!(length > 0)) return false;
+        const Vec3 d = (1 / length) * axis;
+        const double a0 = dot(now[0], d), a1 = dot(now[1], d), a2 = dot(now[2], d);
+        const double b0 = dot(q[0], d), b1 = dot(q[1], d), b2 = dot(q[2], d);
+        return std::min({b0, b1, b2}) - std::max({a0, a1, a2}) > limits_.min_gap_mm ||
+               std::min({a0, a1, a2}) - std::max({b0, b1, b2}) > limits_.min_gap_mm;
+    };
+    if (apart_along(cross(now[1] - now[0], now[2] - now[0])) || apart_along(cross(q[1] - q[0], q[2] - q[0])) ||
+        apart_along((q[0] + q[1] + q[2]) - (now[0] + now[1] + now[2])))
+        return true;
+    const double distance_now = triangle_distance(now, q);
+    if (distance_now >= limits_.min_gap_mm) return true;
+    // Closer than the gap: allowed when it was at least as close before the edit.
+    for (const Prior& b : before)
+        if (b.first == t) return triangle_distance(b.second, q) <= distance_now;
+    return false;
+}
+
+bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
+{
+    thread_local std::vector<FanBlade> blades;
+    for (const std::uint32_t t : changed)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+            if (a > b || edge_multiplicity(a, b) < 3) continue;  // each junction edge once
+            blades.clear();
+            for (const std::uint32_t s : stars_[a])
+                if (has(triangles_[s], b)) blades.push_back(blade_on(triangles_[s], a, b, positions_, sides_[s]));
+            if (blades.size() >= 3 && fan_order(positions_[a], positions_[b], blades) != FanOrder::in_order) return false;
+        }
+    return true;
+}
+
+bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before)
+{
+    // Triangles sharing no vertex with a changed one: from the grid (one query over the box of all the
+    // changed triangles), each judged against every changed triangle whose box it comes within the gap of.
+    const double gap = limits_.min_gap_mm;
+    thread_local std::vector<Box> boxes;
+    boxes.clear();
+    Box all{{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()},
+            {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()}};
+    for (const std::uint32_t t : changed) {
+        Box& b = boxes.emplace_back(box_of(triangles_[t]));
+        for (int a = 0; a < 3; ++a) {
+            b.low[a] -= gap, b.high[a] += gap;
+            all.low[a] = std::min(all.low[a], b.low[a]), all.high[a] = std::max(all.high[a], b.high[a]);
+        }
+    }
+    CellRange r{};
+    for (int a = 0; a < 3; ++a) r[a] = cell_at(all.low[a], a), r[3 + a] = cell_at(all.high[a], a);
+    ++query_;
+    for (const std::uint32_t t : changed) stamp_[t] = query_;
+    for (std::size_t k = r[2]; k <= r[5]; ++k)
+        for (std::size_t j = r[1]; j <= r[4]; ++j)
+            for (std::size_t i = r[0]; i <= r[3]; ++i)
+                for (const std::uint32_t u : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
+                    if (stamp_[u] == query_ || !alive_[u]) continue;
+                    stamp_[u] = query_;
+                    const Box ub = box_of(triangles_[u]);
+                    if (!overlap(ub, all)) continue;
+                    for (std::size_t n = 0; n < changed.size(); ++n) {
+                        const std::uint32_t t = changed[n];
+                        if (!overlap(ub, boxes[n]) || share_vertex(triangles_[t], triangles_[u])) continue;
+                        if (triangles_meet(positions_, triangles_[t], triangles_[u])) {
+                            ++counters_.intersection;
+                            return false;
+                        }
+                        if (gap > 0 && !same_sheet_direction(t, u) && !gap_ok(t, before, u)) {
+                            ++counters_.gap;
+                            return false;
+                        }
+                    }
+                }
+    // Triangles sharing a vertex with a changed one: the stars of their vertices.
+    thread_local std::vector<std::uint32_t> vertices;
+    vertices.clear();
+    for (const std::uint32_t t : changed)
+        for (const std::uint32_t v : triangles_[t]) vertices.push_back(v);
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    for (const std::uint32_t v : vertices)
+        if (!star_is_clean(v, stars_[v], positions_, triangles_, changed)) {
+            ++counters_.intersection;
+            return false;
+        }
+    if (!fans_ok(changed)) {
+        ++counters_.wedge;
+        return false;
+    }
+    return true;
+}
+
+} // namespace tissuemesh::surface::detail

@@ -1,0 +1,167 @@
+// LocalEditor: collapses, splits, flips and moves on an interface complex, each judged only where it
+// happens, so that an edit costs a few microseconds whatever the size of the complex. The engine of
+// decimate() and remesh().
+//
+// What is judged, and why that is all that can break (the complex was valid before the edit):
+//  - topology: the link condition (Dey, Edelsbrunner, Guha, Nekhayev 1999) for collapses, junction rules
+//    (a vertex on a junction curve moves and collapses only along it; curve corners stay), and flips only
+//    inside one patch on edges of two triangles;
+//  - each new triangle: not degenerate, no angle below the limit (unless no smaller than the smallest
+//    angle of the triangle it replaces), no tilt beyond the limit against it, no edge over the length limit;
+//  - triangles sharing a vertex with a new one: the star of every vertex of the new triangles (star_check.h:
+//    one linear test per fan, exact predicates where unsure);
+//  - triangles sharing no vertex with a new one: those whose boxes come within the gap, from a grid, must
+//    neither meet it (exact) nor come closer than the gap unless they were as close before;
+//  - around every junction edge of a new triangle, the triangles keep the order their tissues demand
+//    (edge_fan.h).
+// An edit is applied, judged, and undone when refused; it never changes anything outside its star.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/interface_complex.h"
+#include "surface/detail/edit_types.h"
+#include "surface/detail/slabs.h"
+
+namespace tissuemesh::surface::detail {
+
+/// Limits every edit keeps. Lengths in mm, angles in degrees.
+struct LocalLimits {
+    double min_angle_deg = 5;   ///< new triangles' smallest angle (unless not worse than before)
+    double max_tilt_deg = 45;   ///< a new triangle's normal against the one of the triangle it replaces
+    double min_gap_mm = 0.1;    ///< triangles sharing no vertex keep this distance (unless closer before)
+    double max_edge_mm = 0;     ///< collapses and flips may not make a longer edge (0: no bound)
+};
+
+
+class LocalEditor {
+public:
+    /// Takes the complex over; `cell_mm` is the neighbour grid's cell (about twice the longest edge expected).
+    /// @pre `complex` passes check_complex()
+    LocalEditor(InterfaceComplex complex, const LocalLimits& limits, double cell_mm);
+
+    std::size_t vertex_slots() const { return positions_.size(); }
+    std::size_t triangle_count() const { return alive_count_; }
+    bool vertex_alive(std::uint32_t v) const { return !stars_[v].empty(); }
+    bool triangle_alive(std::uint32_t t) const { return alive_[t] != 0; }
+    const Vec3& position(std::uint32_t v) const { return positions_[v]; }
+    const std::vector<Vec3>& positions() const { return positions_; }
+    const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }
+    const LabelPair& side(std::uint32_t t) const { return sides_[t]; }
+    const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
+    VertexKind kind(std::uint32_t v) const { return roles_[v]; }
+    std::size_t triangle_slots() const { return triangles_.size(); }
+    /// The vertices whose kind the last collapse or split may have changed (the kept or new vertex and its
+    /// neighbours), classified again.
+    const std::vector<std::uint32_t>& reclassified() const { return reclassified_; }
+    std::array<Vec3, 3> corners(std::uint32_t t) const { return corners(triangles_[t]); }
+    /// Mean edge length over alive triangles (first edges), mm.
+    double mean_edge_length() const;
+    /// Files every alive triangle again in a grid of `cell_mm` (after triangles grew or shrank a lot).
+    void rebuild_grid(double cell_mm);
+    const LocalLimits& limits() const { return limits_; }
+    void set_limits(const LocalLimits& limits);
+    const EditCounters& counters() const { return counters_; }
+    /// Confines the edits to a fence (every triangle an edit removes or makes lies inside); nullopt: anywhere.
+    void set_fence(const std::optional<EditFence>& fence) { fence_ = fence; }
+
+    /// A neighbour of v and the number of triangles on their edge (3 or more: a junction edge).
+    struct RingEntry {
+        std::uint32_t vertex;
+        std::uint32_t triangles;
+    };
+    /// The neighbours of v, in no particular order (into `out`).
+    void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
+    /// The neighbours of v across junction edges (two for a curve vertex), ascending.
+    std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
+    /// The neighbours of v, ascending.
+    std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
+    /// Number of triangles on edge vw (0: no edge).
+    std::uint32_t edge_multiplicity(std::uint32_t v, std::uint32_t w) const;
+
+    /// Collapses edge vw into w (v disappears, w stays where it is). `veto`, when given, is asked after the
+    /// cheap checks and before the costly ones; false refuses (counted by the caller).
+    bool try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto = {});
+    /// Splits edge vw (every triangle on it) at p; returns the new vertex.
+    std::optional<std::uint32_t> try_split(std::uint32_t v, std::uint32_t w, const Vec3& p);
+    /// Replaces edge vw (two triangles of one patch) by the edge between their third corners.
+    bool try_flip(std::uint32_t v, std::uint32_t w);
+    /// Moves v to p (the caller keeps curve vertices on their curves and corners in place).
+    bool try_move(std::uint32_t v, const Vec3& p);
+
+    /// The alive triangles over every vertex slot (dead vertices kept, new ones after the original ones).
+    InterfaceComplex snapshot() const;
+    /// The complex, compacted (dead vertices and triangles dropped, order otherwise kept).
+    InterfaceComplex result() const;
+
+private:
+    struct Saved {
+        std::uint32_t triangle;
+        Triangle corners;
+        char alive;
+    };
+    using CellRange = std::array<std::uint16_t, 6>;
+    using Prior = std::pair<std::uint32_t, std::array<Vec3, 3>>;  ///< a changed triangle and its corners before
+
+    VertexKind classify(std::uint32_t v) const;
+    void reclassify_around(std::uint32_t v);
+    bool shape_ok(const Triangle& now, const Triangle& before, bool check_tilt);
+    bool inside_fence(const std::vector<std::uint32_t>& triangles) const;
+    /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
+    /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
+    /// the gap rule; none for new triangles).
+    bool surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before);
+    std::array<Vec3, 3> corners(const Triangle& t) const;
+    /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the
+    /// gap rule leaves alone (a sheet folding back towards itself faces the other way where it nears).
+    bool same_sheet_direction(std::uint32_t t, std::uint32_t u) const;
+    /// The gap rule for changed triangle t and triangle `other` sharing no vertex with it.
+    bool gap_ok(std::uint32_t t, const std::vector<Prior>& before, std::uint32_t other) const;
+    struct Box {
+        Vec3 low, high;
+    };
+    Box box_of(const Triangle& t) const;
+    static bool overlap(const Box& a, const Box& b);
+    std::uint16_t cell_at(double x, int axis) const;
+    bool fans_ok(const std::vector<std::uint32_t>& changed);
+    void save(std::uint32_t t);
+    void undo();
+    void remove_from_star(std::uint32_t v, std::uint32_t t);
+    CellRange cells_of(const Triangle& t) const;
+    void file(std::uint32_t t);
+    void unfile(std::uint32_t t);
+    std::uint32_t new_triangle(const Triangle& t, const LabelPair& side);
+
+    LocalLimits limits_;
+    double cos_min_angle_ = 1, cos_max_tilt_ = 0;
+    Label background_ = 0;
+    TissueNames names_;
+    std::vector<Vec3> positions_;
+    std::vector<Triangle> triangles_;
+    std::vector<LabelPair> sides_;
+    std::vector<char> alive_;
+    std::vector<std::vector<std::uint32_t>> stars_;
+    std::vector<VertexKind> roles_;
+    std::vector<std::uint32_t> reclassified_;
+    std::size_t alive_count_ = 0;
+    // The neighbour grid: each alive triangle is listed in every cell its box overlaps.
+    Vec3 grid_origin_{0, 0, 0};
+    double cell_mm_ = 1;
+    std::array<std::size_t, 3> grid_dims_{1, 1, 1};
+    std::vector<std::vector<std::uint32_t>> cells_;
+    std::vector<CellRange> filed_;
+    // The edit in progress: what it changed, for undo.
+    std::vector<Saved> saved_;
+    std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> saved_stars_;
+    std::size_t triangles_before_edit_ = 0, vertices_before_edit_ = 0;
+    std::vector<std::uint32_t> stamp_;  ///< per triangle: the query that last met it (candidates once each)
+    std::uint32_t query_ = 0;
+    std::optional<EditFence> fence_;
+    EditCounters counters_;
+};
+
+} // namespace tissuemesh::surface::detail

@@ -1,0 +1,372 @@
+// The edits of LocalEditor: collapse, split, flip and move, each applied, judged where it happens
+// (local_editor.h), and undone when refused.
+#include "surface/detail/local_editor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "surface/detail/local_geometry.h"
+
+namespace tissuemesh::surface::detail {
+
+bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
+{
+    if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
+    const std::uint32_t on_edge = edge_multiplicity(v, w);
+    if (on_edge == 0) return false;
+    // Junction rules: corners stay; a curve vertex goes only along its curve.
+    if (roles_[v] == VertexKind::corner || (roles_[v] == VertexKind::curve && on_edge < 3)) {
+        ++counters_.topology;
+        return false;
+    }
+    // Link condition: every common neighbour is the apex of a triangle on vw, and no two common neighbours
+    // x, y have both vxy and wxy (the collapse would make them one).
+    thread_local std::vector<RingEntry> around_v, around_w;
+    ring(v, around_v);
+    ring(w, around_w);
+    thread_local std::vector<std::uint32_t> common;
+    common.clear();
+    for (const RingEntry& n : around_v)
+        if (n.vertex != w && std::any_of(around_w.begin(), around_w.end(), [&](const RingEntry& m) { return m.vertex == n.vertex; }))
+            common.push_back(n.vertex);
+    const auto triangle_with = [&](std::uint32_t a, std::uint32_t x, std::uint32_t y) {
+        return std::any_of(stars_[a].begin(), stars_[a].end(), [&](std::uint32_t t) { return has(triangles_[t], x) && has(triangles_[t], y); });
+    };
+    for (const std::uint32_t x : common)
+        if (!triangle_with(v, w, x)) {
+            ++counters_.topology;
+            return false;
+        }
+    // The edges vx and wx of a common neighbour x become one: no tissue may have more than two triangles on
+    // it (two junction edges fused, or a thin layer pinched along an edge, would make its surface touch itself).
+    for (const std::uint32_t x : common) {
+        thread_local std::vector<std::pair<Label, int>> uses;
+        uses.clear();
+        for (const std::uint32_t a : {v, w})
+            for (const std::uint32_t t : stars_[a]) {
+                const Triangle& tri = triangles_[t];
+                if (!has(tri, x) || (has(tri, v) && has(tri, w))) continue;
+                for (const Label label : {sides_[t].from, sides_[t].to}) {
+                    auto it = std::find_if(uses.begin(), uses.end(), [&](const auto& u) { return u.first == label; });
+                    if (it == uses.end()) uses.emplace_back(label, 1);
+                    else if (++it->second > 2) {
+                        ++counters_.topology;
+                        return false;
+                    }
+                }
+            }
+    }
+    for (std::size_t i = 0; i < common.size(); ++i)
+        for (std::size_t j = i + 1; j < common.size(); ++j)
+            if (triangle_with(v, common[i], common[j]) && triangle_with(w, common[i], common[j])) {
+                ++counters_.topology;
+                return false;
+            }
+    // The new triangles: the star of v with w for v; those on vw die.
+    thread_local std::vector<std::uint32_t> changed, dying;
+    changed.clear();
+    dying.clear();
+    for (const std::uint32_t t : stars_[v]) (has(triangles_[t], w) ? dying : changed).push_back(t);
+    for (const std::uint32_t t : changed) {
+        Triangle now = triangles_[t];
+        for (std::uint32_t& x : now)
+            if (x == v) x = w;
+        if (!shape_ok(now, triangles_[t], true)) return false;
+        if (limits_.max_edge_mm > 0)
+            for (const std::uint32_t x : now)
+                if (x != w && distance(positions_[x], positions_[w]) > limits_.max_edge_mm &&
+                    edge_multiplicity(w, x) == 0) {
+                    ++counters_.shape;
+                    return false;
+                }
+    }
+    if (!inside_fence(stars_[v])) {
+        ++counters_.fence;
+        return false;
+    }
+    if (veto && !veto()) return false;
+    // Apply, judge, and undo when refused.
+    thread_local std::vector<Prior> prior;
+    prior.clear();
+    for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
+    saved_.clear();
+    saved_stars_.clear();
+    triangles_before_edit_ = triangles_.size();
+    vertices_before_edit_ = positions_.size();
+    saved_stars_.emplace_back(v, stars_[v]);
+    saved_stars_.emplace_back(w, stars_[w]);
+    for (const std::uint32_t t : dying)
+        for (const std::uint32_t x : triangles_[t])
+            if (x != v && x != w) saved_stars_.emplace_back(x, stars_[x]);
+    for (const std::uint32_t t : dying) {
+        save(t);
+        alive_[t] = 0;
+        for (const std::uint32_t x : triangles_[t])
+            if (x != v) remove_from_star(x, t);
+    }
+    for (const std::uint32_t t : changed) {
+        save(t);
+        for (std::uint32_t& x : triangles_[t])
+            if (x == v) x = w;
+        stars_[w].push_back(t);
+    }
+    stars_[v].clear();
+    if (!surroundings_ok(changed, prior)) {
+        undo();
+        return false;
+    }
+    for (const std::uint32_t t : dying) unfile(t);
+    for (const std::uint32_t t : changed) {
+        unfile(t);
+        file(t);
+    }
+    alive_count_ -= dying.size();
+    reclassify_around(w);
+    roles_[v] = VertexKind::corner;
+    ++counters_.accepted;
+    return true;
+}
+
+std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32_t w, const Vec3& p)
+{
+    if (v == w || !vertex_alive(v) || !vertex_alive(w)) return std::nullopt;
+    thread_local std::vector<std::uint32_t> parents;
+    parents.clear();
+    for (const std::uint32_t t : stars_[v])
+        if (has(triangles_[t], w)) parents.push_back(t);
+    if (parents.size() < 2) return std::nullopt;
+    saved_.clear();
+    saved_stars_.clear();
+    triangles_before_edit_ = triangles_.size();
+    vertices_before_edit_ = positions_.size();
+    if (positions_.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
+        throw InputError("LocalEditor: over 2^32 vertices");
+    const auto u = static_cast<std::uint32_t>(positions_.size());
+    positions_.push_back(p);
+    stars_.emplace_back();
+    roles_.push_back(parents.size() >= 3 ? VertexKind::curve : VertexKind::patch);
+    reclassified_.clear();
+    saved_stars_.emplace_back(w, stars_[w]);
+    for (const std::uint32_t t : parents)
+        for (const std::uint32_t x : triangles_[t])
+            if (x != v && x != w) saved_stars_.emplace_back(x, stars_[x]);
+    thread_local std::vector<std::uint32_t> changed;
+    changed.clear();
+    thread_local std::vector<Prior> before;
+    before.clear();
+    bool shape = true;
+    for (const std::uint32_t t : parents) {
+        save(t);
+        const Triangle parent = triangles_[t];
+        Triangle near_v = parent, near_w = parent;
+        for (int k = 0; k < 3; ++k) {
+            if (parent[k] == w) near_v[k] = u;
+            if (parent[k] == v) near_w[k] = u;
+        }
+        shape = shape && shape_ok(near_v, parent, true) && shape_ok(near_w, parent, true);
+        triangles_[t] = near_v;
+        remove_from_star(w, t);
+        stars_[u].push_back(t);
+        const std::uint32_t added = new_triangle(near_w, sides_[t]);
+        changed.push_back(t);
+        changed.push_back(added);
+        before.emplace_back(t, corners(parent));
+        before.emplace_back(added, corners(parent));
+    }
+    if (!shape || !inside_fence(changed)) {
+        if (shape) ++counters_.fence;
+        undo();
+        return std::nullopt;
+    }
+    if (!surroundings_ok(changed, before)) {
+        undo();
+        return std::nullopt;
+    }
+    for (const std::uint32_t t : changed) {
+        if (t < triangles_before_edit_) unfile(t);
+        file(t);
+    }
+    alive_count_ += parents.size();
+    reclassify_around(u);
+    ++counters_.accepted;
+    return u;
+}
+
+bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
+{
+    if (v == w || !vertex_alive(v)) return false;
+    std::uint32_t first = 0, second = 0;
+    int found = 0;
+    for (const std::uint32_t t : stars_[v])
+        if (has(triangles_[t], w)) (found++ == 0 ? first : second) = t;
+    if (found != 2 || !(sides_[first] == sides_[second])) return false;
+    // first runs v -> w, second w -> v (one patch, consistently oriented).
+    const auto runs = [&](std::uint32_t t, std::uint32_t a, std::uint32_t b) {
+        const Triangle& x = triangles_[t];
+        for (int k = 0; k < 3; ++k)
+            if (x[k] == a && x[(k + 1) % 3] == b) return true;
+        return false;
+    };
+    if (!runs(first, v, w)) std::swap(first, second);
+    if (!runs(first, v, w) || !runs(second, w, v)) return false;
+    const auto apex = [&](std::uint32_t t) {
+        for (const std::uint32_t x : triangles_[t])
+            if (x != v && x != w) return x;
+        return v;
+    };
+    const std::uint32_t a = apex(first), b = apex(second);
+    if (a == b || edge_multiplicity(a, b) != 0) {
+        ++counters_.topology;
+        return false;
+    }
+    if (limits_.max_edge_mm > 0 && distance(positions_[a], positions_[b]) > limits_.max_edge_mm &&
+        distance(positions_[a], positions_[b]) > distance(positions_[v], positions_[w])) {
+        ++counters_.shape;
+        return false;
+    }
+    const Triangle one{a, v, b}, two{b, w, a};
+    // The pair against the pair it replaces: not degenerate, no smaller angle than the limit unless no
+    // smaller than the old pair's smallest, and each new normal within the tilt limit of the old pair's
+    // (area-weighted: a flat cap being flipped away has no normal of its own worth comparing with).
+    {
+        const TriangleCorners o1 = corners(triangles_[first]), o2 = corners(triangles_[second]);
+        const TriangleCorners n1 = corners(one), n2 = corners(two);
+        const Vec3 old_normal = cross(o1[1] - o1[0], o1[2] - o1[0]) + cross(o2[1] - o2[0], o2[2] - o2[0]);
+        const double old_cos = std::max(smallest_angle_cosine(o1), smallest_angle_cosine(o2));
+        for (const TriangleCorners& n : {n1, n2}) {
+            const Vec3 normal = cross(n[1] - n[0], n[2] - n[0]);
+            const double scale = std::max({dot(n[1] - n[0], n[1] - n[0]), dot(n[2] - n[0], n[2] - n[0]),
+                                           dot(n[2] - n[1], n[2] - n[1])});
+            if (!(dot(normal, normal) > 1e-20 * scale * scale)) {
+                ++counters_.shape;
+                return false;
+            }
+            if (dot(normal, old_normal) < cos_max_tilt_ * norm(normal) * norm(old_normal)) {
+                ++counters_.normal;
+                return false;
+            }
+            const double cosine = smallest_angle_cosine(n);
+            if (cosine > cos_min_angle_ && cosine > old_cos) {
+                ++counters_.shape;
+                return false;
+            }
+        }
+    }
+    thread_local std::vector<std::uint32_t> changed;
+    changed.assign({first, second});
+    if (!inside_fence(changed)) {
+        ++counters_.fence;
+        return false;
+    }
+    saved_.clear();
+    saved_stars_.clear();
+    triangles_before_edit_ = triangles_.size();
+    vertices_before_edit_ = positions_.size();
+    for (const std::uint32_t x : {v, w, a, b}) saved_stars_.emplace_back(x, stars_[x]);
+    thread_local std::vector<Prior> prior;
+    prior.assign({{first, corners(triangles_[first])}, {second, corners(triangles_[second])}});
+    save(first);
+    save(second);
+    triangles_[first] = one;
+    triangles_[second] = two;
+    remove_from_star(v, second);
+    remove_from_star(w, first);
+    stars_[a].push_back(second);
+    stars_[b].push_back(first);
+    if (!surroundings_ok(changed, prior)) {
+        undo();
+        return false;
+    }
+    for (const std::uint32_t t : changed) {
+        unfile(t);
+        file(t);
+    }
+    for (const std::uint32_t x : {v, w, a, b}) roles_[x] = classify(x);
+    ++counters_.accepted;
+    return true;
+}
+
+bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
+{
+    if (!vertex_alive(v)) return false;
+    if (!inside_fence(stars_[v])) {
+        ++counters_.fence;
+        return false;
+    }
+    saved_.clear();
+    saved_stars_.clear();
+    triangles_before_edit_ = triangles_.size();
+    vertices_before_edit_ = positions_.size();
+    thread_local std::vector<Prior> before;
+    before.clear();
+    for (const std::uint32_t t : stars_[v]) before.emplace_back(t, corners(triangles_[t]));
+    const Vec3 old = positions_[v];
+    positions_[v] = p;
+    for (const auto& [t, was] : before) {
+        const TriangleCorners now = corners(triangles_[t]);
+        const Vec3 na = cross(now[1] - now[0], now[2] - now[0]), nb = cross(was[1] - was[0], was[2] - was[0]);
+        const double scale = std::max({dot(now[1] - now[0], now[1] - now[0]), dot(now[2] - now[0], now[2] - now[0]),
+                                       dot(now[2] - now[1], now[2] - now[1])});
+        bool ok = dot(na, na) > 1e-20 * scale * scale;
+        if (ok && dot(na, nb) < cos_max_tilt_ * norm(na) * norm(nb)) ++counters_.normal, ok = false;
+        if (ok) {
+            const double cosine = smallest_angle_cosine(now);
+            if (cosine > cos_min_angle_ && cosine > smallest_angle_cosine(was)) ++counters_.shape, ok = false;
+        }
+        if (!ok) {
+            positions_[v] = old;
+            return false;
+        }
+    }
+    if (!inside_fence(stars_[v])) {
+        ++counters_.fence;
+        positions_[v] = old;
+        return false;
+    }
+    if (!surroundings_ok(stars_[v], before)) {
+        positions_[v] = old;
+        return false;
+    }
+    for (const std::uint32_t t : stars_[v]) {
+        unfile(t);
+        file(t);
+    }
+    ++counters_.accepted;
+    return true;
+}
+
+InterfaceComplex LocalEditor::snapshot() const
+{
+    InterfaceComplex out;
+    out.names = names_;
+    out.background = background_;
+    out.vertices = positions_;
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
+        if (alive_[t]) out.add_triangle(triangles_[t], sides_[t]);
+    return out;
+}
+
+InterfaceComplex LocalEditor::result() const
+{
+    InterfaceComplex out;
+    out.names = names_;
+    out.background = background_;
+    std::vector<std::uint32_t> index(positions_.size(), std::numeric_limits<std::uint32_t>::max());
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        if (!alive_[t]) continue;
+        Triangle tri = triangles_[t];
+        for (std::uint32_t& v : tri) {
+            if (index[v] == std::numeric_limits<std::uint32_t>::max()) {
+                index[v] = static_cast<std::uint32_t>(out.vertices.size());
+                out.vertices.push_back(positions_[v]);
+            }
+            v = index[v];
+        }
+        out.add_triangle(tri, sides_[t]);
+    }
+    return out;
+}
+
+} // namespace tissuemesh::surface::detail
