@@ -10,6 +10,7 @@
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
 #include "surface/extract_interfaces.h"
+#include "surface/extract_surface_nets.h"
 #include "surface/remesh.h"
 #include "surface/smooth.h"
 #include "tests/support/phantom_distance.h"
@@ -81,6 +82,34 @@ TEST(SurfaceChain, LongSpheres4At1mmMeetsTheIssueFigures) { run_chain(0); }
 
 /// As bench/surface_chain runs it: decimation leaves no edge longer than the remeshing keeps (4/3 of 3 mm).
 TEST(SurfaceChain, LongSpheres4At1mmWithTheEdgeBoundMeetsThemToo) { run_chain(4.0); }
+
+/// Issue 27's chain, as the workflow runs it: surface nets (smoothed in their cubes), decimation at the
+/// workflow's half-millimetre bound with edges below 4/3 of the target, remeshing to 3 mm.
+TEST(SurfaceChain, LongSpheres4At1mmBySurfaceNetsMeetsTheIssueFigures)
+{
+    const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 1.0});
+    const std::size_t cubes = surface::extract_interfaces(phantom.image).triangle_count();
+    auto start = std::chrono::steady_clock::now();
+    InterfaceComplex complex = surface::extract_surface_nets(phantom.image);
+    report_stage("surface nets", phantom, complex, seconds_since(start));
+    const surface::CheckReport before = surface::check_complex(complex);
+    ASSERT_TRUE(before.ok()) << (before.first_error() ? before.first_error()->description : "");
+    start = std::chrono::steady_clock::now();
+    surface::decimate(complex, {.max_distance_mm = 0.5, .max_edge_mm = 4.0});
+    report_stage("decimated", phantom, complex, seconds_since(start));
+    start = std::chrono::steady_clock::now();
+    surface::remesh(complex, {.target_edge_mm = 3.0});
+    const double volume_error = report_stage("remeshed", phantom, complex, seconds_since(start));
+    const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
+    const surface::CheckReport after = surface::check_complex(complex);
+    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
+    for (const auto& [tissue, facts] : before.tissues)
+        EXPECT_EQ(after.tissues.at(tissue).components, facts.components) << "tissue " << tissue;
+    EXPECT_GE(cubes, 10 * complex.triangle_count());
+    EXPECT_LE(figures.max_voxels, 0.5);
+    EXPECT_LE(figures.mean_voxels, 0.1);
+    EXPECT_LT(volume_error, 0.005);
+}
 
 } // namespace
 } // namespace tissuemesh

@@ -52,7 +52,7 @@ protected:
     {
         std::vector<std::string> args{"-C", testing::data_path("workflows").string(), "IMAGE=" + (dir / "boxes.nii.gz").string(),
                                       "LABELS=" + (dir / "boxes.labels.json").string(), "OUT=" + (dir / out).string(),
-                                      "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6", "REFINE_ARGS=--iterations 2"};
+                                      "BIN=" TM_TOOLS_DIR, "REMESH_EDGE_MM=6", "REFINE_ARGS=--iterations 2"};
         args.insert(args.end(), extra.begin(), extra.end());
         return run_program("make", args);
     }
@@ -65,11 +65,16 @@ TEST_F(WorkflowCli, ChainsEveryStepAndRerunsOnlyWhatAParameterChanges)
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
     const fs::path out = dir / "out";
     const auto first = summary_times(out);
-    for (const char* step : {"prep", "extract", "smooth", "decimate", "remesh", "tetra", "assess", "refine", "check-mesh",
+    for (const char* step : {"prep", "extract", "decimate", "remesh", "tetra", "assess", "refine", "check-mesh",
                              "render-surface", "render-section", "render-quality", "render-convergence", "report"}) {
         ASSERT_TRUE(first.count(step)) << step;
         EXPECT_EQ(testing::read_json(out / (std::string(step) + ".json"))["status"], "ok") << step;
     }
+    // Surface nets by default: tm-extract smooths, there is no smoothing step; decimation keeps edges below
+    // 4/3 of the remeshing target.
+    EXPECT_EQ(testing::read_json(out / "extract.json")["method"], "surface-nets");
+    EXPECT_FALSE(first.count("smooth"));
+    EXPECT_NEAR(testing::read_json(out / "decimate.json")["max_edge_mm"].get<double>(), 8.0, 1e-9);
     EXPECT_EQ(testing::read_json(out / "refine.json")["mode"], "constrained");
     EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 3u);  // round 0 and 2 rounds
     const std::string html = read_text(out / "report.html");
@@ -96,6 +101,13 @@ TEST_F(WorkflowCli, ChainsEveryStepAndRerunsOnlyWhatAParameterChanges)
     EXPECT_EQ(changed(second, summary_times(out)),
               (std::vector<std::string>{"check-mesh", "refine", "render-convergence", "render-quality", "render-section", "report"}));
     EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 2u);
+
+    // The earlier chain on request: marching cubes, then tm-smooth; everything from extraction on is redone.
+    result = make({"RENDER_SECTION_ARGS=--axis x", "REFINE_ARGS=--iterations 1", "EXTRACT_METHOD=marching-cubes"});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_EQ(testing::read_json(out / "extract.json")["method"], "marching-cubes");
+    EXPECT_EQ(testing::read_json(out / "smooth.json")["status"], "ok");
+    EXPECT_EQ(testing::read_json(out / "tetra.json")["status"], "ok");
 }
 
 TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
