@@ -171,7 +171,7 @@ int main(int argc, char** argv)
                            "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
                            "one-voxel layer in one piece), e.g. csf=2,3=1")
                 ->delimiter(',');
-            app.add_option("--labels", read_options.names_json, "Tissue names JSON ({\"1\": \"scalp\"})");
+            app.add_option("--labels", read_options.names_json, "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
             app.add_option("--per-tissue-format", per_tissue_format, "Format of the per-tissue surfaces")
