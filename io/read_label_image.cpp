@@ -1,6 +1,5 @@
 #include "io/read_label_image.h"
 
-#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -9,6 +8,8 @@
 #include "core/error.h"
 #include "io/detail/inrimage.h"
 #include "io/detail/itk_image_io.h"
+#include "io/detail/label_tables.h"
+#include "io/detail/mgh_image.h"
 #include "io/detail/nifti_header.h"
 #include "io/detail/raw_json_image.h"
 #include "io/detail/text_header.h"
@@ -32,8 +33,15 @@ TissueNames read_tissue_names(const fs::path& path)
 {
     require_readable_file(path);
     const std::string name = path.string();
-    std::ifstream in(path, std::ios::binary);
-    const nlohmann::json document = nlohmann::json::parse(in, nullptr, false);
+    constexpr std::uintmax_t max_bytes = 16u << 20;
+    if (fs::file_size(path) > max_bytes)
+        throw IoError(concat(name, ": ", fs::file_size(path), " bytes is too large for a tissue-name table (at most 16 MiB); "
+                             "check that --labels names the table, not an image"));
+    const std::string text = read_file_bytes(path);
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (full_extension(path) != ".json" && (first == std::string::npos || text[first] != '{'))
+        return detail::parse_label_table(text, name, detail::detect_label_table(text, full_extension(path) == ".tsv"));
+    const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
     if (document.is_discarded())
         throw IoError(concat(name, ": not valid JSON; check the syntax (quotes, commas, braces)"));
     if (document.is_object() && document.contains("labels")) return detail::parse_tissue_names(name, document["labels"]);
@@ -42,7 +50,7 @@ TissueNames read_tissue_names(const fs::path& path)
 
 std::vector<std::string> label_image_extensions()
 {
-    return {".nii", ".nii.gz", ".nrrd", ".nhdr", ".seg.nrrd", ".mha", ".mhd", ".inr", ".inr.gz", ".json"};
+    return {".nii", ".nii.gz", ".nrrd", ".nhdr", ".seg.nrrd", ".mha", ".mhd", ".inr", ".inr.gz", ".mgz", ".mgh", ".json"};
 }
 
 LabelImage read_label_image(const fs::path& path, const ReadImageOptions& options)
@@ -62,6 +70,8 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
         image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path), options.before_voxels);
     } else if (extension == ".inr" || extension == ".inr.gz") {
         image = detail::read_inrimage(path, options.before_voxels);
+    } else if (extension == ".mgz" || extension == ".mgh") {
+        image = detail::read_mgh(path, options.before_voxels);
     } else if (extension == ".json") {
         image = detail::read_raw_json_image(path, options.before_voxels);
     } else {

@@ -1,4 +1,4 @@
-// Reading label images: NIfTI-1/2, NRRD (and 3D Slicer .seg.nrrd), MetaImage, Inrimage, raw + JSON.
+// Reading label images: NIfTI-1/2, NRRD (and 3D Slicer .seg.nrrd), MetaImage, Inrimage, FreeSurfer MGH/MGZ, raw + JSON.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +17,7 @@ namespace tissuemesh::io {
 using BeforeVoxels = std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)>;
 
 struct ReadImageOptions {
-    std::filesystem::path names_json;  ///< optional {"1": "scalp", ...}; overrides names from the file
+    std::filesystem::path names_json;  ///< optional table of names (any format read_tissue_names() reads); overrides the file's
     /// Optional: called once the header is checked (dimensions, spacing, and that the file holds the voxels),
     /// before any voxel is allocated, with the dimensions, the spacing (mm) and the bytes per voxel of the
     /// file's type. It may throw to refuse the image: tools refuse images that need more memory than they
@@ -32,6 +32,8 @@ struct ReadImageOptions {
 ///                             Segment{N}_LabelValue become tissue names
 ///   `.mha`, `.mhd`            MetaImage
 ///   `.inr`, `.inr.gz`         Inrimage (see io/detail/inrimage.h for the keys read)
+///   `.mgz`, `.mgh`            FreeSurfer MGH, gzip-compressed or not (aseg.mgz, ...): one frame, the world
+///                             position of every voxel as nibabel gives it (io/detail/mgh_image.h)
 ///   `.json`                   raw voxels + JSON sidecar (schema in io/detail/raw_json_image.h); its
 ///                             "labels" become tissue names
 /// World coordinates are RAS millimetres for every format, as the NIfTI affine (sform/qform) defines
@@ -51,10 +53,17 @@ struct ReadImageOptions {
 /// Every message is one line: "<file>: <problem>; <fix>".
 LabelImage read_label_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
 
-/// Reads a tissue-name table: a JSON object mapping label numbers to names ({"1": "scalp"}), or the
-/// object under its "labels" key (the sidecars in data/samples have that shape).
-/// @throws IoError on missing files or invalid JSON; InputError when a key is not a label in 0..65535
-///         or a name is not a string
+/// Reads a tissue-name table, whatever its format:
+///   - JSON (a `.json` name, or text starting with '{'): an object mapping label numbers to names
+///     ({"1": "scalp"}), or the object under its "labels" key (the sidecars in data/samples have that shape);
+///   - a BIDS `*_dseg.tsv` (a `.tsv` name): tab-separated, a header with the columns "index" and "name";
+///   - an ITK-SNAP label description file: `<label> <r> <g> <b> <alpha> <visible> <mesh> "<name>"` per line;
+///   - a FreeSurfer colour table (FreeSurferColorLUT.txt): `<label> <name> <r> <g> <b> <a>` per line.
+/// The last two are told apart by their first line that is neither blank nor a '#' comment (a quoted name:
+/// ITK-SNAP).
+/// @throws IoError on missing files, files over 16 MiB or invalid JSON; InputError when a key or line does not
+///         fit its format, a label is not in 0..65535, is named twice, or a name is empty or not a string
+///         ("<file> line <n>: <problem>; <the format's layout>")
 TissueNames read_tissue_names(const std::filesystem::path& path);
 
 /// The extensions read_label_image() understands, for messages and --help.

@@ -30,17 +30,22 @@ std::string extension_of(const std::filesystem::path& path)
 void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path,
                    const std::vector<std::string>& ply_comments)
 {
-    for (const std::string& comment : ply_comments)
+    write_surface(complex, path, SurfaceWriteOptions{.ascii = false, .ply_comments = ply_comments});
+}
+
+void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path, const SurfaceWriteOptions& options)
+{
+    for (const std::string& comment : options.ply_comments)
         if (comment.find_first_of("\r\n") != std::string::npos)
             throw IoError(concat(path.string(), ": a PLY comment cannot span lines"));
     const std::string extension = extension_of(path);
     validate_indices(complex, path.string());
     // Every format goes to the temporary file in chunks of about 1 MB, never whole in memory.
     write_stream_atomically(path, [&](std::ostream& out) {
-        if (extension == ".ply") detail::write_ply(complex, out, ply_comments);
+        if (extension == ".ply") detail::write_ply(complex, out, options.ply_comments, options.ascii);
         if (extension == ".vtp") detail::write_vtp(complex, out);
         if (extension == ".off") detail::write_off(complex, out);
-        if (extension == ".stl") detail::write_stl(complex, out);
+        if (extension == ".stl") detail::write_stl(complex, out, options.ascii);
         if (extension == ".obj") detail::write_obj(complex, out);
     });
 }

@@ -9,6 +9,7 @@
 #include "io/detail/medit_format.h"
 #include "io/detail/msh2_format.h"
 #include "io/detail/msh4_format.h"
+#include "io/detail/msh_layouts.h"
 #include "io/detail/tetgen_format.h"
 #include "io/read_vtu.h"
 #include "io/write_vtu.h"
@@ -44,11 +45,38 @@ bool is_tet_mesh_path(const fs::path& path)
     return e == ".msh" || e == ".mesh" || e == ".vtu" || e == ".node" || e == ".ele" || e == ".inp";
 }
 
+namespace {
+
+/// A .msh in SimNIBS's or DUNEuro's numbering.
+void write_foreign_msh(const TetMesh& mesh, const fs::path& path, const TetMeshWriteOptions& options)
+{
+    if (options.numbering == TissueNumbering::simnibs) {
+        const std::map<Label, int> tags = simnibs_tags(mesh, options.simnibs_table);
+        write_text_atomically(path, detail::format_msh2(mesh.vertices, detail::simnibs_elements(mesh, tags), true));
+        return;
+    }
+    if (options.duneuro_tag_offset < 0)
+        throw InputError(concat("DUNEuro tag offset ", options.duneuro_tag_offset, " is negative; use 0 or more"));
+    // The conductivities first: the mesh never names tissues that have none.
+    const std::string conductivities = detail::duneuro_conductivity_file(mesh, options.duneuro_conductivities_s_per_m);
+    write_text_atomically(with_extension(path, ".con"), conductivities);
+    write_text_atomically(path, detail::format_msh2(mesh.vertices, detail::duneuro_elements(mesh, options.duneuro_tag_offset), false));
+}
+
+} // namespace
+
 void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWriteOptions& options)
 {
     const std::string extension = full_extension(path);
     if (!is_tet_mesh_path(path))
         throw IoError(concat(path.string(), ": unknown mesh format \"", extension, "\"; use one of ", known));
+    if (options.numbering != TissueNumbering::labels) {
+        if (extension != ".msh")
+            throw InputError(concat(path.string(), ": ", options.numbering == TissueNumbering::simnibs ? "SimNIBS" : "DUNEuro",
+                                    " numbering is for Gmsh files; write a .msh"));
+        validate_indices(mesh, path.string());
+        return write_foreign_msh(mesh, path, options);
+    }
     // write_vtu() validates the mesh itself.
     if (extension == ".vtu") return write_vtu(mesh, path, {}, {}, options.vtu_compressed ? VtuEncoding::compressed : VtuEncoding::ascii);
     validate_indices(mesh, path.string());

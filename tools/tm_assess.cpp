@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "io/tet_mesh_io.h"
+#include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
 #include "volume/assess.h"
 #include "volume/mark_interfaces.h"
@@ -80,6 +81,7 @@ int main(int argc, char** argv)
     std::string input, image_path, output, priority;
     bool relabel = false;
     volume::AssessOptions options;
+    tools::MeshFormatFlags format_flags;
     return tools::run_tool(
         argc, argv,
         {"tm-assess",
@@ -99,11 +101,13 @@ int main(int argc, char** argv)
             app.add_option("--priority", priority, "Majority weights: tissue=weight,... (name or label; default 1)");
             app.add_option("--error-weight", options.error_weight, "Quality key weight of misclassified voxels")->capture_default_str();
             app.add_option("--shape-weight", options.shape_weight, "Quality key weight of the shape term")->capture_default_str();
+            format_flags.add_to(app);
         },
         [&](tools::ToolContext& context) {
             const std::string extension = full_extension(output);
             if (extension != ".vtu" && extension != ".msh" && extension != ".mesh")
                 throw InputError(concat(output, ": unknown output format \"", extension, "\"; use .vtu, .msh or .mesh"));
+            format_flags.check();
             TetMesh mesh = io::read_tet_mesh(input);
             const LabelImage image = io::read_label_image(image_path);
             if (!priority.empty()) parse_priority(priority, mesh, image, options);
@@ -117,8 +121,10 @@ int main(int argc, char** argv)
                 volume::mark_interfaces(mesh);
                 assessment = volume::assess_elements(mesh, image, options, context.progress);  // fields of the new labels
             }
-            if (extension == ".vtu") io::write_vtu(mesh, output, {}, assessment_arrays(assessment));
-            else io::write_tet_mesh(mesh, output);
+            if (extension == ".vtu")
+                io::write_vtu(mesh, output, {}, assessment_arrays(assessment),
+                              format_flags.vtu_ascii ? io::VtuEncoding::ascii : io::VtuEncoding::compressed);
+            else io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
             if (assessment.voxels_inside == 0)
                 context.progress.warn("assess", "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");
             context.summary = summarize(mesh, assessment, relabelled);

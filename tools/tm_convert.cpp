@@ -38,6 +38,7 @@ int main(int argc, char** argv)
 {
     std::string input, output;
     tools::MeshFormatFlags flags;
+    bool surface_ascii = false;
     return tools::run_tool(
         argc, argv,
         {"tm-convert",
@@ -46,15 +47,19 @@ int main(int argc, char** argv)
          "tissue names where the formats hold them (.vtu to .vtu keeps every point and cell array: tm-solve's fields); or a surface between .ply, .vtp, .obj, "
          ".off and .stl. A tet mesh's interface faces can be written as a surface.",
          "Examples:\n  tm-convert -i head.msh -o head41.msh --msh-version 4.1 --binary\n"
-         "  tm-convert -i head.msh -o head.vtu\n  tm-convert -i solution.vtu -o solution-zlib.vtu   # the fields, compressed\n  tm-convert -i head.msh -o head.node   # head.node, head.ele, head.face\n"
-         "  tm-convert -i interfaces.ply -o interfaces.obj\n  tm-convert -i head.msh -o interfaces.ply"},
+         "  tm-convert -i head.msh -o head.vtu\n  tm-convert -i head.msh -o simnibs.msh --tissue-numbering simnibs --tissue-tags tags.json\n"
+         "  tm-convert -i head.msh -o duneuro.msh --tissue-numbering duneuro   # and duneuro.con\n  tm-convert -i solution.vtu -o solution-zlib.vtu   # the fields, compressed\n  tm-convert -i head.msh -o head.node   # head.node, head.ele, head.face\n"
+         "  tm-convert -i interfaces.ply -o interfaces.obj\n  tm-convert -i head.msh -o interfaces.ply\n"
+         "  tm-convert -i interfaces.ply -o for-meshio.ply --ascii"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh or surface to read")->required();
             app.add_option("-o,--output", output, "File to write; the extension picks the format")->required();
             flags.add_to(app);
+            app.add_flag("--ascii", surface_ascii, "Surface output (.ply, .stl) as ASCII instead of binary: meshio reads "
+                                                   "PLY labels only from ASCII");
         },
         [&](tools::ToolContext& context) {
-            const io::TetMeshWriteOptions options = flags.to_write_options();
+            flags.check();
             const bool mesh_in = io::is_tet_mesh_path(input), mesh_out = io::is_tet_mesh_path(output);
             if (!mesh_in && mesh_out)
                 throw InputError(concat(input, ": a surface cannot become a tet mesh by conversion; tetrahedralize it with tm-tetra"));
@@ -66,13 +71,14 @@ int main(int argc, char** argv)
                 if (arrays) content = io::read_vtu(input);
                 else content.mesh = io::read_tet_mesh(input);
                 const TetMesh& mesh = content.mesh;
+                const io::TetMeshWriteOptions options = flags.to_write_options(mesh);
                 const double read_seconds = seconds_since(start);
                 start = std::chrono::steady_clock::now();
                 if (arrays)
                     io::write_vtu(mesh, output, content.point_arrays, content.cell_arrays,
                                   options.vtu_compressed ? io::VtuEncoding::compressed : io::VtuEncoding::ascii);
                 else if (mesh_out) io::write_tet_mesh(mesh, output, options);
-                else io::write_surface(faces_of(mesh), output);
+                else io::write_surface(faces_of(mesh), output, io::SurfaceWriteOptions{.ascii = surface_ascii});
                 const std::set<Label> tissues(mesh.tet_labels.begin(), mesh.tet_labels.end());
                 context.log(concat(input, " -> ", output, ": ", mesh.vertices.size(), " nodes, ", mesh.tets.size(), " tets, ",
                                    mesh.faces.size(), " faces, ", tissues.size(), " tissues"));
@@ -83,10 +89,12 @@ int main(int argc, char** argv)
                                    {"seconds_write", seconds_since(start)}};
                 return;
             }
+            if (flags.numbering != "labels")
+                throw InputError(concat(output, ": --tissue-numbering is for tet meshes; a surface keeps its labels"));
             const InterfaceComplex complex = io::read_surface(input);
             const double read_seconds = seconds_since(start);
             start = std::chrono::steady_clock::now();
-            io::write_surface(complex, output);
+            io::write_surface(complex, output, io::SurfaceWriteOptions{.ascii = surface_ascii});
             std::set<std::pair<Label, Label>> pairs;
             for (const LabelPair& pair : complex.sides) pairs.insert({pair.from, pair.to});
             context.log(concat(input, " -> ", output, ": ", complex.vertices.size(), " vertices, ", complex.triangles.size(),

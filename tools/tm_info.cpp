@@ -90,10 +90,11 @@ int main(int argc, char** argv)
          "Reports a label image's grid and orientation and, per tissue, voxels, volume, bounding box, connected "
          "components (6/26), touching tissues, and the warnings to act on before meshing (tissue on the image "
          "border, one-voxel-thin places, tiny islands).",
-         "Examples:\n  tm-info -i head.nii.gz\n  tm-info head.nii.gz --labels head.labels.json --json info.json\n"},
+         "Examples:\n  tm-info -i head.nii.gz\n  tm-info head.nii.gz --labels head.labels.json --json info.json\n"
+         "  tm-info aseg.mgz --labels FreeSurferColorLUT.txt\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input,input", input, "Label image")->required()->type_name("IMAGE");
-            app.add_option("--labels", names, "Tissue names JSON ({\"1\": \"scalp\", ...})")->type_name("FILE");
+            app.add_option("--labels", names, "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")->type_name("FILE");
             app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
         },

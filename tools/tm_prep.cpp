@@ -148,7 +148,7 @@ int main(int argc, char** argv)
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Input label image")->required()->type_name("IMAGE");
             app.add_option("-o,--output", output, "Output label image")->required()->type_name("IMAGE");
-            app.add_option("--labels", names, "Tissue names JSON for the input")->type_name("FILE");
+            app.add_option("--labels", names, "Tissue names for the input: JSON, FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")->type_name("FILE");
             app.add_option("--relabel", relabel, "FROM:TO pairs, applied at once (5:4,6:0)")->type_name("MAP");
             app.add_option("--merge", merges, "Merge labels into the first (4,5); repeatable")->type_name("LABELS");
             app.add_option("--spacing-mm", spacing, "Resample to X or X,Y,Z mm (majority of the overlap)")

@@ -74,13 +74,14 @@ int main(int argc, char** argv)
             app.add_option("--shape-weight", options.assess.shape_weight, "Quality key weight of the shape term")->capture_default_str();
         },
         [&](tools::ToolContext& context) {
+            format_flags.check();
             options.placement = volume::parse_placement(placement);
             const LabelImage image = io::read_label_image(image_path);
             TetMesh start;
             if (!input.empty()) start = io::read_tet_mesh(input);
             volume::RefineReport report;
             const TetMesh mesh = volume::refine(image, input.empty() ? nullptr : &start, options, context.progress, &report);
-            io::write_tet_mesh(mesh, output, format_flags.to_write_options());
+            io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
             if (!log_path.empty()) write_text_atomically(log_path, volume::refine_log_csv(report));
             if (!plot_path.empty())
                 write_text_atomically(plot_path, volume::refine_plot_svg(report, concat("tm-refine ", volume::placement_name(options.placement),

@@ -142,6 +142,7 @@ int main(int argc, char** argv)
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
         },
         [&](tools::ToolContext& context) {
+            format_flags.check();
             const InterfaceComplex complex = io::read_surface(input);
             options.preserve_interfaces = !allow_steiner;
             options.improve_quality = !no_quality;
@@ -152,7 +153,7 @@ int main(int argc, char** argv)
             volume::TetrahedralizeReport report;
             const TetMesh mesh =
                 tools::with_source(input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
-            io::write_tet_mesh(mesh, output, format_flags.to_write_options());
+            io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
                                report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",
                                format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ", format_mm(report.max_radius_edge_ratio, 2)));

@@ -16,7 +16,7 @@ def read_ply(path):
     header = data[:end].decode()
     nv = int(header.split("element vertex ")[1].split()[0])
     nf = int(header.split("element face ")[1].split()[0])
-    labels = header.count("property ushort")
+    labels = header.count("property ushort") + header.count("property uint16")
     vertices = [struct.unpack_from("<3d", data, end + 24 * i) for i in range(nv)]
     faces, at = [], end + 24 * nv
     for _ in range(nf):

@@ -11,40 +11,32 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "binary .msh code assumes a little-endian host");
 
-void append_elements_ascii(std::string& out, const TetMesh& mesh)
+void append_elements_ascii(std::string& out, const Msh2Elements& elements)
 {
     std::size_t id = 1;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-        const Triangle& tri = mesh.faces[f];
-        out += concat(id++, " 2 2 ", face_physical(mesh.face_sides[f]), ' ', face_tag(mesh.face_sides[f]), ' ', tri[0] + 1,
-                      ' ', tri[1] + 1, ' ', tri[2] + 1, '\n');
+    for (std::size_t f = 0; f < elements.faces.size(); ++f) {
+        const Triangle& tri = elements.faces[f];
+        out += concat(id++, " 2 2 ", elements.face_tags[f][0], ' ', elements.face_tags[f][1], ' ', tri[0] + 1, ' ', tri[1] + 1,
+                      ' ', tri[2] + 1, '\n');
     }
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const Tet& tet = mesh.tets[t];
-        out += concat(id++, " 4 2 ", mesh.tet_labels[t], ' ', mesh.tet_labels[t], ' ', tet[0] + 1, ' ', tet[1] + 1, ' ',
-                      tet[2] + 1, ' ', tet[3] + 1, '\n');
+    for (std::size_t t = 0; t < elements.tets.size(); ++t) {
+        const Tet& tet = elements.tets[t];
+        out += concat(id++, " 4 2 ", elements.tet_tags[t][0], ' ', elements.tet_tags[t][1], ' ', tet[0] + 1, ' ', tet[1] + 1,
+                      ' ', tet[2] + 1, ' ', tet[3] + 1, '\n');
     }
 }
 
-void append_elements_binary(std::string& out, const TetMesh& mesh)
+/// One block of elements of one type with two tags each: header (type, count, tags), then per element its
+/// number, tags and nodes, all int32.
+template <std::size_t Corners>
+void append_block_binary(std::string& out, int type, std::span<const std::array<std::uint32_t, Corners>> cells,
+                         const std::vector<std::array<int, 2>>& tags, int& id)
 {
-    // Blocks of one type with the same number of tags: header (type, count, tags), then per element its
-    // number, tags and nodes, all int32.
-    int id = 1;
-    if (!mesh.faces.empty()) {
-        for (const int value : {2, static_cast<int>(mesh.faces.size()), 2}) append_binary<std::int32_t>(out, value);
-        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-            for (const int value : {id++, face_physical(mesh.face_sides[f]), face_tag(mesh.face_sides[f])})
-                append_binary<std::int32_t>(out, value);
-            for (const std::uint32_t v : mesh.faces[f]) append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
-        }
-    }
-    if (!mesh.tets.empty()) {
-        for (const int value : {4, static_cast<int>(mesh.tets.size()), 2}) append_binary<std::int32_t>(out, value);
-        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-            for (const int value : {id++, int{mesh.tet_labels[t]}, int{mesh.tet_labels[t]}}) append_binary<std::int32_t>(out, value);
-            for (const std::uint32_t v : mesh.tets[t]) append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
-        }
+    if (cells.empty()) return;
+    for (const int value : {type, static_cast<int>(cells.size()), 2}) append_binary<std::int32_t>(out, value);
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+        for (const int value : {id++, tags[c][0], tags[c][1]}) append_binary<std::int32_t>(out, value);
+        for (const std::uint32_t v : cells[c]) append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
     }
 }
 
@@ -112,26 +104,45 @@ void parse_elements_binary(ByteReader& in, TetMesh& mesh, const NodeIndex& nodes
 
 } // namespace
 
-std::string format_msh2(const TetMesh& mesh, bool binary)
+std::string format_msh2(const std::vector<Vec3>& vertices, const Msh2Elements& elements, bool binary)
 {
     std::string out = binary ? "$MeshFormat\n2.2 1 8\n" : "$MeshFormat\n2.2 0 8\n";
     if (binary) append_binary<std::int32_t>(out, 1), out += '\n';
-    out += "$EndMeshFormat\n" + format_physical_names(mesh) + concat("$Nodes\n", mesh.vertices.size(), "\n");
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    out += "$EndMeshFormat\n";
+    if (!elements.names_after_elements) out += elements.physical_names;
+    out += concat("$Nodes\n", vertices.size(), "\n");
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
         if (binary) {
             append_binary<std::int32_t>(out, static_cast<std::int32_t>(v + 1));
-            for (const double c : mesh.vertices[v]) append_binary<double>(out, c);
+            for (const double c : vertices[v]) append_binary<double>(out, c);
             continue;
         }
         out += concat(v + 1);
-        for (const double c : mesh.vertices[v]) out += ' ', append_real(out, c);
+        for (const double c : vertices[v]) out += ' ', append_real(out, c);
         out += '\n';
     }
     out += binary ? "\n$EndNodes\n" : "$EndNodes\n";
-    out += concat("$Elements\n", mesh.faces.size() + mesh.tets.size(), "\n");
-    if (binary) append_elements_binary(out, mesh), out += '\n';
-    else append_elements_ascii(out, mesh);
-    return out + "$EndElements\n";
+    out += concat("$Elements\n", elements.faces.size() + elements.tets.size(), "\n");
+    if (binary) {
+        int id = 1;
+        append_block_binary<3>(out, 2, elements.faces, elements.face_tags, id);
+        append_block_binary<4>(out, 4, elements.tets, elements.tet_tags, id);
+        out += '\n';
+    } else {
+        append_elements_ascii(out, elements);
+    }
+    out += "$EndElements\n";
+    if (elements.names_after_elements) out += elements.physical_names;
+    return out;
+}
+
+std::string format_msh2(const TetMesh& mesh, bool binary)
+{
+    Msh2Elements elements{.faces = mesh.faces, .face_tags = {}, .tets = mesh.tets, .tet_tags = {},
+                          .physical_names = format_physical_names(mesh), .names_after_elements = false};
+    for (const LabelPair& pair : mesh.face_sides) elements.face_tags.push_back({face_physical(pair), face_tag(pair)});
+    for (const Label label : mesh.tet_labels) elements.tet_tags.push_back({int{label}, int{label}});
+    return format_msh2(mesh.vertices, elements, binary);
 }
 
 TetMesh parse_msh2(ByteReader& in)

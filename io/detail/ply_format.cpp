@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -261,16 +262,16 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
 } // namespace
 
 std::string ply_header(const TissueNames& names, Label background, std::size_t vertices, std::size_t triangles,
-                       const std::vector<std::string>& comments)
+                       const std::vector<std::string>& comments, bool ascii)
 {
     std::ostringstream header;
-    header << "ply\nformat binary_little_endian 1.0\ncomment tissuemesh interface complex\n"
+    header << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\ncomment tissuemesh interface complex\n"
            << "comment background " << background << "\n";
     for (const auto& [label, name] : names) header << "comment tissue " << label << " " << name << "\n";
     for (const std::string& comment : comments) header << "comment " << comment << "\n";
     header << "element vertex " << vertices << "\nproperty double x\nproperty double y\n"
            << "property double z\nelement face " << triangles
-           << "\nproperty list uchar uint vertex_indices\nproperty ushort label_a\nproperty ushort label_b\n"
+           << "\nproperty list uint8 uint32 vertex_indices\nproperty uint16 label_a\nproperty uint16 label_b\n"
            << "end_header\n";
     return header.str();
 }
@@ -288,17 +289,21 @@ void append_ply_face(std::string& out, const Triangle& triangle, LabelPair side)
     append(out, side.to);
 }
 
-void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments)
+void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::vector<std::string>& comments, bool ascii)
 {
     ChunkedOutput chunks(out);
-    chunks.text =
-        ply_header(complex.names, complex.background, complex.vertices.size(), complex.triangles.size(), comments);
+    chunks.text = ply_header(complex.names, complex.background, complex.vertices.size(), complex.triangles.size(),
+                             comments, ascii);
+    char line[96];
     for (const Vec3& v : complex.vertices) {
-        append_ply_vertex(chunks.text, v);
+        if (ascii) chunks.text.append(line, static_cast<std::size_t>(std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", v[0], v[1], v[2])));
+        else append_ply_vertex(chunks.text, v);
         chunks.flush_if_full();
     }
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
-        append_ply_face(chunks.text, complex.triangles[t], complex.sides[t]);
+        const Triangle& f = complex.triangles[t];
+        if (ascii) chunks.text += concat("3 ", f[0], ' ', f[1], ' ', f[2], ' ', complex.sides[t].from, ' ', complex.sides[t].to, '\n');
+        else append_ply_face(chunks.text, f, complex.sides[t]);
         chunks.flush_if_full();
     }
     chunks.flush();

@@ -2,6 +2,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 
@@ -35,19 +36,48 @@ constexpr std::size_t record_size = 50;  // normal, 3 corners (12 float32) + uin
 
 } // namespace
 
-void write_stl(const InterfaceComplex& complex, std::ostream& stream)
+namespace {
+
+Vec3 unit_normal(const Vec3& a, const Vec3& b, const Vec3& c)
+{
+    const Vec3 n = cross(b - a, c - a);
+    const double length = norm(n);
+    return length > 0 ? (1.0 / length) * n : n;
+}
+
+void write_ascii_stl(const InterfaceComplex& complex, ChunkedOutput& chunks)
+{
+    chunks.text = "solid tissuemesh\n";
+    char line[128];
+    auto add = [&](const char* format, const Vec3& v) {
+        const int length = std::snprintf(line, sizeof line, format, static_cast<double>(static_cast<float>(v[0])),
+                                         static_cast<double>(static_cast<float>(v[1])), static_cast<double>(static_cast<float>(v[2])));
+        chunks.text.append(line, static_cast<std::size_t>(length));
+    };
+    for (const Triangle& t : complex.triangles) {
+        const Vec3 &a = complex.vertices[t[0]], &b = complex.vertices[t[1]], &c = complex.vertices[t[2]];
+        add("facet normal %.9g %.9g %.9g\n outer loop\n", unit_normal(a, b, c));
+        for (const Vec3& v : {a, b, c}) add("  vertex %.9g %.9g %.9g\n", v);
+        chunks.text += " endloop\nendfacet\n";
+        chunks.flush_if_full();
+    }
+    chunks.text += "endsolid tissuemesh\n";
+    chunks.flush();
+}
+
+} // namespace
+
+void write_stl(const InterfaceComplex& complex, std::ostream& stream, bool ascii)
 {
     ChunkedOutput chunks(stream);
+    if (ascii) return write_ascii_stl(complex, chunks);
     std::string& out = chunks.text;
     out.assign(80, ' ');
     out.replace(0, 31, "tissuemesh binary STL surface  ");
     append(out, static_cast<std::uint32_t>(complex.triangles.size()));
     for (const Triangle& t : complex.triangles) {
         const Vec3 &a = complex.vertices[t[0]], &b = complex.vertices[t[1]], &c = complex.vertices[t[2]];
-        Vec3 n = cross(b - a, c - a);
-        const double length = norm(n);
-        if (length > 0) n = (1.0 / length) * n;
-        for (const Vec3& v : {n, a, b, c})
+        for (const Vec3& v : {unit_normal(a, b, c), a, b, c})
             for (const double x : v) append(out, static_cast<float>(x));
         append(out, std::uint16_t{0});
         chunks.flush_if_full();

@@ -1,4 +1,4 @@
-// Binary STL: geometry only, float32 coordinates, one record per triangle.
+// STL: geometry only; binary (float32 coordinates, one record per triangle) or ASCII.
 #pragma once
 
 #include <ostream>
@@ -8,8 +8,9 @@
 
 namespace tissuemesh::io::detail {
 
-/// Writes the whole binary .stl file to `out` (normals from the vertex order, attribute 0).
-void write_stl(const InterfaceComplex& complex, std::ostream& out);
+/// Writes the whole .stl file to `out`: binary (float32, attribute 0) or `ascii` ("%.9g": float32 exactly);
+/// normals from the vertex order.
+void write_stl(const InterfaceComplex& complex, std::ostream& out, bool ascii = false);
 
 /// Parses binary or ASCII .stl bytes (ASCII: starts with "solid" and its size is not that of a binary
 /// file); corners with bit-identical coordinates become one vertex, every triangle gets the pair {1, 0}.
