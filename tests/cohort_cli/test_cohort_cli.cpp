@@ -130,14 +130,14 @@ std::multiset<std::vector<std::string>> commands(const std::string& output, cons
 TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
 {
     TempDir dir;
-    // Two subjects from a table: one with the names as JSON, one with flags of its own. Nothing runs (dry runs),
+    // Two subjects from a table, the second in a session and with flags of its own. Nothing runs (dry runs),
     // so the images need only exist.
     for (const char* file : {"a.nii.gz", "b.nii.gz"}) std::ofstream(dir / file) << "image";
     std::ofstream(dir / "names.json") << R"({"1": "scalp", "2": "brain"})";
     const std::string electrodes = "--electrode 1,2,3,4,1e-3 --electrode 5,6,7,4,-1e-3";
-    std::ofstream(dir / "subjects.tsv") << "participant_id\timage\tlabels\tSOLVE_ARGS\n"
-                                        << "sub-01\ta.nii.gz\tnames.json\t\n"
-                                        << "sub-02\tb.nii.gz\tnames.json\t" << electrodes << "\n";
+    std::ofstream(dir / "subjects.tsv") << "participant_id\tsession_id\timage\tlabels\tSOLVE_ARGS\n"
+                                        << "sub-01\t\ta.nii.gz\tnames.json\t\n"
+                                        << "sub-02\tses-A\tb.nii.gz\tnames.json\t" << electrodes << "\n";
     const fs::path out = dir / "derivatives";
     struct Case {
         std::string name;
@@ -156,7 +156,7 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
         args.insert(args.end(), c.config.begin(), c.config.end());
         const CliResult snake = run_snakemake(args);
         ASSERT_EQ(snake.exit_code, 0) << c.name << "\n" << snake.out << snake.err;
-        for (const auto& [subject, image, solve] : {std::tuple{"sub-01", "a.nii.gz", ""}, std::tuple{"sub-02", "b.nii.gz", "yes"}}) {
+        for (const auto& [subject, image, solve] : {std::tuple{"sub-01", "a.nii.gz", ""}, std::tuple{"sub-02/ses-A", "b.nii.gz", "yes"}}) {
             std::vector<std::string> extra = c.make;
             extra.insert(extra.end(), {"-n", "-B"});
             if (*solve) extra.push_back("SOLVE_ARGS=" + electrodes);
