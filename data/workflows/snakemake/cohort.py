@@ -182,6 +182,18 @@ def labels_json_from_tsv(tsv, json_path):
     os.replace(temporary, json_path)
 
 
+def write_description(description_path, ignore_path, tm_prep, source):
+    """The BIDS-derivatives dataset_description.json (with the programs' version) and a .bidsignore for the rest."""
+    version = subprocess.run([tm_prep, "--version"], capture_output=True, text=True).stdout.split()[-1:]
+    description = {"Name": "tissuemesh tetrahedral models", "BIDSVersion": "1.8.0", "DatasetType": "derivative",
+                   "GeneratedBy": [{"Name": "tissuemesh", "Version": "".join(version),
+                                    "Description": "data/workflows/snakemake: the chain of data/workflows/Makefile"}],
+                   "SourceDatasets": [{"URL": Path(source).resolve().as_uri()}]}
+    Path(description_path).write_text(json.dumps(description, indent=2) + "\n")
+    Path(ignore_path).write_text("# tissuemesh's own file names inside each subject folder, its logs and the summary\n"
+                                 "sub-*/**\nlogs/\nsummary/\nlabels/\n")
+
+
 # ---- resources -------------------------------------------------------------------------------------------------
 
 def nifti_voxels(path):
