@@ -80,7 +80,7 @@ def summarise_subject(root, subject, chain):
     else:
         tetra = (_read_json(folder / "tetra.json") if "tetra" in seconds else None) or {}
         row["tets"], row["nodes"] = tetra.get("tets", ""), tetra.get("nodes", "")
-    row["total_seconds"] = round(sum(seconds.values()), 2)
+    row["seconds_all_steps"] = round(sum(seconds.values()), 2)
     row["peak_memory_mb"] = round(peak, 1)
     for step, value in seconds.items():
         row[f"seconds_{step}"] = round(value, 2)
@@ -89,7 +89,7 @@ def summarise_subject(root, subject, chain):
 
 def _columns(rows):
     fixed = ["subject", "status", "failed_step", "error", "fit_for_fem", "why", "tets", "nodes", "min_dihedral_deg",
-             "total_seconds", "peak_memory_mb"]
+             "seconds_all_steps", "peak_memory_mb"]
     dice = sorted({key for row in rows for key in row if key.startswith("dice_")})
     steps = [f"seconds_{step}" for step in CHAIN if any(f"seconds_{step}" in row for row in rows)]
     return fixed + dice + steps
@@ -98,7 +98,7 @@ def _columns(rows):
 def _bar_chart(rows):
     """Seconds per step, one stacked bar per subject (SVG)."""
     steps = [step for step in CHAIN if any(f"seconds_{step}" in row for row in rows)]
-    longest = max([row["total_seconds"] for row in rows] + [1e-9])
+    longest = max([row["seconds_all_steps"] for row in rows] + [1e-9])
     width, left, bar = 640, 150, 18
     height = 40 + bar * 1.5 * len(rows) + 20 * ((len(steps) + 3) // 4)
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width + left + 60}" height="{height:.0f}" font-size="11">',
@@ -112,7 +112,7 @@ def _bar_chart(rows):
                 parts.append(f'<rect x="{x:.1f}" y="{y:.1f}" width="{w:.1f}" height="{bar}" fill="{COLOURS[k % len(COLOURS)]}">'
                              f'<title>{html.escape(row["subject"])} {step}: {row[f"seconds_{step}"]} s</title></rect>')
                 x += w
-        parts.append(f'<text x="{x + 4:.1f}" y="{y + bar * 0.75:.1f}">{row["total_seconds"]} s</text>')
+        parts.append(f'<text x="{x + 4:.1f}" y="{y + bar * 0.75:.1f}">{row["seconds_all_steps"]} s</text>')
     legend_y = 36 + bar * 1.5 * len(rows)
     for k, step in enumerate(steps):
         x, y = left + (k % 4) * 160, legend_y + 20 * (k // 4)
