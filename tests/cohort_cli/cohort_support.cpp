@@ -76,12 +76,12 @@ void add_broken_subject(const fs::path& root)
     fs::copy_file(root / "sub-01" / "anat" / "sub-01_dseg.tsv", anat / "sub-04_dseg.tsv");
 }
 
-CliResult run_snakemake(const std::vector<std::string>& args, const std::vector<std::string>& environment)
+CliResult run_snakemake(const fs::path& folder, const std::vector<std::string>& args, const std::vector<std::string>& environment)
 {
     std::vector<std::string> command = environment;
     command.insert(command.end(), {"snakemake", "-s", (snakemake_folder() / "Snakefile").string()});
     command.insert(command.end(), args.begin(), args.end());
-    return run_program("env", command);
+    return run_program("env", command, folder);
 }
 
 CliResult run_make(const fs::path& image, const fs::path& labels, const fs::path& out, const std::vector<std::string>& extra)

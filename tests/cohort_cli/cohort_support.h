@@ -25,8 +25,10 @@ std::vector<std::string> cohort_make_variables();
 /// Adds sub-04 whose image is a truncated gzip stream (and its names, so only the image is wrong).
 void add_broken_subject(const std::filesystem::path& root);
 
-/// snakemake -s Snakefile with `args`, after `environment` (NAME=VALUE) settings.
-CliResult run_snakemake(const std::vector<std::string>& args, const std::vector<std::string>& environment = {});
+/// snakemake -s Snakefile with `args`, after `environment` (NAME=VALUE) settings, started in `folder` (where
+/// Snakemake keeps its own log, .snakemake/log).
+CliResult run_snakemake(const std::filesystem::path& folder, const std::vector<std::string>& args,
+                        const std::vector<std::string>& environment = {});
 
 /// make -C data/workflows for one subject as the Snakefile ran it: IMAGE, LABELS, OUT and `extra` variables.
 CliResult run_make(const std::filesystem::path& image, const std::filesystem::path& labels, const std::filesystem::path& out,

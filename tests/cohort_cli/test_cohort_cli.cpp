@@ -26,7 +26,7 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
     make_bids_cohort(bids);
     std::vector<std::string> run{"--cores", "2", "--keep-going", "--config", "bids=" + bids.string(), "bin=" TM_TOOLS_DIR};
     for (const std::string& setting : cohort_config()) run.push_back(setting);
-    CliResult result = run_snakemake(run);
+    CliResult result = run_snakemake(dir.path(), run);
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
 
     // BIDS-derivatives top level, and every subject to the end of the chain.
@@ -71,14 +71,14 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
 
     // A second run does nothing.
     const auto before = json_times(out);
-    result = run_snakemake(run);
+    result = run_snakemake(dir.path(), run);
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_NE((result.out + result.err).find("Nothing to be done"), std::string::npos) << result.out << result.err;
     EXPECT_EQ(json_times(out), before);
 
     // A broken image: that subject fails at its first step with tm-prep's one line; the others are left as they were.
     add_broken_subject(bids);
-    result = run_snakemake(run);
+    result = run_snakemake(dir.path(), run);
     EXPECT_NE(result.exit_code, 0) << result.out << result.err;
     rows = read_csv(out / "summary" / "cohort.csv");
     ASSERT_EQ(rows.size(), 4u);
@@ -154,7 +154,7 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
         std::vector<std::string> args{"-n", "-p", "--forceall", "--cores", "2", "--config", "subjects=" + (dir / "subjects.tsv").string(),
                                       "out=" + out.string(), "bin=" TM_TOOLS_DIR};
         args.insert(args.end(), c.config.begin(), c.config.end());
-        const CliResult snake = run_snakemake(args);
+        const CliResult snake = run_snakemake(dir.path(), args);
         ASSERT_EQ(snake.exit_code, 0) << c.name << "\n" << snake.out << snake.err;
         for (const auto& [subject, image, solve] : {std::tuple{"sub-01", "a.nii.gz", ""}, std::tuple{"sub-02/ses-A", "b.nii.gz", "yes"}}) {
             std::vector<std::string> extra = c.make;
@@ -175,7 +175,7 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
     }
 
     // A step variable the Snakefile does not know (as when the Makefile gains a step) stops it before anything runs.
-    const CliResult drift = run_snakemake({"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
+    const CliResult drift = run_snakemake(dir.path(), {"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
                                            "out=" + out.string(), "params={NETS_ARGS: --level 1}"});
     EXPECT_NE(drift.exit_code, 0);
     EXPECT_NE((drift.out + drift.err).find("the Makefile has NETS_ARGS, which no rule here takes"), std::string::npos)

@@ -51,7 +51,7 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
     std::vector<std::string> run{"--profile", (snakemake_folder() / "profiles" / "slurm").string(), "--config",
                                  "bids=" + bids.string(), "bin=" TM_TOOLS_DIR};
     for (const std::string& setting : cohort_config()) run.push_back(setting);
-    const CliResult result = run_snakemake(run, {"SLURM_CONF=" + (cluster / "slurm.conf").string()});
+    const CliResult result = run_snakemake(dir.path(), run, {"SLURM_CONF=" + (cluster / "slurm.conf").string()});
     EXPECT_NE(result.exit_code, 0) << "sub-04's image is broken";
     EXPECT_NE(result.err.find("Submitted job"), std::string::npos) << result.err;
 
