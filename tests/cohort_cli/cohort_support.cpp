@@ -74,6 +74,10 @@ void add_broken_subject(const fs::path& root)
     const std::string whole = read_text(root / "sub-01" / "anat" / "sub-01_dseg.nii.gz");
     std::ofstream(anat / "sub-04_dseg.nii.gz", std::ios::binary) << whole.substr(0, whole.size() / 2);
     fs::copy_file(root / "sub-01" / "anat" / "sub-01_dseg.tsv", anat / "sub-04_dseg.tsv");
+    const fs::path names = root / "sub-05" / "anat";
+    fs::create_directories(names);
+    fs::copy_file(root / "sub-02" / "anat" / "sub-02_dseg.nii.gz", names / "sub-05_dseg.nii.gz");
+    std::ofstream(names / "sub-05_dseg.tsv") << "index\tlabel\n1\tcube\n";
 }
 
 CliResult run_snakemake(const fs::path& folder, const std::vector<std::string>& args, const std::vector<std::string>& environment)

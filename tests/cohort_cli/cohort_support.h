@@ -22,7 +22,8 @@ void make_bids_cohort(const std::filesystem::path& root);
 std::vector<std::string> cohort_config();
 std::vector<std::string> cohort_make_variables();
 
-/// Adds sub-04 whose image is a truncated gzip stream (and its names, so only the image is wrong).
+/// Adds sub-04 whose image is a truncated gzip stream (its names are fine), and sub-05 whose image is fine but whose
+/// dseg.tsv has no name column.
 void add_broken_subject(const std::filesystem::path& root);
 
 /// snakemake -s Snakefile with `args`, after `environment` (NAME=VALUE) settings, started in `folder` (where

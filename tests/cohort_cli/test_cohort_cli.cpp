@@ -76,12 +76,17 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
     EXPECT_NE((result.out + result.err).find("Nothing to be done"), std::string::npos) << result.out << result.err;
     EXPECT_EQ(json_times(out), before);
 
-    // A broken image: that subject fails at its first step with tm-prep's one line; the others are left as they were.
+    // A broken image and a broken names table: those subjects fail at their first step with its one line; the
+    // others are left as they were.
     add_broken_subject(bids);
     result = run_snakemake(dir.path(), run);
     EXPECT_NE(result.exit_code, 0) << result.out << result.err;
     rows = read_csv(out / "summary" / "cohort.csv");
-    ASSERT_EQ(rows.size(), 4u);
+    ASSERT_EQ(rows.size(), 5u);
+    EXPECT_EQ(rows[4]["status"], "failed");
+    EXPECT_EQ(rows[4]["failed_step"], "labels");
+    EXPECT_NE(rows[4]["error"].find("sub-05_dseg.tsv: a BIDS dseg.tsv needs the columns index and name"), std::string::npos)
+        << rows[4]["error"];
     for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(rows[i]["status"], "done") << rows[i]["subject"];
     EXPECT_EQ(rows[3]["subject"], "sub-04");
     EXPECT_EQ(rows[3]["status"], "failed");

@@ -57,7 +57,7 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
 
     // Every subject but the broken one to the end of its chain, fit for FEM; the broken one with tm-prep's line.
     auto rows = read_csv(out / "summary" / "cohort.csv");
-    ASSERT_EQ(rows.size(), 4u) << result.err;
+    ASSERT_EQ(rows.size(), 5u) << result.err;
     for (std::size_t i = 0; i < 3; ++i) {
         EXPECT_EQ(rows[i]["status"], "done") << rows[i]["subject"] << ": " << rows[i]["error"];
         EXPECT_EQ(rows[i]["fit_for_fem"], "yes") << rows[i]["subject"];
@@ -65,6 +65,7 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
     EXPECT_EQ(rows[3]["status"], "failed");
     EXPECT_EQ(rows[3]["failed_step"], "prep");
     EXPECT_EQ(rows[3]["error"].rfind("tm-prep: error: ", 0), 0u) << rows[3]["error"];
+    EXPECT_EQ(rows[4]["failed_step"], "labels");  // run on the login node (a local rule): no job
 
     // The steps ran as SLURM jobs: the controller knows 14 completed jobs per finished subject (9 steps, 4 pictures,
     // the report), and sub-04's prep failed twice (the profile retries once); each job left its sbatch log.

@@ -45,7 +45,12 @@ def summarise_subject(root, subject, chain):
                                          "fit_for_fem": "", "why": ""}
     seconds, peak = {}, 0.0
     for step in chain:
-        summary = _read_json(folder / f"{step}.json")
+        if step == "labels":  # the Snakefile's conversion of a dseg.tsv: a file, no summary
+            if (Path(root) / "labels" / f"{subject}.json").is_file():
+                continue
+            summary = None
+        else:
+            summary = _read_json(folder / f"{step}.json")
         if summary is not None and summary.get("status") == "ok":
             seconds[step] = float(summary.get("seconds", 0))
             peak = max(peak, float(summary.get("peak_memory_mb", 0)))
