@@ -179,12 +179,24 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
         }
     }
 
-    // A step variable the Snakefile does not know (as when the Makefile gains a step) stops it before anything runs.
-    const CliResult drift = run_snakemake(dir.path(), {"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
-                                           "out=" + out.string(), "params={NETS_ARGS: --level 1}"});
-    EXPECT_NE(drift.exit_code, 0);
-    EXPECT_NE((drift.out + drift.err).find("the Makefile has NETS_ARGS, which no rule here takes"), std::string::npos)
-        << drift.out << drift.err;
+    // A misspelt parameter is refused as such.
+    CliResult refused = run_snakemake(dir.path(), {"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
+                                                   "out=" + out.string(), "params={REMSH_ARGS: --edge-mm 2}"});
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE((refused.out + refused.err).find("params: REMSH_ARGS are no parameters of the Makefile"), std::string::npos) << refused.err;
+
+    // When the Makefile gains a step variable (here a copy of data/workflows with one more), the Snakefile stops
+    // before anything runs and says which.
+    const fs::path copy = dir / "workflows";
+    fs::create_directories(copy);
+    fs::copy(data_path("workflows/snakemake"), copy / "snakemake", fs::copy_options::recursive);
+    fs::copy_file(data_path("workflows/Makefile"), copy / "Makefile");
+    std::ofstream(copy / "Makefile", std::ios::app) << "NETS_ARGS ?= --level 1\n";
+    refused = run_program("snakemake", {"-s", (copy / "snakemake" / "Snakefile").string(), "-n", "--cores", "1", "--config",
+                                        "subjects=" + (dir / "subjects.tsv").string(), "out=" + out.string()},
+                          dir.path());
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE((refused.out + refused.err).find("the Makefile has NETS_ARGS, which no rule here takes"), std::string::npos) << refused.err;
 }
 
 } // namespace

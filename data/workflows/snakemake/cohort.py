@@ -50,6 +50,10 @@ def make_params(makefile_dir, preset="", overrides=None):
     variables, so presets, defaults and derived values come from the one place they are written.
     Returns {"params": {NAME: value}, "bin": folder of the programs}.
     """
+    unknown = sorted(set(overrides or {}) - set(STEP_ARGS) - set(SETTINGS))
+    if unknown:
+        raise CohortError(f"params: {', '.join(unknown)} are no parameters of the Makefile (known: "
+                          f"{', '.join(sorted(STEP_ARGS) + list(SETTINGS))})")
     command = ["make", "-s", "--no-print-directory", "-C", str(makefile_dir), "print-params", "IMAGE="]
     if preset:
         command.append(f"PRESET={check_value('preset', preset)}")
@@ -70,10 +74,6 @@ def make_params(makefile_dir, preset="", overrides=None):
             + ("; " if behind and gone else "")
             + (f"the Makefile no longer has {', '.join(gone)}" if gone else "")
             + ". Bring data/workflows/snakemake (Snakefile, cohort.py) in step with the Makefile and run tests/cohort_cli.")
-    unknown = sorted(set(overrides or {}) - set(STEP_ARGS) - set(SETTINGS))
-    if unknown:
-        raise CohortError(f"params: {', '.join(unknown)} are no parameters of the Makefile (known: "
-                          f"{', '.join(sorted(STEP_ARGS) + list(SETTINGS))})")
     if printed.get("STOP_AFTER", "") not in ("", "remesh"):
         raise CohortError(f"STOP_AFTER={printed['STOP_AFTER']}: only \"remesh\" (or nothing, for the whole chain) is known")
     return {"params": {k: printed[k] for k in list(STEP_ARGS) + list(SETTINGS)}, "bin": printed["BIN"]}
