@@ -55,7 +55,10 @@ struct LeadFieldOptions {
     double min_meg_distance_mm = 1;             ///< MEG coils nearer the surface (or inside) are refused
     std::optional<std::size_t> reference_electrode;  ///< EEG against this electrode; none: average reference
     VolumeCurrentOptions meg;                   ///< the volume-current integral
-    SolverOptions solver;                       ///< for every solve (the tolerance bounds the transfer matrix's error)
+    /// For every solve. A relative residual of 1e-6 moved the EEG lead field of the 62 k-node 4-shell test head by
+    /// at most 3.9e-5 per column (median 7e-6) from its value at 1e-10, and MEG by 3.5e-7, far below the
+    /// discretisation's 1e-2; 1e-8 takes about 40% more iterations (16-17 against 11-13 there).
+    SolverOptions solver{.relative_tolerance = 1e-6};
 };
 
 /// What compute_lead_fields() did.

@@ -97,15 +97,19 @@ void write_npy(const std::filesystem::path& path, const NpyMatrix& matrix)
     if (matrix.values.size() != matrix.rows * matrix.columns)
         throw InputError(concat(path.string(), ": ", matrix.values.size(), " values for a ", matrix.rows, " x ",
                                 matrix.columns, " matrix"));
-    const std::string header = header_for(matrix.rows, matrix.columns);
+    write_npy(path, matrix.rows, matrix.columns, matrix.values.data());
+}
+
+void write_npy(const std::filesystem::path& path, std::size_t rows, std::size_t columns, const double* values)
+{
+    const std::string header = header_for(rows, columns);
     write_stream_atomically(path, [&](std::ostream& out) {
         const auto length = static_cast<std::uint16_t>(header.size());
         const char preamble[4] = {1, 0, static_cast<char>(length & 0xff), static_cast<char>(length >> 8)};
         out.write(magic.data(), static_cast<std::streamsize>(magic.size()));
         out.write(preamble, 4);
         out.write(header.data(), static_cast<std::streamsize>(header.size()));
-        out.write(reinterpret_cast<const char*>(matrix.values.data()),
-                  static_cast<std::streamsize>(matrix.values.size() * sizeof(double)));
+        out.write(reinterpret_cast<const char*>(values), static_cast<std::streamsize>(rows * columns * sizeof(double)));
     });
 }
 

@@ -19,6 +19,9 @@ struct NpyMatrix {
 /// @throws IoError when the file cannot be written
 void write_npy(const std::filesystem::path& path, const NpyMatrix& matrix);
 
+/// The same from rows * columns values in C order (a lead field written straight from its buffer, no copy).
+void write_npy(const std::filesystem::path& path, std::size_t rows, std::size_t columns, const double* values);
+
 /// Reads a .npy file of little-endian float64 ('<f8'), shape (rows, columns) or (n,) (read as n x 1), in C or
 /// Fortran order (versions 1.0 to 3.0 of the format). The file's size must match its header exactly; nothing
 /// is allocated before that is checked.

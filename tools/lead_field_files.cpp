@@ -82,9 +82,10 @@ nlohmann::json conductivity_description(const TetMesh& mesh, const fem::Conducti
     return table;
 }
 
-void write_lead_field(const std::filesystem::path& npy, const io::NpyMatrix& matrix, const nlohmann::json& sidecar)
+void write_lead_field(const std::filesystem::path& npy, std::size_t rows, std::size_t columns, const double* values,
+                      const nlohmann::json& sidecar)
 {
-    io::write_npy(npy, matrix);
+    io::write_npy(npy, rows, columns, values);
     try {
         write_text_atomically(sidecar_path(npy), sidecar.dump(1) + "\n");
     } catch (...) {

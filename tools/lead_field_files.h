@@ -28,9 +28,10 @@ nlohmann::json mesh_description(const std::string& path, const TetMesh& mesh);
 /// The sidecar's "conductivities": S/m by tissue name (label when unnamed), a number when isotropic, else 9.
 nlohmann::json conductivity_description(const TetMesh& mesh, const fem::Conductivities& conductivities);
 
-/// Writes `matrix` to `npy` and `sidecar` next to it, both or neither.
+/// Writes the rows x columns matrix `values` (C order) to `npy` and `sidecar` next to it, both or neither.
 /// @throws IoError when either cannot be written
-void write_lead_field(const std::filesystem::path& npy, const io::NpyMatrix& matrix, const nlohmann::json& sidecar);
+void write_lead_field(const std::filesystem::path& npy, std::size_t rows, std::size_t columns, const double* values,
+                      const nlohmann::json& sidecar);
 
 /// A tDCS lead field read back, with its electrodes (input order, the reference included).
 struct TdcsLeadFieldFile {

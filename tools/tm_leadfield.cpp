@@ -100,10 +100,25 @@ nlohmann::json lead_field_sidecar(const std::string& kind, const nlohmann::json&
     return sidecar;
 }
 
-io::NpyMatrix to_npy(const fem::LeadFields::Matrix& matrix)
+// Memory of a lead field, the mesh it read included: 1.34 kB per node in the program and 0.7 kB in its two MPI
+// workers on bench/leadfield's 1.04 M-node mesh (spheres4 2 mm: 6.0 tets per node); 2.5 kB per node leaves room
+// for meshes with more tets per node. Subtraction keeps every solve's solution (8 B per node each), the tDCS lead
+// field every electrode's potentials.
+constexpr double bytes_per_node = 2500;
+
+/// Refuses a run that would need more memory than --max-memory allows, before the assembly.
+void check_memory(const tools::ToolContext& context, const std::string& input, const TetMesh& mesh, double rows_kept)
 {
-    return {static_cast<std::size_t>(matrix.rows()), static_cast<std::size_t>(matrix.cols()),
-            std::vector<double>(matrix.data(), matrix.data() + matrix.size())};
+    const double nodes = static_cast<double>(mesh.vertex_count());
+    tools::require_memory(context.memory, input, nodes * (bytes_per_node + 8 * rows_kept),
+                          concat(tools::format_count(nodes), " nodes x ", tools::format_bytes(bytes_per_node + 8 * rows_kept)),
+                          "mesh it coarser (tm-tetra --max-volume), or use fewer electrodes");
+}
+
+/// Writes a row-major matrix and its sidecar.
+void write_matrix(const std::string& path, const fem::LeadFields::Matrix& matrix, const nlohmann::json& sidecar)
+{
+    tools::write_lead_field(path, static_cast<std::size_t>(matrix.rows()), static_cast<std::size_t>(matrix.cols()), matrix.data(), sidecar);
 }
 
 } // namespace
@@ -112,7 +127,7 @@ int main(int argc, char** argv)
 {
     std::string input, conductivity, sensors_path, sources_path, output, meg_path, meg_output, tdcs_path, tdcs_output;
     std::string dipole_model = "venant", reference = "average", tdcs_reference, source_tissues, solver = "amg";
-    double grid_mm = 0, min_distance_mm = 0, tolerance = 1e-8;
+    double grid_mm = 0, min_distance_mm = 0, tolerance = 1e-6;
     fem::LeadFieldOptions options;
     int processes = 0;
     return tools::run_tool(
@@ -160,7 +175,8 @@ int main(int argc, char** argv)
                            "Electrodes farther from the surface are refused")->capture_default_str()->check(CLI::NonNegativeNumber);
             app.add_option("--min-meg-distance-mm", options.min_meg_distance_mm,
                            "MEG coils nearer the surface are refused")->capture_default_str()->check(CLI::NonNegativeNumber);
-            app.add_option("--tolerance", tolerance, "Relative residual of every solve")->capture_default_str()->check(CLI::PositiveNumber);
+            app.add_option("--tolerance", tolerance, "Relative residual of every solve (1e-6 keeps the lead field within "
+                           "4e-5 of its converged value, README)")->capture_default_str()->check(CLI::PositiveNumber);
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
             app.add_option("--processes", processes, "MPI processes for the AMG-CG: 0 = one per core, 1 = none")
                 ->check(CLI::Range(0, 1024));
@@ -182,6 +198,9 @@ int main(int argc, char** argv)
             const std::vector<io::MegSensorRow> meg_rows = meg_path.empty() ? std::vector<io::MegSensorRow>{} : io::read_meg_sensors(meg_path);
             const std::vector<io::ElectrodeRow> tdcs_rows = tdcs_path.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrode_patches(tdcs_path);
             const TetMesh mesh = io::read_tet_mesh(input);
+            const bool subtraction_rows = dipole_model == "subtraction" && eeg_or_meg;
+            check_memory(context, input, mesh,
+                         static_cast<double>((subtraction_rows ? eeg_rows.size() + meg_rows.size() : 0) + tdcs_rows.size()));
             const fem::Conductivities sigma = conductivity.empty() ? fem::resolve_conductivities(mesh, {})
                                                                    : tools::with_source(conductivity, [&] { return fem::resolve_conductivities(mesh, table); });
             options.solver = {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
@@ -222,7 +241,7 @@ int main(int argc, char** argv)
                                            {"distance_mm", report.electrodes[k].distance_mm}});
                     nlohmann::json sidecar = lead_field_sidecar("eeg", solve_common, sensors, sources, report);
                     sidecar["reference"] = reference;
-                    tools::write_lead_field(output, to_npy(fields.eeg), sidecar);
+                    write_matrix(output, fields.eeg, sidecar);
                 }
                 if (!meg_output.empty()) {
                     nlohmann::json sensors = nlohmann::json::array();
@@ -232,7 +251,7 @@ int main(int argc, char** argv)
                         if (meg_rows[k].second_coil_mm) sensor["second_coil_mm"] = mm(*meg_rows[k].second_coil_mm);
                         sensors.push_back(sensor);
                     }
-                    tools::write_lead_field(meg_output, to_npy(fields.meg), lead_field_sidecar("meg", solve_common, sensors, sources, report));
+                    write_matrix(meg_output, fields.meg, lead_field_sidecar("meg", solve_common, sensors, sources, report));
                 }
                 context.summary.update({{"sources", sources.size()}, {"columns", report.columns}, {"solves", report.solves},
                                         {"unknowns", report.unknowns}, {"load_nodes", report.load_nodes},
@@ -281,7 +300,7 @@ int main(int argc, char** argv)
                                           {"radius_mm", tdcs_rows[k].radius_mm}, {"area_mm2", report.electrode_area_mm2[k]},
                                           {"nodes", report.electrode_nodes[k]}});
                 sidecar["electrodes"] = electrodes;
-                tools::write_lead_field(tdcs_output, to_npy(lead_field.potentials_v_per_a), sidecar);
+                write_matrix(tdcs_output, lead_field.potentials_v_per_a, sidecar);
                 context.summary["tdcs"] = {{"electrodes", tdcs_rows.size()}, {"solves", lead_field.electrodes.size()},
                                            {"iterations_max", report.solver.max_iterations},
                                            {"first_solve_seconds", report.solver.first_solve_seconds},

@@ -218,7 +218,7 @@ std::vector<double> potential_from_lead_field(const std::string& path, const Tet
 int main(int argc, char** argv)
 {
     std::string input, output, conductivity, sensors_path, sensor_output, montage, lead_field, solver = "amg",
-        dipole_model = "partial-integration";
+        dipole_model = "venant";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     int processes = 0;
@@ -259,8 +259,8 @@ int main(int argc, char** argv)
             app.add_option("--sensor-potentials", sensor_output,
                            "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
             app.add_option("--dipole-model", dipole_model,
-                           "Dipole singularity: venant (monopoles on the nearest node and its neighbours with the dipole's "
-                           "moments; any tissue, accurate up to the interfaces: the EEG choice), subtraction (exact "
+                           "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
+                           "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
                            "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
                            "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
                            "load of the one tet that holds the dipole: several times less accurate, its error depends on "

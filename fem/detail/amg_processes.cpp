@@ -3,7 +3,7 @@
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -120,20 +120,34 @@ std::string last_line(const fs::path& log)
     return last.empty() ? "no output" : last;
 }
 
-// Starts mpiexec with its output in `log`; returns its process id.
+// Starts mpiexec with its output in `log`; returns its process id. mpiexec gets SIGTERM (on which it takes its
+// ranks down) when this process ends, however it ends (PR_SET_PDEATHSIG): a lead field's solves run for minutes,
+// and a killed tm-leadfield must not leave them running (they did, with posix_spawn).
 pid_t start_mpiexec(std::vector<std::string> arguments, const fs::path& log)
 {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     std::vector<std::string> environment = worker_environment();
     std::vector<char*> argv = pointers_to(arguments), envp = pointers_to(environment);
-    pid_t pid = 0;
-    const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (failed) throw IoError(concat(arguments[0], ": cannot start (", std::strerror(failed), ")"));
+    const int input = open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const int output = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (input < 0 || output < 0) {
+        const int error = errno;
+        if (input >= 0) close(input);
+        if (output >= 0) close(output);
+        throw IoError(concat(log.string(), ": cannot open (", std::strerror(error), ")"));
+    }
+    const pid_t parent = getpid();
+    const pid_t pid = fork();
+    if (pid == 0) {  // only async-signal-safe calls until exec: other threads may hold locks
+        prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (getppid() != parent) _exit(127);  // the parent ended before the line above took effect
+        if (dup2(input, STDIN_FILENO) < 0 || dup2(output, STDOUT_FILENO) < 0 || dup2(output, STDERR_FILENO) < 0) _exit(127);
+        execve(argv[0], argv.data(), envp.data());
+        _exit(127);
+    }
+    const int error = errno;
+    close(input);
+    close(output);
+    if (pid < 0) throw IoError(concat(arguments[0], ": cannot start (", std::strerror(error), ")"));
     return pid;
 }
 

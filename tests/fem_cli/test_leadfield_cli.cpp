@@ -85,7 +85,7 @@ TEST(LeadfieldCli, WritesEegAndMegLeadFieldsWithSidecars)
     const nlohmann::json run = read_json(head.path("run.json"));
     EXPECT_EQ(run["solves"], 15 + 4);
     EXPECT_EQ(run["columns"], 9);
-    EXPECT_LE(run["relative_residual_max"].get<double>(), 1e-7);
+    EXPECT_LE(run["relative_residual_max"].get<double>(), 1e-5);  // 10 x the default tolerance, as solve_spd_columns allows
     EXPECT_NE(result.err.find("solves done"), std::string::npos) << result.err;  // progress: 19 solves, a line per tenth
 }
 
