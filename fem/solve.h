@@ -1,7 +1,11 @@
 // Conjugate gradients for the symmetric positive definite systems of the FEM.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -49,5 +53,39 @@ struct SolverReport {
 ///         the iteration count, the residual reached and the fix)
 Eigen::VectorXd solve_spd(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, const SolverOptions& options = {},
                           const Progress& progress = {}, SolverReport* report = nullptr);
+
+/// Fills right-hand side k into b (b holds #rows zeros on entry).
+using RhsFiller = std::function<void(std::size_t k, Eigen::VectorXd& b)>;
+/// Receives solution k: its values at the kept rows, in their order. After a failed start of the MPI
+/// processes a sink may see a column again (the solve starts over in one process): store, do not accumulate.
+using SolutionSink = std::function<void(std::size_t k, const double* kept_values)>;
+
+/// What solve_spd_columns() did.
+struct ColumnsReport {
+    std::string preconditioner;        ///< "jacobi" or "amg"
+    int processes = 1;                 ///< MPI processes the AMG-CG ran on
+    std::size_t columns = 0;           ///< right-hand sides solved
+    int min_iterations = 0, max_iterations = 0;
+    double mean_iterations = 0;
+    double max_relative_residual = 0;  ///< the worst ||b - A x||_2 / ||b||_2 over the columns
+    double seconds = 0;                ///< everything
+    double prepare_seconds = 0;        ///< filling the right-hand sides and handing them over (processes only)
+    double copy_seconds = 0;           ///< handing the matrix to the solver
+    double setup_seconds = 0;          ///< the preconditioner, set up once
+    double first_solve_seconds = 0;    ///< the iterations of the first column
+    double later_solve_seconds = 0;    ///< mean iterations time of the other columns
+};
+
+/// Solves A x_k = b_k for k < `columns`, setting the preconditioner (the AMG hierarchy) up once: the
+/// transfer matrices of lead fields solve one system for hundreds of right-hand sides. `rhs` fills each b_k
+/// when it is needed; `sink` gets each x_k at `kept_rows` (every row when empty) in order, as soon as it is
+/// solved. Progress: the fraction of columns done, and an info line every tenth with the time left.
+/// @pre  A is symmetric positive definite
+/// @throws InputError when A is not square or a b_k is not finite
+/// @throws AlgorithmError when a column's relative residual stays above the tolerance (see solve_spd)
+/// Exceptions of `rhs` and `sink` propagate.
+void solve_spd_columns(const SparseMatrix& matrix, std::size_t columns, const RhsFiller& rhs,
+                       const std::vector<std::uint32_t>& kept_rows, const SolutionSink& sink,
+                       const SolverOptions& options = {}, const Progress& progress = {}, ColumnsReport* report = nullptr);
 
 } // namespace tissuemesh::fem

@@ -39,4 +39,9 @@ inline constexpr std::size_t max_electrodes = 10'000;
 /// @throws InputError when a radius is not positive
 std::vector<ElectrodeRow> read_electrodes(const std::filesystem::path& path);
 
+/// The same for files that only place the patches (tm-leadfield's tDCS electrodes): the current_a column may be
+/// left out, or a field left blank (0 A).
+/// @throws what read_electrodes() throws, but for a missing current_a
+std::vector<ElectrodeRow> read_electrode_patches(const std::filesystem::path& path);
+
 } // namespace tissuemesh::io

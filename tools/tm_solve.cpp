@@ -1,4 +1,5 @@
 // tm-solve: stationary current / electrostatics on a labelled tet mesh (P1 FEM, CG with BoomerAMG).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "io/read_sensors.h"
 #include "io/tet_mesh_io.h"
 #include "io/write_vtu.h"
+#include "tools/lead_field_files.h"
 #include "tools/run_tool.h"
 #include "volume/check_mesh.h"
 
@@ -185,11 +187,38 @@ void record_solver_phases(const fem::PotentialReport& report, PhaseClock& clock)
     clock.set("solver_iterations", report.solver.iterate_seconds);
 }
 
+/// The potential of a montage from a tDCS lead field (tm-leadfield --tdcs-output): each montage electrode is
+/// found in the lead field by name, at the patch it was computed for.
+std::vector<double> potential_from_lead_field(const std::string& path, const TetMesh& mesh, const std::string& montage,
+                                              const std::vector<io::ElectrodeRow>& rows)
+{
+    const tools::TdcsLeadFieldFile file = tools::read_tdcs_lead_field(path, mesh);
+    std::vector<double> currents(file.names.size(), 0.0);
+    for (const io::ElectrodeRow& row : rows) {
+        const std::string where = concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ", row.line, ")");
+        const auto found = std::find(file.names.begin(), file.names.end(), row.name);
+        if (row.name.empty() || found == file.names.end())
+            throw InputError(concat(where, ": not an electrode of the lead field ", path, "; name montage electrodes as ",
+                                    "the lead field's (", file.names.size(), " of them, e.g. ", file.names.front(), ")"));
+        const auto k = static_cast<std::size_t>(found - file.names.begin());
+        // 1 micrometre: the same numbers written and read back, not another patch.
+        if (distance(row.centre_mm, file.centres_mm[k]) > 1e-3 || std::abs(row.radius_mm - file.radii_mm[k]) > 1e-3)
+            throw InputError(concat(where, ": a patch of ", format_mm(row.radius_mm), " mm at (", format_mm(row.centre_mm[0]), ", ",
+                                    format_mm(row.centre_mm[1]), ", ", format_mm(row.centre_mm[2]), ") mm, but the lead field's ",
+                                    row.name, " is ", format_mm(file.radii_mm[k]), " mm at (", format_mm(file.centres_mm[k][0]), ", ",
+                                    format_mm(file.centres_mm[k][1]), ", ", format_mm(file.centres_mm[k][2]),
+                                    ") mm; use its patches or compute the lead field again"));
+        currents[k] = row.current_a;
+    }
+    return fem::montage_potential(file.lead_field, currents);
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
-    std::string input, output, conductivity, sensors_path, sensor_output, montage, solver = "amg", dipole_model = "partial-integration";
+    std::string input, output, conductivity, sensors_path, sensor_output, montage, lead_field, solver = "amg",
+        dipole_model = "venant";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     int processes = 0;
@@ -222,12 +251,16 @@ int main(int argc, char** argv)
             app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
             app.add_option("--electrodes", montage, "Montage CSV: x,y,z,radius_mm,current_a[,name] per electrode (mm, A)")
                 ->type_name("FILE");
+            app.add_option("--leadfield", lead_field,
+                           "tDCS lead field of tm-leadfield (--tdcs-output): the --electrodes montage's field is summed from "
+                           "it without a solve (electrodes by name)")
+                ->type_name("FILE")->check(CLI::ExistingFile);
             app.add_option("--sensors", sensors_path, "CSV with header x,y,z[,name] (mm)")->type_name("FILE");
             app.add_option("--sensor-potentials", sensor_output,
                            "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
             app.add_option("--dipole-model", dipole_model,
-                           "Dipole singularity: venant (monopoles on the nearest node and its neighbours with the dipole's "
-                           "moments; any tissue, accurate up to the interfaces: the EEG choice), subtraction (exact "
+                           "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
+                           "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
                            "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
                            "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
                            "load of the one tet that holds the dipole: several times less accurate, its error depends on "
@@ -257,17 +290,26 @@ int main(int argc, char** argv)
             clock.lap("read");
             check_memory(context, input, mesh);
             const fem::Conductivities sigma = resolve_from_file(mesh, table, conductivity);
-            fem::PotentialProblem problem = parse_problem(dipoles, electrodes, montage, montage_rows);
-            problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
-                                   : dipole_model == "venant"    ? fem::DipoleModel::venant
-                                                                 : fem::DipoleModel::partial_integration;
             fem::PotentialReport report;
-            const std::vector<double> phi = fem::solve_potential(
-                mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
-                                       .relative_tolerance = tolerance, .processes = processes},
-                context.progress, &report);
-            clock.lap("solve");
-            record_solver_phases(report, clock);
+            std::vector<double> phi;
+            if (!lead_field.empty()) {
+                if (montage.empty() || !dipoles.empty() || !electrodes.empty())
+                    throw InputError("--leadfield takes the montage from --electrodes FILE alone (no --dipole or --electrode)");
+                phi = potential_from_lead_field(lead_field, mesh, montage, montage_rows);
+                clock.lap("solve");
+                context.summary["lead_field"] = lead_field;
+            } else {
+                fem::PotentialProblem problem = parse_problem(dipoles, electrodes, montage, montage_rows);
+                problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
+                                       : dipole_model == "venant"    ? fem::DipoleModel::venant
+                                                                     : fem::DipoleModel::partial_integration;
+                phi = fem::solve_potential(
+                    mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
+                                           .relative_tolerance = tolerance, .processes = processes},
+                    context.progress, &report);
+                clock.lap("solve");
+                record_solver_phases(report, clock);
+            }
             const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
             clock.lap("fields");
             std::vector<io::VtuArray> cell_arrays{io::make_vtu_vectors("E_V_per_m", fields.electric_v_per_m),

@@ -3,7 +3,7 @@
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,7 +12,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
+#include <functional>
 #include <string_view>
 #include <thread>
 #include <vector>
@@ -118,20 +120,34 @@ std::string last_line(const fs::path& log)
     return last.empty() ? "no output" : last;
 }
 
-// Starts mpiexec with its output in `log`; returns its process id.
+// Starts mpiexec with its output in `log`; returns its process id. mpiexec gets SIGTERM (on which it takes its
+// ranks down) when this process ends, however it ends (PR_SET_PDEATHSIG): a lead field's solves run for minutes,
+// and a killed tm-leadfield must not leave them running (they did, with posix_spawn).
 pid_t start_mpiexec(std::vector<std::string> arguments, const fs::path& log)
 {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     std::vector<std::string> environment = worker_environment();
     std::vector<char*> argv = pointers_to(arguments), envp = pointers_to(environment);
-    pid_t pid = 0;
-    const int failed = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
-    if (failed) throw IoError(concat(arguments[0], ": cannot start (", std::strerror(failed), ")"));
+    const int input = open("/dev/null", O_RDONLY | O_CLOEXEC);
+    const int output = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (input < 0 || output < 0) {
+        const int error = errno;
+        if (input >= 0) close(input);
+        if (output >= 0) close(output);
+        throw IoError(concat(log.string(), ": cannot open (", std::strerror(error), ")"));
+    }
+    const pid_t parent = getpid();
+    const pid_t pid = fork();
+    if (pid == 0) {  // only async-signal-safe calls until exec: other threads may hold locks
+        prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (getppid() != parent) _exit(127);  // the parent ended before the line above took effect
+        if (dup2(input, STDIN_FILENO) < 0 || dup2(output, STDOUT_FILENO) < 0 || dup2(output, STDERR_FILENO) < 0) _exit(127);
+        execve(argv[0], argv.data(), envp.data());
+        _exit(127);
+    }
+    const int error = errno;
+    close(input);
+    close(output);
+    if (pid < 0) throw IoError(concat(arguments[0], ": cannot start (", std::strerror(error), ")"));
     return pid;
 }
 
@@ -163,14 +179,21 @@ std::string how_it_ended(const Ending& ending)
     return WIFEXITED(*ending.status) ? concat("exited with status ", WEXITSTATUS(*ending.status)) : "was killed";
 }
 
-// Waits for mpiexec; stops it when the ranks have not started in time.
-Ending wait_for(pid_t pid, const fs::path& started)
+// Waits for mpiexec, calling `tick` every 10 ms; stops it when the ranks have not started in time, or when
+// `tick` throws (then rethrows).
+Ending wait_for(pid_t pid, const fs::path& started, const std::function<void()>& tick)
 {
     const auto begin = std::chrono::steady_clock::now();
     for (;;) {
         int status = 0;
         const pid_t done = waitpid(pid, &status, WNOHANG);
         if (done == pid) return {true, status};
+        try {
+            tick();
+        } catch (...) {
+            stop(pid);
+            throw;
+        }
         if (done < 0 && errno != EINTR) return {true, std::nullopt};  // ECHILD: reaped by an ignored SIGCHLD
         std::error_code ignored;
         if (!fs::exists(started, ignored) && std::chrono::steady_clock::now() - begin > start_timeout) {
@@ -195,6 +218,21 @@ std::optional<int> cgroup_cores()
     }
 }
 
+// An exception from the caller's filler or sink, carried past the handlers of the exchange's own failures.
+struct CallerFailure {
+    std::exception_ptr error;
+};
+
+template <typename Call>
+void as_caller(Call&& call)
+{
+    try {
+        call();
+    } catch (...) {
+        throw CallerFailure{std::current_exception()};
+    }
+}
+
 } // namespace
 
 int available_cores()
@@ -205,43 +243,67 @@ int available_cores()
     return std::max(1, std::min(mask, cgroup_cores().value_or(mask)));
 }
 
-std::optional<HyprePcgResult> solve_on_processes(const SparseMatrix& matrix, const Eigen::VectorXd& rhs,
-                                                 const SolveRequest& request, const ProcessLaunch& launch,
-                                                 std::string& why_not)
+std::optional<ColumnsResult> solve_columns_on_processes(const SparseMatrix& matrix, std::size_t columns,
+                                                       const ColumnFiller& rhs, const std::vector<std::uint32_t>& kept_rows,
+                                                       const ColumnSink& sink, const SolveRequest& request,
+                                                       const ProcessLaunch& launch, std::string& why_not)
 {
     const std::optional<fs::path> mpiexec = find_program(launch.mpiexec);
     if (!mpiexec) {
         why_not = concat(launch.mpiexec, " is not found or not executable (Debian package openmpi-bin)");
         return std::nullopt;
     }
-    const int processes = launch.processes;
     std::error_code error;
     const fs::path worker = fs::read_symlink("/proc/self/exe", error).parent_path() / "tm-amg-worker";
     if (error || access(worker.c_str(), X_OK) != 0) {
         why_not = concat(worker.string(), " is missing: it is built and installed next to tm-solve");
         return std::nullopt;
     }
+    const auto kept = static_cast<std::int64_t>(kept_rows.empty() ? static_cast<std::size_t>(matrix.rows()) : kept_rows.size());
     try {
         const TemporaryFolder folder;
         const fs::path system = folder.path() / "system.bin", result = folder.path() / "result.bin",
                        started = folder.path() / "started", log = folder.path() / "mpiexec.log";
-        write_system_file(system, matrix, rhs, request);
-        const pid_t pid = start_mpiexec({mpiexec->string(), "-n", std::to_string(processes), worker.string(),
+        SystemFileWriter writer(system, matrix, request, static_cast<std::int64_t>(columns), kept_rows);
+        Eigen::VectorXd b(matrix.rows());
+        for (std::size_t k = 0; k < columns; ++k) {
+            b.setZero();
+            as_caller([&] { rhs(k, b); });
+            writer.add_column(b);
+        }
+        writer.finish();
+        const pid_t pid = start_mpiexec({mpiexec->string(), "-n", std::to_string(launch.processes), worker.string(),
                                          system.string(), result.string(), started.string()},
                                         log);
-        const Ending ending = wait_for(pid, started);
+        ColumnsResult solved;
+        ResultFileReader reader;
+        std::vector<double> values;
+        // Hands every whole record in the result file to the sink, in column order.
+        const auto collect = [&] {
+            if (!reader.is_open() && !reader.open(result, static_cast<std::int64_t>(columns), kept)) return;
+            PcgSolve solve;
+            while (solved.solves.size() < columns && reader.next(solve, values)) {
+                as_caller([&] { sink(solved.solves.size(), solve, values.data()); });
+                solved.solves.push_back(solve);
+            }
+        };
+        const Ending ending = wait_for(pid, started, collect);
         if (!ending.started) {
-            why_not = concat("MPI did not start ", processes, " processes within ", start_timeout.count(), " s");
+            why_not = concat("MPI did not start ", launch.processes, " processes within ", start_timeout.count(), " s");
             return std::nullopt;
         }
-        std::error_code ignored;
         const bool exited_cleanly = !ending.status || (WIFEXITED(*ending.status) && WEXITSTATUS(*ending.status) == 0);
-        if (!exited_cleanly || !fs::exists(result, ignored)) {
+        if (exited_cleanly) collect();
+        if (!exited_cleanly || solved.solves.size() != columns) {
             why_not = concat(launch.mpiexec, " ", how_it_ended(ending), ": ", last_line(log));
             return std::nullopt;
         }
-        return read_result_file(result, matrix.rows());
-    } catch (const std::exception& failure) {  // IoError, or a filesystem error (no temporary directory)
+        solved.copy_seconds = reader.copy_seconds();
+        solved.setup_seconds = reader.setup_seconds();
+        return solved;
+    } catch (const CallerFailure& failure) {  // not a reason to try again in one process
+        std::rethrow_exception(failure.error);
+    } catch (const std::exception& failure) {  // IoError of the exchange files, a filesystem error (no temporary directory)
         why_not = failure.what();
         return std::nullopt;
     }

@@ -1,6 +1,7 @@
 #include "fem/detail/hypre_pcg.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -45,31 +46,12 @@ void ensure_initialised()
     (void)initialised;
 }
 
-// Owns the hypre objects of one solve; destroys them whatever happens.
-struct HypreObjects {
-    HYPRE_ParCSRMatrix matrix = nullptr;
-    HYPRE_ParVector rhs = nullptr;
-    HYPRE_ParVector solution = nullptr;
-    HYPRE_Solver pcg = nullptr;
-    HYPRE_Solver amg = nullptr;
-    bool borrowed = false;  ///< matrix and vectors belong to IJ objects
-    ~HypreObjects()
-    {
-        if (amg) HYPRE_BoomerAMGDestroy(amg);
-        if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
-        if (borrowed) return;
-        if (solution) HYPRE_ParVectorDestroy(solution);
-        if (rhs) HYPRE_ParVectorDestroy(rhs);
-        if (matrix) HYPRE_ParCSRMatrixDestroy(matrix);
-    }
-};
-
-// A vector of n zeros; one process owns every row: rows [0, n) on rank 0.
-HYPRE_ParVector make_vector(HYPRE_BigInt n)
+// A vector of this process's rows [first, first + count) of `global` rows, zeros.
+HYPRE_ParVector make_vector(HYPRE_BigInt first, HYPRE_BigInt count, HYPRE_BigInt global)
 {
-    HYPRE_BigInt partitioning[2] = {0, n};
+    HYPRE_BigInt partitioning[2] = {first, first + count};
     HYPRE_ParVector vector = nullptr;
-    HYPRE_ParVectorCreate(MPI_COMM_WORLD, n, partitioning, &vector);
+    HYPRE_ParVectorCreate(MPI_COMM_WORLD, global, partitioning, &vector);
     HYPRE_ParVectorInitialize(vector);
     HYPRE_ParVectorSetConstantValues(vector, 0.0);
     return vector;
@@ -169,112 +151,143 @@ double seconds_since(std::chrono::steady_clock::time_point since)
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-// Runs the PCG on objects whose matrix and vectors are built; fills the counts and times of `result`.
-void run_pcg(HypreObjects& objects, double tolerance, int max_iterations, HyprePcgResult& result)
-{
-    HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &objects.pcg);
-    HYPRE_PCGSetMaxIter(objects.pcg, max_iterations);
-    HYPRE_PCGSetTol(objects.pcg, tolerance);
-    HYPRE_PCGSetTwoNorm(objects.pcg, 1);  // stop on ||r||_2 / ||b||_2, the measure we report
-    HYPRE_PCGSetPrintLevel(objects.pcg, 0);
-    HYPRE_PCGSetLogging(objects.pcg, 1);
-    objects.amg = make_boomeramg();
-    HYPRE_PCGSetPrecond(objects.pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
-                        reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), objects.amg);
-    auto start = std::chrono::steady_clock::now();
-    HYPRE_ParCSRPCGSetup(objects.pcg, objects.matrix, objects.rhs, objects.solution);
-    result.setup_seconds = seconds_since(start);
-    start = std::chrono::steady_clock::now();
-    HYPRE_ParCSRPCGSolve(objects.pcg, objects.matrix, objects.rhs, objects.solution);
-    result.iterate_seconds = seconds_since(start);
-    HYPRE_ClearAllErrors();  // non-convergence is reported through the result, not hypre's error flag
-
-    HYPRE_Int iterations = 0;
-    HYPRE_Int converged = 0;
-    HYPRE_PCGGetNumIterations(objects.pcg, &iterations);
-    HYPRE_PCGGetConverged(objects.pcg, &converged);
-    result.iterations = iterations;
-    result.converged = converged != 0;
-}
 
 } // namespace
 
-HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, double tolerance,
-                                    int max_iterations)
+// The hypre objects of one system: the matrix (owned directly on one process, through its IJ object across
+// processes), the right-hand side, solution and residual vectors of this process's rows, and the solvers.
+struct AmgPcg::Objects {
+    HYPRE_IJMatrix ij_matrix = nullptr;
+    HYPRE_ParCSRMatrix matrix = nullptr;
+    HYPRE_ParVector rhs = nullptr, solution = nullptr, residual = nullptr;
+    HYPRE_Solver pcg = nullptr, amg = nullptr;
+    HYPRE_BigInt first = 0, rows = 0, global = 0;
+    double copy_seconds = 0, setup_seconds = 0;
+
+    ~Objects()
+    {
+        if (amg) HYPRE_BoomerAMGDestroy(amg);
+        if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
+        for (HYPRE_ParVector vector : {residual, solution, rhs})
+            if (vector) HYPRE_ParVectorDestroy(vector);
+        if (ij_matrix)
+            HYPRE_IJMatrixDestroy(ij_matrix);
+        else if (matrix)
+            HYPRE_ParCSRMatrixDestroy(matrix);
+    }
+
+    // The vectors and the PCG with its BoomerAMG hierarchy (the expensive part, done once).
+    void set_up(double tolerance, int max_iterations)
+    {
+        rhs = make_vector(first, rows, global);
+        solution = make_vector(first, rows, global);
+        residual = make_vector(first, rows, global);
+        HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &pcg);
+        HYPRE_PCGSetMaxIter(pcg, max_iterations);
+        HYPRE_PCGSetTol(pcg, tolerance);
+        HYPRE_PCGSetTwoNorm(pcg, 1);  // stop on ||r||_2 / ||b||_2, the measure we report
+        HYPRE_PCGSetPrintLevel(pcg, 0);
+        HYPRE_PCGSetLogging(pcg, 1);
+        amg = make_boomeramg();
+        HYPRE_PCGSetPrecond(pcg, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+                            reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
+        const auto start = std::chrono::steady_clock::now();
+        HYPRE_ParCSRPCGSetup(pcg, matrix, rhs, solution);
+        setup_seconds = seconds_since(start);
+    }
+};
+
+AmgPcg::AmgPcg(const SparseMatrix& matrix, double tolerance, int max_iterations) : objects_(std::make_unique<Objects>())
 {
     ensure_initialised();
     const auto start = std::chrono::steady_clock::now();
-    HyprePcgResult result;
-    const auto n = static_cast<HYPRE_BigInt>(matrix.rows());
-    HypreObjects objects;
-    objects.matrix = make_matrix(matrix);
-    objects.rhs = make_vector(n);
-    std::copy(rhs.data(), rhs.data() + n, values_of(objects.rhs));
-    objects.solution = make_vector(n);
-    result.copy_seconds = seconds_since(start);
-    run_pcg(objects, tolerance, max_iterations, result);
-    result.solution.resize(matrix.rows());
-    const double* solution = values_of(objects.solution);
-    std::copy(solution, solution + n, result.solution.data());
-    return result;
+    objects_->rows = objects_->global = static_cast<HYPRE_BigInt>(matrix.rows());
+    objects_->matrix = make_matrix(matrix);
+    objects_->copy_seconds = seconds_since(start);
+    objects_->set_up(tolerance, max_iterations);
 }
 
 // Across processes the matrix goes through hypre's IJ interface, which works out the columns each process
 // needs from the others (the off-diagonal blocks) and puts each row's diagonal entry first.
-HyprePcgResult solve_block_with_boomeramg(const RowBlock& block, double tolerance, int max_iterations)
+AmgPcg::AmgPcg(const RowBlock& block, double tolerance, int max_iterations) : objects_(std::make_unique<Objects>())
 {
     const auto start = std::chrono::steady_clock::now();
-    HyprePcgResult result;
     const auto rows = static_cast<HYPRE_Int>(block.row_count());
     const auto first = static_cast<HYPRE_BigInt>(block.first_row);
-    const HYPRE_BigInt last = first + rows - 1;
+    objects_->first = first;
+    objects_->rows = rows;
+    objects_->global = static_cast<HYPRE_BigInt>(block.global_rows);
     std::vector<HYPRE_Int> sizes(static_cast<std::size_t>(rows));
     std::vector<HYPRE_BigInt> row_numbers(static_cast<std::size_t>(rows));
     for (HYPRE_Int r = 0; r < rows; ++r) {
         sizes[static_cast<std::size_t>(r)] = block.starts[static_cast<std::size_t>(r) + 1] - block.starts[static_cast<std::size_t>(r)];
         row_numbers[static_cast<std::size_t>(r)] = first + r;
     }
-    HYPRE_IJMatrix ij_matrix = nullptr;
-    HYPRE_IJVector ij_rhs = nullptr, ij_solution = nullptr;
-    HYPRE_IJMatrixCreate(MPI_COMM_WORLD, first, last, first, last, &ij_matrix);
-    HYPRE_IJMatrixSetObjectType(ij_matrix, HYPRE_PARCSR);
-    HYPRE_IJMatrixSetRowSizes(ij_matrix, sizes.data());
-    HYPRE_IJMatrixInitialize(ij_matrix);
-    HYPRE_IJMatrixSetValues(ij_matrix, rows, sizes.data(), row_numbers.data(), block.columns.data(), block.values.data());
-    HYPRE_IJMatrixAssemble(ij_matrix);
-    const std::vector<double> zeros(static_cast<std::size_t>(rows), 0.0);
-    for (auto [vector, values] : {std::pair{&ij_rhs, block.rhs.data()}, std::pair{&ij_solution, zeros.data()}}) {
-        HYPRE_IJVectorCreate(MPI_COMM_WORLD, first, last, vector);
-        HYPRE_IJVectorSetObjectType(*vector, HYPRE_PARCSR);
-        HYPRE_IJVectorInitialize(*vector);
-        HYPRE_IJVectorSetValues(*vector, rows, row_numbers.data(), values);
-        HYPRE_IJVectorAssemble(*vector);
-    }
-    // The IJ objects own the ParCSR ones: HypreObjects only borrows them, the IJ ones are destroyed last.
-    struct IjOwner {
-        HYPRE_IJMatrix& matrix;
-        HYPRE_IJVector &rhs, &solution;
-        ~IjOwner()
-        {
-            HYPRE_IJVectorDestroy(solution);
-            HYPRE_IJVectorDestroy(rhs);
-            HYPRE_IJMatrixDestroy(matrix);
-        }
-    } ij_owner{ij_matrix, ij_rhs, ij_solution};
-    HypreObjects objects;
+    HYPRE_IJMatrixCreate(MPI_COMM_WORLD, first, first + rows - 1, first, first + rows - 1, &objects_->ij_matrix);
+    HYPRE_IJMatrixSetObjectType(objects_->ij_matrix, HYPRE_PARCSR);
+    HYPRE_IJMatrixSetRowSizes(objects_->ij_matrix, sizes.data());
+    HYPRE_IJMatrixInitialize(objects_->ij_matrix);
+    HYPRE_IJMatrixSetValues(objects_->ij_matrix, rows, sizes.data(), row_numbers.data(), block.columns.data(),
+                            block.values.data());
+    HYPRE_IJMatrixAssemble(objects_->ij_matrix);
     void* object = nullptr;
-    HYPRE_IJMatrixGetObject(ij_matrix, &object);
-    objects.matrix = static_cast<HYPRE_ParCSRMatrix>(object);
-    HYPRE_IJVectorGetObject(ij_rhs, &object);
-    objects.rhs = static_cast<HYPRE_ParVector>(object);
-    HYPRE_IJVectorGetObject(ij_solution, &object);
-    objects.solution = static_cast<HYPRE_ParVector>(object);
-    objects.borrowed = true;
-    result.copy_seconds = seconds_since(start);
-    run_pcg(objects, tolerance, max_iterations, result);
-    result.solution.resize(rows);
-    const double* solution = values_of(objects.solution);
-    std::copy(solution, solution + rows, result.solution.data());
+    HYPRE_IJMatrixGetObject(objects_->ij_matrix, &object);
+    objects_->matrix = static_cast<HYPRE_ParCSRMatrix>(object);
+    objects_->copy_seconds = seconds_since(start);
+    objects_->set_up(tolerance, max_iterations);
+}
+
+AmgPcg::~AmgPcg() = default;
+
+PcgSolve AmgPcg::solve(const double* rhs, double* solution)
+{
+    const auto start = std::chrono::steady_clock::now();
+    Objects& o = *objects_;
+    const auto rows = static_cast<std::size_t>(o.rows);
+    std::copy(rhs, rhs + rows, values_of(o.rhs));
+    HYPRE_ParVectorSetConstantValues(o.solution, 0.0);
+    PcgSolve result;
+    double rhs_norm2 = 0;
+    HYPRE_ParVectorInnerProd(o.rhs, o.rhs, &rhs_norm2);
+    if (rhs_norm2 > 0) {
+        HYPRE_ParCSRPCGSolve(o.pcg, o.matrix, o.rhs, o.solution);
+        HYPRE_ClearAllErrors();  // non-convergence is reported through the result, not hypre's error flag
+        HYPRE_Int iterations = 0, converged = 0;
+        HYPRE_PCGGetNumIterations(o.pcg, &iterations);
+        HYPRE_PCGGetConverged(o.pcg, &converged);
+        result.iterations = iterations;
+        result.converged = converged != 0;
+        // The true residual b - A x, not the recurrence's estimate.
+        HYPRE_ParVectorCopy(o.rhs, o.residual);
+        HYPRE_ParCSRMatrixMatvec(-1.0, o.matrix, o.solution, 1.0, o.residual);
+        double residual_norm2 = 0;
+        HYPRE_ParVectorInnerProd(o.residual, o.residual, &residual_norm2);
+        result.relative_residual = std::sqrt(residual_norm2 / rhs_norm2);
+    } else {
+        result.converged = true;
+    }
+    const double* values = values_of(o.solution);
+    std::copy(values, values + rows, solution);
+    result.seconds = seconds_since(start);
+    return result;
+}
+
+std::int64_t AmgPcg::local_rows() const { return static_cast<std::int64_t>(objects_->rows); }
+double AmgPcg::copy_seconds() const { return objects_->copy_seconds; }
+double AmgPcg::setup_seconds() const { return objects_->setup_seconds; }
+
+HyprePcgResult solve_with_boomeramg(const SparseMatrix& matrix, const Eigen::VectorXd& rhs, double tolerance,
+                                    int max_iterations)
+{
+    AmgPcg pcg(matrix, tolerance, max_iterations);
+    HyprePcgResult result;
+    result.solution.resize(matrix.rows());
+    const PcgSolve solve = pcg.solve(rhs.data(), result.solution.data());
+    result.iterations = solve.iterations;
+    result.converged = solve.converged;
+    result.copy_seconds = pcg.copy_seconds();
+    result.setup_seconds = pcg.setup_seconds();
+    result.iterate_seconds = solve.seconds;
     return result;
 }
 

@@ -107,7 +107,13 @@ std::array<Vec3, 4> corners_m(const TetMesh& mesh, const Tet& tet)
 SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
                                      std::size_t index)
 {
-    const std::size_t t = locate_tet(mesh, dipole.position_mm, concat("dipole ", index + 1));
+    return subtraction_source_in(mesh, conductivities, dipole, index,
+                                 locate_tet(mesh, dipole.position_mm, concat("dipole ", index + 1)));
+}
+
+SubtractionSource subtraction_source_in(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
+                                        std::size_t index, std::size_t t)
+{
     const Mat3& sigma = conductivities.of(mesh.tet_labels[t], t);
     const auto where = [&] {
         return concat("dipole ", index + 1, " at (", format_mm(dipole.position_mm[0]), ", ",

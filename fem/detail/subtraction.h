@@ -29,6 +29,10 @@ struct SubtractionSource {
 SubtractionSource subtraction_source(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
                                      std::size_t index);
 
+/// The same for a dipole already located in tet `t`.
+SubtractionSource subtraction_source_in(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
+                                        std::size_t index, std::size_t t);
+
 /// phi_inf (V) at `point_mm`: p . r / (4 pi sigma_inf |r|^3).
 double unbounded_potential(const SubtractionSource& source, const Vec3& point_mm);
 

@@ -19,22 +19,16 @@ bool same_conductivity(const Mat3& a, const Mat3& b)
     return true;
 }
 
-// The nodes of the monopoles (see venant.h), increasing: those of the tets around the corner of tet
-// `source` nearest `position_mm` that conduct like `source`.
+// The nodes of the monopoles (see venant.h), increasing: those of the tets `around` the corner of tet `source`
+// nearest the dipole that conduct like `source`.
 std::vector<std::uint32_t> patch_nodes(const TetMesh& mesh, const Conductivities& conductivities, std::size_t source,
-                                       const Vec3& position_mm)
+                                       const std::vector<std::uint32_t>& around)
 {
-    const Tet& tet = mesh.tets[source];
-    std::uint32_t nearest = tet[0];
-    for (const std::uint32_t node : tet)
-        if (distance(mesh.vertices[node], position_mm) < distance(mesh.vertices[nearest], position_mm)) nearest = node;
     const Mat3& sigma = conductivities.of(mesh.tet_labels[source], source);
     std::vector<std::uint32_t> nodes;
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        const Tet& other = mesh.tets[t];
-        if (std::find(other.begin(), other.end(), nearest) == other.end()) continue;
+    for (const std::uint32_t t : around) {
         if (!same_conductivity(conductivities.of(mesh.tet_labels[t], t), sigma)) continue;
-        nodes.insert(nodes.end(), other.begin(), other.end());
+        nodes.insert(nodes.end(), mesh.tets[t].begin(), mesh.tets[t].end());
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -57,23 +51,32 @@ Eigen::MatrixXd traceless_second_moments(const Eigen::MatrixXd& d)
 
 } // namespace
 
-Monopoles venant_monopoles(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
-                           std::size_t index, const VenantOptions& options)
+std::uint32_t nearest_corner(const TetMesh& mesh, std::size_t source, const Vec3& position_mm)
+{
+    const Tet& tet = mesh.tets[source];
+    std::uint32_t nearest = tet[0];
+    for (const std::uint32_t node : tet)
+        if (distance(mesh.vertices[node], position_mm) < distance(mesh.vertices[nearest], position_mm)) nearest = node;
+    return nearest;
+}
+
+VenantBasis venant_basis(const TetMesh& mesh, const Conductivities& conductivities, const Vec3& position_mm,
+                         std::size_t index, std::size_t source, const std::vector<std::uint32_t>& around,
+                         const VenantOptions& options)
 {
     if (!(options.reference_length_mm > 0) || !(options.regularisation > 0) || options.weighting_exponent < 0)
         throw InputError(concat("Venant options: reference length ", options.reference_length_mm,
                                 " mm, regularisation ", options.regularisation, ", weighting exponent ", options.weighting_exponent,
                                 "; the first two must be positive and the exponent at least 0"));
-    const std::size_t source = locate_tet(mesh, dipole.position_mm, concat("dipole ", index + 1));
-    Monopoles monopoles;
-    monopoles.nodes = patch_nodes(mesh, conductivities, source, dipole.position_mm);
-    const auto count = static_cast<Eigen::Index>(monopoles.nodes.size());
+    VenantBasis basis;
+    basis.nodes = patch_nodes(mesh, conductivities, source, around);
+    const auto count = static_cast<Eigen::Index>(basis.nodes.size());
     const double a_mm = options.reference_length_mm;
     Eigen::MatrixXd d(3, count);  // scaled offsets (x_k - x0) / a
     Eigen::VectorXd weight(count);
     for (Eigen::Index k = 0; k < count; ++k) {
-        const Vec3& node = mesh.vertices[monopoles.nodes[static_cast<std::size_t>(k)]];
-        const Vec3 offset = (1 / a_mm) * (node - dipole.position_mm);
+        const Vec3& node = mesh.vertices[basis.nodes[static_cast<std::size_t>(k)]];
+        const Vec3 offset = (1 / a_mm) * (node - position_mm);
         d.col(k) << offset[0], offset[1], offset[2];
         weight[k] = std::pow(norm(offset), options.weighting_exponent);
     }
@@ -88,16 +91,37 @@ Monopoles venant_monopoles(const TetMesh& mesh, const Conductivities& conductivi
     system.topLeftCorner(count, count).diagonal() += options.regularisation * weight.cwiseAbs2();
     system.topRightCorner(count, 4) = constraints.transpose();
     system.bottomLeftCorner(4, count) = constraints;
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(count + 4);
+    // One right-hand side per unit moment along x, y, z (1 A*m): the currents are linear in p.
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(count + 4, 3);
     const double a_m = a_mm * metres_per_mm;
-    for (Eigen::Index i = 0; i < 3; ++i) rhs[count + 1 + i] = dipole.moment_am[static_cast<std::size_t>(i)] / a_m;
+    for (Eigen::Index i = 0; i < 3; ++i) rhs(count + 1 + i, i) = 1 / a_m;
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(system);
     if (!lu.isInvertible())
         throw AlgorithmError(concat("dipole ", index + 1, ": the Venant moment conditions on its ", count,
                                     " nodes have no unique solution (a flat tet next to the dipole?); use partial ",
                                     "integration or subtraction"));
-    const Eigen::VectorXd solution = lu.solve(rhs);
-    monopoles.currents_a.assign(solution.data(), solution.data() + count);
+    const Eigen::MatrixXd solution = lu.solve(rhs);
+    for (int axis = 0; axis < 3; ++axis)
+        basis.unit_currents_a[static_cast<std::size_t>(axis)].assign(solution.col(axis).data(), solution.col(axis).data() + count);
+    return basis;
+}
+
+Monopoles venant_monopoles(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
+                           std::size_t index, const VenantOptions& options)
+{
+    const std::size_t source = locate_tet(mesh, dipole.position_mm, concat("dipole ", index + 1));
+    const std::uint32_t nearest = nearest_corner(mesh, source, dipole.position_mm);
+    std::vector<std::uint32_t> around;
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
+        if (std::find(mesh.tets[t].begin(), mesh.tets[t].end(), nearest) != mesh.tets[t].end())
+            around.push_back(static_cast<std::uint32_t>(t));
+    const VenantBasis basis = venant_basis(mesh, conductivities, dipole.position_mm, index, source, around, options);
+    Monopoles monopoles;
+    monopoles.nodes = basis.nodes;
+    monopoles.currents_a.assign(basis.nodes.size(), 0.0);
+    for (std::size_t k = 0; k < basis.nodes.size(); ++k)
+        for (std::size_t axis = 0; axis < 3; ++axis)
+            monopoles.currents_a[k] += dipole.moment_am[axis] * basis.unit_currents_a[axis][k];
     return monopoles;
 }
 

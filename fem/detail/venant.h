@@ -24,6 +24,7 @@
 // distance, among those that do.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -40,6 +41,25 @@ struct Monopoles {
     std::vector<std::uint32_t> nodes;  ///< mesh nodes, increasing
     std::vector<double> currents_a;    ///< parallel to nodes, A; they sum to zero
 };
+
+/// The monopoles of unit moments (1 A*m) along x, y and z at one position: any moment's currents are their
+/// combination with the moment's components.
+struct VenantBasis {
+    std::vector<std::uint32_t> nodes;                      ///< mesh nodes, increasing
+    std::array<std::vector<double>, 3> unit_currents_a;    ///< per axis, parallel to nodes, A per A*m
+};
+
+/// The corner of tet `source` nearest `position_mm` (the first of equally near ones).
+std::uint32_t nearest_corner(const TetMesh& mesh, std::size_t source, const Vec3& position_mm);
+
+/// The Venant basis at `position_mm` in tet `source`, with `around` the tets around
+/// nearest_corner(source): the monopoles sit on their nodes in the source's conductivity. `index` names the
+/// dipole in messages (0-based).
+/// @throws InputError when the options are out of range
+/// @throws AlgorithmError when the moment equations have no solution on those nodes (a flat tet)
+VenantBasis venant_basis(const TetMesh& mesh, const Conductivities& conductivities, const Vec3& position_mm,
+                         std::size_t index, std::size_t source, const std::vector<std::uint32_t>& around,
+                         const VenantOptions& options);
 
 /// The monopoles of `dipole` (the `index`-th, for messages).
 /// @throws InputError when the dipole lies outside the mesh

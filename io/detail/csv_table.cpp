@@ -53,7 +53,8 @@ bool parse_finite(std::string_view field, double& value)
     return error == std::errc{} && end == field.data() + field.size() && std::isfinite(value);
 }
 
-/// Where each column of the header goes: the index into CsvSpec::numbers, or -1 for the text column.
+/// Where each column of the header goes: the index into CsvSpec::numbers followed by optional_numbers, or -1
+/// for the text column.
 class Header {
 public:
     Header(const std::string& file, std::size_t line, std::string_view text, const CsvSpec& spec)
@@ -67,13 +68,20 @@ public:
                 throw IoError(concat(file, " line ", line, ": the first line is data, not a header; put the header ",
                                      expected, " first"));
             const auto known = std::find(spec.numbers.begin(), spec.numbers.end(), name);
-            if (known == spec.numbers.end() && (spec.text_column.empty() || name != spec.text_column))
+            int index = static_cast<int>(known - spec.numbers.begin());
+            if (known == spec.numbers.end()) {
+                const auto optional = std::find(spec.optional_numbers.begin(), spec.optional_numbers.end(), name);
+                index = optional == spec.optional_numbers.end()
+                            ? -1
+                            : static_cast<int>(spec.numbers.size() + static_cast<std::size_t>(optional - spec.optional_numbers.begin()));
+            }
+            if (index < 0 && (spec.text_column.empty() || name != spec.text_column))
                 throw IoError(concat(file, " line ", line, ": unknown column '", printable(std::string(field)),
                                      "'", hint(name), "; the header is ", expected));
             if (const auto [at, inserted] = seen.emplace(name, columns_.size() + 1); !inserted)
                 throw IoError(concat(file, " line ", line, ": column '", name, "' appears twice (columns ", at->second,
                                      " and ", columns_.size() + 1, "); the header is ", expected));
-            columns_.push_back(known == spec.numbers.end() ? -1 : static_cast<int>(known - spec.numbers.begin()));
+            columns_.push_back(index);
         }
         for (const std::string& name : spec.numbers)
             if (!seen.count(name))
@@ -86,7 +94,10 @@ public:
     {
         std::string text;
         for (const std::string& name : spec.numbers) text += (text.empty() ? "" : ",") + name;
-        if (!spec.text_column.empty()) text += " (and optionally " + spec.text_column + ")";
+        std::string optional;
+        for (const std::string& name : spec.optional_numbers) optional += (optional.empty() ? "" : ",") + name;
+        if (!spec.text_column.empty()) optional += (optional.empty() ? "" : ", ") + spec.text_column;
+        if (!optional.empty()) text += " (and optionally " + optional + ")";
         return concat(text, ", units ", spec.units);
     }
 
@@ -161,15 +172,19 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
         if (fields.size() != header.columns().size())
             throw IoError(concat(file, " line ", line, ": ", fields.size(), " fields where the header has ",
                                  header.columns().size(), " columns; give one value per column (no commas in names)"));
-        CsvRow row{line, std::vector<double>(spec.numbers.size()), ""};
+        CsvRow row{line, std::vector<double>(spec.numbers.size() + spec.optional_numbers.size(), std::nan("")), ""};
         for (std::size_t k = 0; k < fields.size(); ++k) {
             const int column = header.columns()[k];
             if (column < 0) {
                 row.text = std::string(fields[k]);
                 continue;
             }
-            if (!parse_finite(fields[k], row.numbers[static_cast<std::size_t>(column)]))
-                throw IoError(concat(file, " line ", line, ", column ", spec.numbers[static_cast<std::size_t>(column)], ": '",
+            const auto index = static_cast<std::size_t>(column);
+            const bool optional = index >= spec.numbers.size();
+            if (optional && fields[k].empty()) continue;
+            if (!parse_finite(fields[k], row.numbers[index]))
+                throw IoError(concat(file, " line ", line, ", column ",
+                                     optional ? spec.optional_numbers[index - spec.numbers.size()] : spec.numbers[index], ": '",
                                      printable(std::string(fields[k])), "' is not a finite number; write plain decimals (",
                                      Header::expected_header(spec), ")"));
         }

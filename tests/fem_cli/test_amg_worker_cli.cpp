@@ -19,7 +19,7 @@ TEST(AmgWorkerCli, WithoutItsArgumentsPointsToTmSolve)
 TEST(AmgWorkerCli, TruncatedSystemFileIsAnErrorWithNoResult)
 {
     const TempDir dir;
-    std::ofstream(dir.path() / "system.bin", std::ios::binary) << "TMAMGSY1" << std::string(12, '\0');
+    std::ofstream(dir.path() / "system.bin", std::ios::binary) << "TMAMGSY2" << std::string(12, '\0');
     const CliResult result = run_cli("tm-amg-worker", {(dir.path() / "system.bin").string(),
                                                        (dir.path() / "result.bin").string(),
                                                        (dir.path() / "started").string()});

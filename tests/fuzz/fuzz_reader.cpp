@@ -13,9 +13,12 @@
 
 #include "core/error.h"
 #include "io/read_conductivity_table.h"
+#include "io/npy.h"
 #include "io/read_electrodes.h"
 #include "io/read_label_image.h"
+#include "io/read_meg_sensors.h"
 #include "io/read_sensors.h"
+#include "io/read_sources.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 
@@ -53,8 +56,14 @@ void read_as_format(const fs::path& file)
     (void)tissuemesh::io::read_electrodes(file);
 #elif defined(TM_FUZZ_SENSORS)
     (void)tissuemesh::io::read_sensors(file);
+#elif defined(TM_FUZZ_SOURCES)
+    (void)tissuemesh::io::read_sources(file);
+#elif defined(TM_FUZZ_MEG_SENSORS)
+    (void)tissuemesh::io::read_meg_sensors(file);
+#elif defined(TM_FUZZ_NPY)
+    (void)tissuemesh::io::read_npy(file);
 #else
-#error "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES, TM_FUZZ_CONDUCTIVITY, TM_FUZZ_ELECTRODES, TM_FUZZ_SENSORS"
+#error "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES, TM_FUZZ_CONDUCTIVITY, TM_FUZZ_ELECTRODES, TM_FUZZ_SENSORS, TM_FUZZ_SOURCES, TM_FUZZ_MEG_SENSORS, TM_FUZZ_NPY"
 #endif
 }
 
