@@ -16,6 +16,7 @@
 #include "surface/extract_interfaces.h"
 #include "surface/extract_surface_nets.h"
 #include "surface/summarize_interfaces.h"
+#include "surface/thin_first_priority.h"
 #include "surface/tissue_surface.h"
 #include "tools/run_tool.h"
 
@@ -161,7 +162,8 @@ int main(int argc, char** argv)
          "Examples:\n  tm-extract -i head.nii.gz -o head.ply\n"
          "  tm-extract -i head.nii.gz -o brain.vtp --tissues 4,5 --labels head.json --json extract.json\n"
          "  tm-extract -i head.nii.gz -o head.ply --per-tissue surfaces --per-tissue-format off\n"
-         "  tm-extract -i head.nii.gz -o head.ply --labels head.json --priority csf=1\n"},
+         "  tm-extract -i head.nii.gz -o head.ply --labels head.json --priority csf=1\n"
+         "  tm-extract -i head.nii.gz -o head.ply --method surface-nets --priority auto\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Label image (.nii, .nii.gz, .nrrd, .mha, ...)")->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
@@ -171,7 +173,8 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--priority", priority,
                            "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
-                           "one-voxel layer in one piece), e.g. csf=2,3=1")
+                           "one-voxel layer in one piece), e.g. csf=2,3=1; or auto: every tissue ranked by its mean "
+                           "thickness in the image, the thinnest first")
                 ->delimiter(',');
             app.add_option("--method", method,
                            "marching-cubes: the dual of Freudenthal's tetrahedra, 6-8 triangles per voxel face, "
@@ -210,7 +213,16 @@ int main(int argc, char** argv)
             const bool nets = method == "surface-nets";
             const bool streamed = !nets && extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
-            options.priority = parse_priority(priority, image);
+            if (priority.size() == 1 && priority.front() == "auto") {
+                // Every tissue ranked by thickness, the thinnest first (surface/thin_first_priority.h).
+                options.priority = surface::thin_first_priority(image, options.background);
+                if (!options.tissues.empty())
+                    std::erase_if(options.priority, [&](const auto& entry) {
+                        return std::find(options.tissues.begin(), options.tissues.end(), entry.first) == options.tissues.end();
+                    });
+            } else {
+                options.priority = parse_priority(priority, image);
+            }
             surface::InterfaceSummarizer counter;
             CollectingSink collector;
             surface::SurfaceNetsReport nets_report;

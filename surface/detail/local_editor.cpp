@@ -76,6 +76,18 @@ VertexKind LocalEditor::classify(std::uint32_t v) const
     return around.size() == star.size() ? VertexKind::patch : VertexKind::corner;
 }
 
+void LocalEditor::reclassify(std::uint32_t v, const std::vector<std::uint32_t>& others)
+{
+    reclassified_.clear();
+    const auto update = [&](std::uint32_t u) {
+        const VertexKind kind = classify(u);
+        if (kind != roles_[u]) reclassified_.push_back(u);
+        roles_[u] = kind;
+    };
+    update(v);
+    for (const std::uint32_t u : others) update(u);
+}
+
 void LocalEditor::reclassify_around(std::uint32_t v)
 {
     reclassified_.clear();
@@ -241,6 +253,21 @@ void LocalEditor::unfile(std::uint32_t t)
             }
 }
 
+void LocalEditor::save_star(std::uint32_t v)
+{
+    saved_stars_.push_back({v, static_cast<std::uint32_t>(saved_star_items_.size()), static_cast<std::uint32_t>(stars_[v].size())});
+    saved_star_items_.insert(saved_star_items_.end(), stars_[v].begin(), stars_[v].end());
+}
+
+void LocalEditor::begin_edit()
+{
+    saved_.clear();
+    saved_stars_.clear();
+    saved_star_items_.clear();
+    triangles_before_edit_ = triangles_.size();
+    vertices_before_edit_ = positions_.size();
+}
+
 void LocalEditor::save(std::uint32_t t) { saved_.push_back({t, triangles_[t], alive_[t]}); }
 
 void LocalEditor::remove_from_star(std::uint32_t v, std::uint32_t t)
@@ -268,7 +295,8 @@ void LocalEditor::undo()
         triangles_[it->triangle] = it->corners;
         alive_[it->triangle] = it->alive;
     }
-    for (auto it = saved_stars_.rbegin(); it != saved_stars_.rend(); ++it) stars_[it->first] = std::move(it->second);
+    for (auto it = saved_stars_.rbegin(); it != saved_stars_.rend(); ++it)
+        stars_[it->vertex].assign(saved_star_items_.begin() + it->start, saved_star_items_.begin() + it->start + it->size);
     triangles_.resize(triangles_before_edit_);
     sides_.resize(triangles_before_edit_);
     alive_.resize(triangles_before_edit_);

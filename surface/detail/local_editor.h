@@ -109,6 +109,8 @@ private:
 
     VertexKind classify(std::uint32_t v) const;
     void reclassify_around(std::uint32_t v);
+    /// Classifies v and `others` again (recording changes in reclassified_).
+    void reclassify(std::uint32_t v, const std::vector<std::uint32_t>& others);
     bool shape_ok(const Triangle& now, const Triangle& before, bool check_tilt);
     bool inside_fence(const std::vector<std::uint32_t>& triangles) const;
     /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
@@ -156,7 +158,16 @@ private:
     std::vector<CellRange> filed_;
     // The edit in progress: what it changed, for undo.
     std::vector<Saved> saved_;
-    std::vector<std::pair<std::uint32_t, std::vector<std::uint32_t>>> saved_stars_;
+    /// Stars as they were before the edit: (vertex, start, size) into saved_star_items_ (flat, so that saving
+    /// a star allocates nothing once the buffers have grown).
+    struct SavedStar {
+        std::uint32_t vertex, start, size;
+    };
+    std::vector<SavedStar> saved_stars_;
+    std::vector<std::uint32_t> saved_star_items_;
+    void save_star(std::uint32_t v);
+    /// Forgets what the last edit saved (before a new edit).
+    void begin_edit();
     std::size_t triangles_before_edit_ = 0, vertices_before_edit_ = 0;
     std::vector<std::uint32_t> stamp_;  ///< per triangle: the query that last met it (candidates once each)
     std::uint32_t query_ = 0;

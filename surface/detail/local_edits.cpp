@@ -91,15 +91,12 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     thread_local std::vector<Prior> prior;
     prior.clear();
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
-    saved_.clear();
-    saved_stars_.clear();
-    triangles_before_edit_ = triangles_.size();
-    vertices_before_edit_ = positions_.size();
-    saved_stars_.emplace_back(v, stars_[v]);
-    saved_stars_.emplace_back(w, stars_[w]);
+    begin_edit();
+    save_star(v);
+    save_star(w);
     for (const std::uint32_t t : dying)
         for (const std::uint32_t x : triangles_[t])
-            if (x != v && x != w) saved_stars_.emplace_back(x, stars_[x]);
+            if (x != v && x != w) save_star(x);
     for (const std::uint32_t t : dying) {
         save(t);
         alive_[t] = 0;
@@ -123,7 +120,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         file(t);
     }
     alive_count_ -= dying.size();
-    reclassify_around(w);
+    reclassify(w, common);
     roles_[v] = VertexKind::corner;
     ++counters_.accepted;
     return true;
@@ -137,10 +134,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
     for (const std::uint32_t t : stars_[v])
         if (has(triangles_[t], w)) parents.push_back(t);
     if (parents.size() < 2) return std::nullopt;
-    saved_.clear();
-    saved_stars_.clear();
-    triangles_before_edit_ = triangles_.size();
-    vertices_before_edit_ = positions_.size();
+    begin_edit();
     if (positions_.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw InputError("LocalEditor: over 2^32 vertices");
     const auto u = static_cast<std::uint32_t>(positions_.size());
@@ -148,10 +142,10 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
     stars_.emplace_back();
     roles_.push_back(parents.size() >= 3 ? VertexKind::curve : VertexKind::patch);
     reclassified_.clear();
-    saved_stars_.emplace_back(w, stars_[w]);
+    save_star(w);
     for (const std::uint32_t t : parents)
         for (const std::uint32_t x : triangles_[t])
-            if (x != v && x != w) saved_stars_.emplace_back(x, stars_[x]);
+            if (x != v && x != w) save_star(x);
     thread_local std::vector<std::uint32_t> changed;
     changed.clear();
     thread_local std::vector<Prior> before;
@@ -260,11 +254,8 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
         ++counters_.fence;
         return false;
     }
-    saved_.clear();
-    saved_stars_.clear();
-    triangles_before_edit_ = triangles_.size();
-    vertices_before_edit_ = positions_.size();
-    for (const std::uint32_t x : {v, w, a, b}) saved_stars_.emplace_back(x, stars_[x]);
+    begin_edit();
+    for (const std::uint32_t x : {v, w, a, b}) save_star(x);
     thread_local std::vector<Prior> prior;
     prior.assign({{first, corners(triangles_[first])}, {second, corners(triangles_[second])}});
     save(first);
@@ -295,10 +286,7 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         ++counters_.fence;
         return false;
     }
-    saved_.clear();
-    saved_stars_.clear();
-    triangles_before_edit_ = triangles_.size();
-    vertices_before_edit_ = positions_.size();
+    begin_edit();
     thread_local std::vector<Prior> before;
     before.clear();
     for (const std::uint32_t t : stars_[v]) before.emplace_back(t, corners(triangles_[t]));

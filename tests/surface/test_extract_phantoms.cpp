@@ -1,5 +1,6 @@
-// Every phantom, and the liver sample: the extracted complex is fit for tetrahedralization, no tissue is
-// lost, and each tissue's surface pieces follow its voxel pieces under the 14-neighbourhood rule.
+// Every phantom, and the liver, torso and head samples: the extracted complex (marching cubes, and surface
+// nets smoothed) is fit for tetrahedralization, no tissue is lost, and each tissue's surface pieces follow its
+// voxel pieces under the 14-neighbourhood rule (or the priority rule).
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -7,16 +8,25 @@
 #include "io/read_label_image.h"
 #include "surface/check_complex.h"
 #include "surface/extract_interfaces.h"
+#include "surface/extract_surface_nets.h"
 #include "tests/support/cli.h"
 #include "tests/surface/complex_checks.h"
 
 namespace tissuemesh {
 namespace {
 
-/// Checks the complex of `image` and returns nothing; failures are reported with `what`.
-void expect_fit_and_complete(const LabelImage& image, const std::string& what)
+enum class Method { marching_cubes, surface_nets };
+
+InterfaceComplex extract(const LabelImage& image, const surface::ExtractOptions& options, Method method)
 {
-    const InterfaceComplex complex = surface::extract_interfaces(image);
+    return method == Method::surface_nets ? surface::extract_surface_nets(image, options)
+                                          : surface::extract_interfaces(image, options);
+}
+
+/// Checks the complex of `image` and returns nothing; failures are reported with `what`.
+void expect_fit_and_complete(const LabelImage& image, const std::string& what, Method method = Method::marching_cubes)
+{
+    const InterfaceComplex complex = extract(image, {}, method);
     const surface::CheckReport report = surface::check_complex(complex);
     EXPECT_TRUE(report.ok()) << what << ": " << (report.first_error() ? report.first_error()->description : "");
     for (const auto& [label, voxels] : count_labels(image)) {
@@ -44,9 +54,9 @@ INSTANTIATE_TEST_SUITE_P(AllPhantoms, ExtractPhantom,
 
 /// The complex of `image` under `priority` is fit, complete, and its pieces follow the priority rule.
 void expect_fit_under_priority(const LabelImage& image, const std::map<Label, int>& priority,
-                               const std::string& what)
+                               const std::string& what, Method method = Method::marching_cubes)
 {
-    const InterfaceComplex complex = surface::extract_interfaces(image, {.priority = priority});
+    const InterfaceComplex complex = extract(image, {.priority = priority}, method);
     const surface::CheckReport report = surface::check_complex(complex);
     EXPECT_TRUE(report.ok()) << what << ": " << (report.first_error() ? report.first_error()->description : "");
     for (const auto& [label, voxels] : count_labels(image)) {
@@ -97,6 +107,50 @@ TEST(ExtractSample, LongLiverIsFitForTetrahedralization)
 {
     const LabelImage image = io::read_label_image(testing::data_path("samples/liver.inr.gz"));
     expect_fit_and_complete(image, "liver.inr.gz");
+}
+
+class NetsPhantom : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(NetsPhantom, FitForTetrahedralizationAt2mm)
+{
+    const image::Phantom phantom = image::make_phantom(GetParam(), {.voxel_mm = 2.0});
+    expect_fit_and_complete(phantom.image, GetParam(), Method::surface_nets);
+}
+
+TEST_P(NetsPhantom, FitUnderRankedPrioritiesAt2mm)
+{
+    const image::Phantom phantom = image::make_phantom(GetParam(), {.voxel_mm = 2.0});
+    std::map<Label, int> priority;
+    for (const auto& [label, voxels] : count_labels(phantom.image)) priority[label] = label;
+    expect_fit_under_priority(phantom.image, priority, concat(GetParam(), " ranked"), Method::surface_nets);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllPhantoms, NetsPhantom, ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
+
+TEST(NetsPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
+{
+    const std::map<Label, int> priority{{1, 1}};
+    for (const double voxel_mm : {1.0, 2.0}) {
+        const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
+        const InterfaceComplex complex = surface::extract_surface_nets(phantom.image, {.priority = priority});
+        const surface::CheckReport report = surface::check_complex(complex);
+        ASSERT_TRUE(report.ok()) << voxel_mm << " mm";
+        EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
+        EXPECT_EQ(report.tissues.at(2).components, 1u) << voxel_mm << " mm";
+        // Positive thickness everywhere: the shell's two surfaces share no vertex (its cubes never merge
+        // the inside and outside sheets) and encloses a positive volume.
+        EXPECT_GT(report.tissues.at(1).volume_mm3, 0) << voxel_mm << " mm";
+    }
+}
+
+TEST(NetsSample, LongLiverTorsoAndHeadAreFitForTetrahedralization)
+{
+    for (const char* sample : {"samples/liver.inr.gz", "samples/totalseg_torso_3mm.nii.gz", "samples/usc19-5_head.nii.gz"}) {
+        const LabelImage image = io::read_label_image(testing::data_path(sample));
+        expect_fit_and_complete(image, sample, Method::surface_nets);
+    }
+    const LabelImage head = io::read_label_image(testing::data_path("samples/usc19-5_head.nii.gz"));
+    expect_fit_under_priority(head, {{3, 1}}, "usc19-5 with the CSF first", Method::surface_nets);
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 #include "surface/check_complex.h"
 #include "surface/extract_interfaces.h"
 #include "surface/extract_surface_nets.h"
+#include "surface/thin_first_priority.h"
 #include "surface/detail/extraction_labels.h"
 #include "surface/detail/net_smoother.h"
 #include "surface/detail/surface_net.h"
@@ -148,6 +149,27 @@ TEST(SurfaceNets, RejectsBadSmoothingOptions)
     EXPECT_THROW(extract_surface_nets(phantom.image, {}, {.max_depth_voxels = 0}), InputError);
     EXPECT_THROW(extract_surface_nets(phantom.image, {}, {.pairs_per_check = 0}), InputError);
     EXPECT_THROW(extract_surface_nets(phantom.image, {.tissues = {9}}), InputError);
+}
+
+/// The automatic priority ranks the thinnest tissue first: the sphere head's CSF (a 6 mm shell at 2 mm:
+/// three voxels), the thin phantom's one-voxel shell; with it the 2 mm sphere head's CSF is one piece.
+TEST(ThinFirstPriority, RanksThinLayersFirstAndKeepsThemWhole)
+{
+    const image::Phantom head = image::make_phantom("spheres4", {.voxel_mm = 2.0});
+    const std::map<Label, int> priority = surface::thin_first_priority(head.image);
+    ASSERT_EQ(priority.size(), 4u);  // scalp, skull, CSF, brain; not the background
+    for (const auto& [label, rank] : priority)
+        if (label != 3) { EXPECT_GT(priority.at(3), rank) << "CSF against " << label; }
+    EXPECT_GT(priority.at(2), priority.at(4));  // the skull shell is thinner than the brain ball
+    const InterfaceComplex complex = extract_surface_nets(head.image, {.priority = priority});
+    const surface::CheckReport check = surface::check_complex(complex);
+    ASSERT_TRUE(check.ok()) << first_error(check);
+    EXPECT_EQ(check.tissues.at(3).components, 2u);
+
+    const image::Phantom thin = image::make_phantom("thin", {.voxel_mm = 1.0});
+    const std::map<Label, int> shell_first = surface::thin_first_priority(thin.image);
+    EXPECT_GT(shell_first.at(1), shell_first.at(2));
+    EXPECT_THROW(surface::thin_first_priority(LabelImage{}), InputError);
 }
 
 } // namespace
