@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "surface/detail/cgal_intersections.h"
 #include "surface/detail/edge_fan.h"
 #include "surface/detail/local_geometry.h"
 #include "surface/detail/star_check.h"
@@ -358,6 +359,35 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
             if (blades.size() >= 3 && fan_order(positions_[a], positions_[b], blades) != FanOrder::in_order) return false;
         }
     return true;
+}
+
+bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to)
+{
+    CellRange r{};
+    for (int a = 0; a < 3; ++a)
+        r[a] = cell_at(std::min(from[a], to[a]), a), r[3 + a] = cell_at(std::max(from[a], to[a]), a);
+    ++query_;
+    for (std::size_t k = r[2]; k <= r[5]; ++k)
+        for (std::size_t j = r[1]; j <= r[4]; ++j)
+            for (std::size_t i = r[0]; i <= r[3]; ++i)
+                for (const std::uint32_t u : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
+                    if (stamp_[u] == query_ || !alive_[u]) continue;
+                    stamp_[u] = query_;
+                    const Triangle& tri = triangles_[u];
+                    if (has(tri, v)) continue;
+                    const Box b = box_of(tri);
+                    bool apart = false;
+                    for (int a = 0; a < 3; ++a)
+                        apart = apart || std::max(from[a], to[a]) < b.low[a] || std::min(from[a], to[a]) > b.high[a];
+                    if (apart) continue;
+                    const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
+                    const int side_from = orientation(p, q, s, from), side_to = orientation(p, q, s, to);
+                    if (side_from * side_to > 0 || (side_from == 0 && side_to == 0)) continue;
+                    const int e0 = orientation(from, to, p, q), e1 = orientation(from, to, q, s), e2 = orientation(from, to, s, p);
+                    const bool inside = (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+                    if (inside) return true;
+                }
+    return false;
 }
 
 bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before)

@@ -117,6 +117,12 @@ private:
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).
     bool surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before);
+    /// Whether vertex v, moved in a straight line from `from` to `to`, passes through a triangle outside its
+    /// star (exact). Each step of a smoothing or relaxation may be valid where it ends and still carry a vertex
+    /// through the surface: a small closed piece (a tetrahedron of four triangles around a two-voxel pocket)
+    /// flattened over a few moves and then pushed through its opposite face ends inside out, intersection-free,
+    /// with every tilt small; its tissue then claims the space around it (TetGen's tets disagree on their tissue).
+    bool path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to);
     std::array<Vec3, 3> corners(const Triangle& t) const;
     /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the
     /// gap rule leaves alone (a sheet folding back towards itself faces the other way where it nears).

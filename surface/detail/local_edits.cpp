@@ -317,6 +317,11 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         positions_[v] = old;
         return false;
     }
+    if (path_crosses(v, old, p)) {
+        ++counters_.intersection;
+        positions_[v] = old;
+        return false;
+    }
     for (const std::uint32_t t : stars_[v]) {
         unfile(t);
         file(t);
