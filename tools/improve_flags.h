@@ -15,6 +15,7 @@ struct ImproveFlags {
     volume::ImproveOptions options;
     bool off = false;          ///< --no-improve (tm-tetra, tm-refine)
     bool keep_interfaces = false;
+    CLI::Option* insert_below = nullptr;
 
     /// `with_switch`: the tool improves by default and takes --no-improve.
     void add_to(CLI::App& app, bool with_switch)
@@ -27,8 +28,9 @@ struct ImproveFlags {
         app.add_option("--improve-passes", options.max_passes, "Improver: rounds over the tets below the target")
             ->check(CLI::Range(1, 100))
             ->capture_default_str();
-        app.add_option("--improve-insert-below-deg", options.insert_below_deg,
-                       "Improver: insert nodes only for tets whose smallest dihedral angle is below this (0: never)")
+        insert_below = app.add_option("--improve-insert-below-deg", options.insert_below_deg,
+                       "Improver: insert nodes for tets whose smallest dihedral angle is below this (0: never; given, it "
+                       "turns insertion on where the tool leaves it off)")
             ->check(CLI::Range(0.0, 70.0))
             ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
@@ -39,6 +41,7 @@ struct ImproveFlags {
     {
         volume::ImproveOptions o = options;
         if (keep_interfaces) o.move_interface_nodes = false, o.insert_on_interfaces = false;
+        if (insert_below != nullptr && insert_below->count() > 0) o.insert = o.insert_below_deg > 0;
         if (o.insert_below_deg <= 0) o.insert = false;
         return o;
     }

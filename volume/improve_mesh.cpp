@@ -79,8 +79,11 @@ private:
             if (tried[w.tet] == work_.birth(w.tet)) continue;
             tried[w.tet] = work_.birth(w.tet);
             if (unchanged_since_failure(w.tet, insert ? 2 : 1)) continue;
+            // Flips and smoothing that failed on this tet with nothing changed around it since fail again: only
+            // insertion is new to it.
+            const bool local_failed = unchanged_since_failure(w.tet, 1);
             const std::size_t nodes = work_.node_count();
-            const Change change = improve(w.tet, insert);
+            const Change change = improve(w.tet, insert, local_failed);
             if (change == Change::none || !volumes_kept()) {
                 work_.rollback(0);
                 if (failed_.size() < work_.tet_slots()) failed_.resize(work_.tet_slots());
@@ -102,10 +105,10 @@ private:
         return changes;
     }
 
-    Change improve(std::uint32_t t, bool insert)
+    Change improve(std::uint32_t t, bool insert, bool only_insert)
     {
         const Tet tet = work_.tet(t);
-        if (options_.flip) {
+        if (options_.flip && !only_insert) {
             for (const auto& e : detail::edge_corners)
                 if (detail::remove_edge(work_, tet[e[0]], tet[e[1]])) return Change::edge_removal;
             if (options_.move_interface_nodes)
@@ -114,7 +117,7 @@ private:
             for (int i = 0; i < 4; ++i)
                 if (detail::remove_faces(work_, t, i)) return Change::face_removal;
         }
-        if (options_.smooth) {
+        if (options_.smooth && !only_insert) {
             node_changed_.resize(work_.node_count(), 0), node_tried_.resize(work_.node_count(), -1);
             for (const std::uint32_t v : tet) {
                 if (!options_.move_interface_nodes && work_.kind(v) != detail::NodeKind::interior) continue;

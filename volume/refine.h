@@ -39,7 +39,10 @@ struct RefineOptions {
     AssessOptions assess;              ///< priority weights and quality key weights
     bool improve = true;               ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
                                        ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
-    ImproveOptions improvement;        ///< its options
+    /// Its options. By default only flips and moves of nodes inside tissues: refinement's own promises hold
+    /// (every interface face kept, the node budget, the nodes of the last round), and so does its error volume,
+    /// since no tissue boundary moves. Turning insertion or interface moves on trades them for better angles.
+    ImproveOptions improvement{.insert = false, .move_interface_nodes = false, .insert_on_interfaces = false};
 };
 
 /// One round: the mesh after it (iteration 0 is the start mesh).
@@ -87,8 +90,9 @@ struct RefineReport {
 /// fewer than a tenth of a batch's nodes remain, the batch
 /// is placed again with the tets' centroids in place of the dropped nodes (dropped again when too close).
 /// A valid mesh is always returned: the last complete round's, improved (options.improve) by improve_mesh()
-/// against its own interface faces, which the improvement keeps as surfaces (the error volume moves by at most
-/// what ImproveOptions::max_volume_change allows).
+/// against its own interface faces. With the default improvement options its nodes are the last round's (inner
+/// ones moved), its interface faces and error volume unchanged; the minimum distance of new nodes to the
+/// interfaces is a rule of placement, which the improver's moves do not keep.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
 /// @throws AlgorithmError when TetGen fails

@@ -151,8 +151,13 @@ private:
         for (std::size_t i = 0; i < faces_.size(); ++i) {
             const Triangle& f = faces_[i];
             if (dot(face_normal(f, v_, q), face_normal(f, v_, mesh_.point(v_))) <= 0) return false;
-            auto at = [&](std::uint32_t w) { return w == v_ ? q : mesh_.point(w); };
-            if (!reference_.holds_triangle(at(f[0]), at(f[1]), at(f[2]), face_sides_[i].from, face_sides_[i].to, face_tolerance_mm_)) return false;
+            // As SurfaceReference::holds_triangle, less the midpoint of the edge opposite v, which stays where it was.
+            const Label from = face_sides_[i].from, to = face_sides_[i].to;
+            const std::uint32_t w1 = f[0] == v_ ? f[1] : f[0], w2 = f[2] == v_ ? f[1] : f[2];
+            const Vec3 &p1 = mesh_.point(w1), &p2 = mesh_.point(w2);
+            if (!reference_.within((1.0 / 3) * (q + p1 + p2), from, to, face_tolerance_mm_) ||
+                !reference_.within(0.5 * (q + p1), from, to, face_tolerance_mm_) || !reference_.within(0.5 * (q + p2), from, to, face_tolerance_mm_))
+                return false;
         }
         return true;
     }

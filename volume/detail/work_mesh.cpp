@@ -44,9 +44,15 @@ WorkMesh::WorkMesh(const TetMesh& mesh)
     for (const Tet& tet : tets_)
         for (const std::uint32_t v : tet) ++degree[v];
     for (std::size_t v = 0; v < points_.size(); ++v) tets_of_[v].reserve(degree[v]);
+    scales_.assign(points_.size(), std::numeric_limits<double>::infinity());
     for (std::uint32_t t = 0; t < tets_.size(); ++t) {
         link_tet(t);
         quality_[t] = min_sine(corners(t));
+        for (const auto& e : edge_corners) {
+            const std::uint32_t a = tets_[t][e[0]], b = tets_[t][e[1]];
+            const double length = distance(points_[a], points_[b]);
+            scales_[a] = std::min(scales_[a], length), scales_[b] = std::min(scales_[b], length);
+        }
     }
     face_index_.reserve(2 * mesh.faces.size() + 64);
     faces_.reserve(mesh.faces.size() + 64);
@@ -278,6 +284,7 @@ std::uint32_t WorkMesh::add_node(const Vec3& p)
 {
     const auto v = static_cast<std::uint32_t>(points_.size());
     points_.push_back(p), kinds_.push_back(NodeKind::interior), tets_of_.emplace_back(), faces_of_.emplace_back();
+    scales_.push_back(std::numeric_limits<double>::infinity());
     journal_.push_back({Change::node_added, v});
     return v;
 }
@@ -325,7 +332,7 @@ void WorkMesh::rollback(std::size_t mark)
             for (const std::uint32_t t : tets_of_[e.index]) refresh_quality(t);
             break;
         case Change::node_added:
-            points_.pop_back(), kinds_.pop_back(), tets_of_.pop_back(), faces_of_.pop_back();
+            points_.pop_back(), kinds_.pop_back(), tets_of_.pop_back(), faces_of_.pop_back(), scales_.pop_back();
             break;
         case Change::face_added: unlink_face(e.index), faces_.pop_back(); break;
         case Change::face_removed: faces_[e.index].alive = true, link_face(e.index); break;

@@ -40,6 +40,11 @@ public:
     std::size_t node_count() const { return points_.size(); }
     const Vec3& point(std::uint32_t v) const { return points_[v]; }
     NodeKind kind(std::uint32_t v) const { return kinds_[v]; }
+    /// The local size at v: for the mesh's own nodes their shortest edge on entry, for new nodes what
+    /// set_scale() gave them (infinity until then). Insertion keeps new nodes a fraction of it apart.
+    double scale(std::uint32_t v) const { return scales_[v]; }
+    /// Sets the scale of a node added since the last commit (undone with it).
+    void set_scale(std::uint32_t v, double scale) { scales_[v] = scale; }
     const std::vector<std::uint32_t>& tets_of(std::uint32_t v) const { return tets_of_[v]; }
     const std::vector<std::uint32_t>& faces_of(std::uint32_t v) const { return faces_of_[v]; }
     /// The tissues of the constraint faces at v, ascending (empty for interior nodes).
@@ -126,6 +131,7 @@ private:
 
     std::vector<Vec3> points_;
     std::vector<NodeKind> kinds_;
+    std::vector<double> scales_;
     std::vector<std::vector<std::uint32_t>> tets_of_, faces_of_;
     std::vector<Tet> tets_;
     std::vector<Label> labels_;
