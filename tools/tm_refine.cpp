@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "io/tet_mesh_io.h"
+#include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
 #include "volume/refine.h"
@@ -36,6 +37,7 @@ nlohmann::json summarize(const volume::RefineReport& report, const volume::Refin
 int main(int argc, char** argv)
 {
     tools::MeshFormatFlags format_flags;
+    tools::ImproveFlags improve_flags;
     std::string input, image_path, output, log_path, plot_path, placement = "material-centroid";
     volume::RefineOptions options;
     return tools::run_tool(
@@ -47,7 +49,9 @@ int main(int argc, char** argv)
          "coarse lattice over the image box, each tet taking its majority tissue (the mesh covers the box; background "
          "tets carry label 0). With -i MESH (from tm-tetra): constrained, every interface face kept exactly and nodes "
          "added inside the tissues only, so the error volume stays what the interfaces give while shapes and resolution "
-         "improve. Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
+         "improve; at the end the tets are improved (tm-improve's improver, here flips and moves of nodes inside "
+         "tissues only: interfaces and nodes stay the last round's; --improve-insert-below-deg turns insertion on, "
+         "--no-improve leaves the last rebuild as it is). Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
          "tissue change walking from edge midpoints or from the centroid towards the vertices).",
          "Examples:\n  tm-refine --image head.nii.gz -o head.msh --log refine.csv --plot refine.svg --target-error-percent 2\n"
          "  tm-refine -i head.msh --image head.nii.gz -o finer.msh --log refine.csv --max-nodes 200000\n"
@@ -72,10 +76,14 @@ int main(int argc, char** argv)
             app.add_option("--min-node-distance-mm", options.min_node_distance_mm, "Closest new node to another (default: half a voxel)");
             app.add_option("--error-weight", options.assess.error_weight, "Quality key weight of misclassified voxels")->capture_default_str();
             app.add_option("--shape-weight", options.assess.shape_weight, "Quality key weight of the shape term")->capture_default_str();
+            improve_flags.options = options.improvement;
+            improve_flags.add_to(app, true);
         },
         [&](tools::ToolContext& context) {
             format_flags.check();
             options.placement = volume::parse_placement(placement);
+            options.improve = !improve_flags.off;
+            options.improvement = improve_flags.to_options();
             const LabelImage image = io::read_label_image(image_path);
             TetMesh start;
             if (!input.empty()) start = io::read_tet_mesh(input);
@@ -87,9 +95,15 @@ int main(int argc, char** argv)
                 write_text_atomically(plot_path, volume::refine_plot_svg(report, concat("tm-refine ", volume::placement_name(options.placement),
                                                                                          ": ", image_path)));
             context.summary = summarize(report, options, !input.empty());
+            // The written mesh: the last round's, its tets changed by the improver's flips (nodes kept unless insertion is on).
+            context.summary["nodes"] = mesh.vertices.size(), context.summary["tets"] = mesh.tets.size();
+            if (report.improved) {
+                context.summary["improvement"] = tools::improve_json(report.improvement);
+                context.log(tools::improve_line(report.improvement));
+            }
             const volume::RefineIteration& last = report.iterations.back();
             std::printf("%s: %zu rounds, %zu -> %zu nodes, %zu tets, error volume %.1f -> %.1f mm^3 (%s)\n", output.c_str(),
-                        report.iterations.size() - 1, report.iterations.front().nodes, last.nodes, last.tets,
+                        report.iterations.size() - 1, report.iterations.front().nodes, mesh.vertices.size(), mesh.tets.size(),
                         report.iterations.front().total_error_volume_mm3, last.total_error_volume_mm3, report.stop_reason.c_str());
             if ((options.target_error_mm3 > 0 || options.target_error_percent > 0) && !report.target_reached)
                 context.progress.warn("refine", concat("target error volume not reached (", report.stop_reason,

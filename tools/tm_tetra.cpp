@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
+#include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
 #include "volume/tetrahedralize.h"
@@ -114,6 +115,7 @@ void check_memory(const tools::ToolContext& context, const std::string& input, c
 int main(int argc, char** argv)
 {
     tools::MeshFormatFlags format_flags;
+    tools::ImproveFlags improve_flags;
     std::string input, output, max_volume, max_edge;
     volume::TetrahedralizeOptions options;
     bool allow_steiner = false, no_quality = false, drop_cavities = false;
@@ -121,8 +123,9 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-tetra",
          "Tetrahedralizes an interface complex (from tm-extract and the surface tools) with TetGen's constrained "
-         "Delaunay mesher. Every interface is kept; each tet's tissue comes from the interfaces around it. The "
-         "output format follows the extension: .msh (Gmsh 2.2, SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
+         "Delaunay mesher, then improves the tets (tm-improve's improver: slivers and flat tets next to the interfaces "
+         "smoothed, flipped or split; interface nodes stay on the input surface). Every interface is kept; each tet's "
+         "tissue comes from the interfaces around it. The output format follows the extension: .msh (Gmsh 2.2, SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
          "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8 --max-volume-tissue brain=2\n"
          "  tm-tetra -i head.ply -o head.vtu --max-edge-mm scalp=4,brain=2 --radius-edge 1.5"},
         [&](CLI::App& app) {
@@ -140,6 +143,7 @@ int main(int argc, char** argv)
                                                            "misses them next to small input angles); interfaces kept "
                                                            "as surfaces, not as the input triangles");
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
+            improve_flags.add_to(app, true);
         },
         [&](tools::ToolContext& context) {
             format_flags.check();
@@ -147,6 +151,8 @@ int main(int argc, char** argv)
             options.preserve_interfaces = !allow_steiner;
             options.improve_quality = !no_quality;
             options.mesh_background_cavities = !drop_cavities;
+            options.improve = !improve_flags.off;
+            options.improvement = improve_flags.to_options();
             if (!max_volume.empty()) parse_sizes(max_volume, complex, false, options);
             if (!max_edge.empty()) parse_sizes(max_edge, complex, true, options);
             check_memory(context, input, complex, options);
@@ -157,6 +163,7 @@ int main(int argc, char** argv)
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
                                report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",
                                format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ", format_mm(report.max_radius_edge_ratio, 2)));
+            if (report.improved) context.log(tools::improve_line(report.improvement));
             if (report.split_interface_triangles > 0 && options.preserve_interfaces)
                 context.progress.warn("tm-tetra", concat("TetGen split ", report.split_interface_triangles, " interface triangles "
                                                          "despite -Y (the interfaces are unchanged: the parts cover them)"));
@@ -169,5 +176,6 @@ int main(int argc, char** argv)
                                {"min_dihedral_deg", report.min_dihedral_deg}, {"max_radius_edge_ratio", report.max_radius_edge_ratio},
                                {"tets_over_volume_bound", report.tets_over_volume_bound}, {"tetgen_switches", report.switches},
                                {"tetrahedralize_seconds", report.seconds}};
+            if (report.improved) context.summary["improvement"] = tools::improve_json(report.improvement);
         });
 }

@@ -96,6 +96,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     std::vector<bool> used(mesh.vertices.size(), false);
     const auto faces = detail::map_faces(mesh.tets);
     double ratio_sum = 0;
+    std::vector<float> smallest(mesh.tets.size());
     report.quality.min_dihedral_deg = 180;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
@@ -115,6 +116,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
                                 edge, " mm at ", where(mesh.vertices[tet[0]]), "; its four nodes are coplanar"));
         }
         const TetShape shape = tet_shape(mesh, t);
+        smallest[t] = static_cast<float>(shape.min_dihedral_deg);
         report.quality.min_dihedral_deg = std::min(report.quality.min_dihedral_deg, shape.min_dihedral_deg);
         report.quality.max_dihedral_deg = std::max(report.quality.max_dihedral_deg, shape.max_dihedral_deg);
         report.quality.max_radius_edge_ratio = std::max(report.quality.max_radius_edge_ratio, shape.radius_edge_ratio);
@@ -123,6 +125,11 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     }
     report.quality.mean_radius_edge_ratio = mesh.tets.empty() ? 0 : ratio_sum / static_cast<double>(mesh.tets.size());
     if (mesh.tets.empty()) report.quality.min_dihedral_deg = 0;
+    if (!smallest.empty()) {
+        const auto nth = smallest.begin() + static_cast<std::ptrdiff_t>(smallest.size() / 100);
+        std::nth_element(smallest.begin(), nth, smallest.end());
+        report.quality.p1_min_dihedral_deg = *nth;
+    }
     report.unused_nodes = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
     if (report.unused_nodes > 0) note(report, concat(report.unused_nodes, " nodes belong to no tetrahedron"));
     progress.update("check-mesh", 0.3);

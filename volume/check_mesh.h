@@ -27,6 +27,7 @@ struct QualityStats {
     double max_radius_edge_ratio = 0;  ///< circumradius / shortest edge (regular tet: 0.612)
     double mean_radius_edge_ratio = 0;
     std::array<std::size_t, 18> min_dihedral_histogram{};  ///< tets by their smallest dihedral, 10 deg bins
+    double p1_min_dihedral_deg = 0;  ///< 1st percentile of the tets' smallest dihedral angles
 };
 
 struct MeshCheckReport {

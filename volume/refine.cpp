@@ -320,6 +320,10 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     }
     detail::drop_unused_nodes(r.mesh);
     if (!r.constrained) mark_interfaces(r.mesh, options.assess.background);
+    if (options.improve) {
+        rep.improvement = improve_mesh(r.mesh, options.improvement, progress);
+        rep.improved = true;
+    }
     return std::move(r.mesh);
 }
 

@@ -9,6 +9,7 @@
 #include "core/progress.h"
 #include "core/tet_mesh.h"
 #include "volume/assess.h"
+#include "volume/improve_mesh.h"
 
 namespace tissuemesh::volume {
 
@@ -36,6 +37,12 @@ struct RefineOptions {
     double min_node_distance_mm = 0;   ///< no new node closer than this to another node, nor (constrained)
                                        ///< to an interface face (0: half the smallest voxel spacing)
     AssessOptions assess;              ///< priority weights and quality key weights
+    bool improve = true;               ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
+                                       ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
+    /// Its options. By default only flips and moves of nodes inside tissues: refinement's own promises hold
+    /// (every interface face kept, the node budget, the nodes of the last round), and so does its error volume,
+    /// since no tissue boundary moves. Turning insertion or interface moves on trades them for better angles.
+    ImproveOptions improvement{.insert = false, .move_interface_nodes = false, .insert_on_interfaces = false};
 };
 
 /// One round: the mesh after it (iteration 0 is the start mesh).
@@ -57,6 +64,8 @@ struct RefineReport {
                                            ///< "no error left", "no node could be placed"
     bool target_reached = false;           ///< a target was given and met
     double mesh_volume_mm3 = 0;
+    bool improved = false;                 ///< improve_mesh() ran on the result; `improvement` says what it did
+    ImproveReport improvement;
 };
 
 /// Refines a tet mesh against `image` by the paper's loop: assess every tet, place one node in each of the
@@ -80,7 +89,10 @@ struct RefineReport {
 /// min_node_distance_mm to another (constrained mode: or to an interface or boundary face) is dropped; when
 /// fewer than a tenth of a batch's nodes remain, the batch
 /// is placed again with the tets' centroids in place of the dropped nodes (dropped again when too close).
-/// A valid mesh is always returned: the last complete round's.
+/// A valid mesh is always returned: the last complete round's, improved (options.improve) by improve_mesh()
+/// against its own interface faces. With the default improvement options its nodes are the last round's (inner
+/// ones moved), its interface faces and error volume unchanged; the minimum distance of new nodes to the
+/// interfaces is a rule of placement, which the improver's moves do not keep.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
 /// @throws AlgorithmError when TetGen fails

@@ -245,6 +245,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     progress.update("tetra", 0.8);
     const std::vector<Label> labels = label_tets(complex, out);
     TetMesh mesh = assemble(complex, out, labels, options.mesh_background_cavities);
+    ImproveReport improvement;
+    if (options.improve) improvement = improve_mesh(mesh, complex, options.improvement, progress);
     require_fit_for_fem(mesh);
     progress.update("tetra", 1.0);
 
@@ -269,6 +271,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
             const double bound = tissue_bound != options.max_volume_per_tissue_mm3.end() ? tissue_bound->second : options.max_volume_mm3;
             if (bound > 0 && signed_volume(mesh, t) > bound * (1 + 1e-9)) ++report->tets_over_volume_bound;
         }
+        report->improved = options.improve;
+        report->improvement = improvement;
         report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     return mesh;

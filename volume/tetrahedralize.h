@@ -7,6 +7,7 @@
 #include "core/interface_complex.h"
 #include "core/progress.h"
 #include "core/tet_mesh.h"
+#include "volume/improve_mesh.h"
 
 namespace tissuemesh::volume {
 
@@ -25,6 +26,9 @@ struct TetrahedralizeOptions {
     int optimisation_level = 2;             ///< mesh optimisation passes, 0..10 (TetGen -O)
     bool mesh_background_cavities = true;   ///< keep tets of the background tissue enclosed by other tissues
                                             ///< (they carry the background label); false drops them
+    bool improve = true;                    ///< improve TetGen's tets with improve_mesh() against the complex
+                                            ///< (slivers and flat tets next to the interfaces)
+    ImproveOptions improvement;             ///< its options
 };
 
 /// What tetrahedralize() did.
@@ -44,6 +48,8 @@ struct TetrahedralizeReport {
     std::size_t tets_over_volume_bound = 0; ///< tets larger than their (global or tissue) volume bound
     std::string switches;                   ///< the TetGen command line used
     double seconds = 0;
+    bool improved = false;                  ///< improve_mesh() ran; `improvement` says what it did
+    ImproveReport improvement;              ///< (its `before` figures are TetGen's mesh)
 };
 
 /// Builds a conforming tetrahedral mesh whose tets never cross an interface of `complex`. Each tet's

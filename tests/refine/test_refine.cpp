@@ -34,13 +34,17 @@ TEST(RefineDelaunay, ErrorVolumeFallsAsNodesGrow)
         << first.total_error_volume_mm3 << " mm^3 at " << first.nodes << " nodes, " << last.total_error_volume_mm3
         << " mm^3 at " << last.nodes;
     EXPECT_EQ(mesh.vertices.size(), last.nodes);
-    EXPECT_EQ(mesh.tets.size(), last.tets);
+    // The improver (on by default, without insertion) keeps the last round's nodes; its flips change the tets.
+    ASSERT_TRUE(report.improved);
+    EXPECT_EQ(report.improvement.before.tets, last.tets);
+    EXPECT_EQ(mesh.tets.size(), report.improvement.after.tets);
 }
 
 TEST(RefineDelaunay, IncrementalAssessmentEqualsAFullOneAndTheMeshIsValid)
 {
     RefineReport report;
-    const TetMesh mesh = refine(coarse_head(), nullptr, {.max_iterations = 6}, {}, &report);
+    // Without the improver: the last round's assessment is of the last round's mesh.
+    const TetMesh mesh = refine(coarse_head(), nullptr, {.max_iterations = 6, .improve = false}, {}, &report);
     const Assessment full = assess_elements(mesh, coarse_head());
     // Unchanged tets keep their counts, new ones are rasterized with the same per-face rule, so the sums would be
     // equal but for rasterize_tets' floating-point face tests: a voxel centre on an edge can be claimed by two tets
