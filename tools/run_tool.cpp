@@ -80,12 +80,16 @@ double peak_memory_mb()
     return static_cast<double>(std::max(self.ru_maxrss, children.ru_maxrss)) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-void write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
+/// Writes the --json summary; false (the error on stderr) when it cannot be written: the run then did not
+/// deliver what was asked, and its exit code says so.
+bool write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
 {
     try {
         write_text_atomically(path, summary.dump(2) + "\n");
+        return true;
     } catch (const Error& error) {
         std::fprintf(stderr, "%s: error: %s\n", tool.c_str(), one_line(error.what()).c_str());
+        return false;
     }
 }
 
@@ -167,7 +171,7 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
                                   {"exit_code", code}, {"seconds", seconds}, {"peak_memory_mb", peak_memory_mb()}};
         if (!message.empty()) summary["error"] = message;
         summary.update(context.summary);
-        write_summary(json_path, summary, spec.name);
+        if (!write_summary(json_path, summary, spec.name) && code == 0) code = 2;
     }
     return code;
 }

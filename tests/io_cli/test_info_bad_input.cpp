@@ -1,5 +1,6 @@
 // Bad label images through the program a user runs: tm-info exits 2 with one line on stderr that
 // names the file and the problem.
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -54,6 +55,18 @@ TEST(InfoBadInput, ReadsAValidFileAndExitsZero)
     testing::write_nifti(dir / "ok.nii", {}, {0, 1, 2, 3, 4, 5, 6, 7});
     const testing::CliResult result = testing::run_cli("tm-info", {"-i", (dir / "ok.nii").string()});
     EXPECT_EQ(result.exit_code, 0) << result.err;
+}
+
+/// A --json summary that cannot be written is an error: exit 2 and one line naming the file, not 0.
+TEST(InfoBadInput, AnUnwritableJsonSummaryIsAnError)
+{
+    testing::TempDir dir;
+    testing::write_nifti(dir / "ok.nii", {}, {0, 1, 2, 3, 4, 5, 6, 7});
+    const std::string json = (dir / "no" / "such" / "x.json").string();
+    const testing::CliResult result = testing::run_cli("tm-info", {"-i", (dir / "ok.nii").string(), "--json", json});
+    EXPECT_EQ(result.exit_code, 2) << result.err;
+    EXPECT_NE(result.err.find("x.json"), std::string::npos) << result.err;
+    EXPECT_FALSE(std::filesystem::exists(json));
 }
 
 TEST(InfoBadInput, ExitsTwoWithOneLineNamingFileAndProblem)
