@@ -361,6 +361,29 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
     return true;
 }
 
+std::optional<double> LocalEditor::small_shell_volume(std::uint32_t v) const
+{
+    constexpr std::size_t limit = 64;
+    if (stars_[v].empty()) return std::nullopt;
+    const LabelPair pair = sides_[stars_[v].front()];
+    std::vector<std::uint32_t> vertices{v}, triangles;
+    for (std::size_t next = 0; next < vertices.size(); ++next)
+        for (const std::uint32_t t : stars_[vertices[next]]) {
+            if (std::find(triangles.begin(), triangles.end(), t) != triangles.end()) continue;
+            if (!(sides_[t] == pair) || triangles.size() == limit) return std::nullopt;
+            triangles.push_back(t);
+            for (const std::uint32_t x : triangles_[t])
+                if (std::find(vertices.begin(), vertices.end(), x) == vertices.end()) vertices.push_back(x);
+        }
+    double volume = 0;
+    const Vec3 origin = positions_[v];
+    for (const std::uint32_t t : triangles) {
+        const TriangleCorners c = corners(triangles_[t]);
+        volume += dot(cross(c[1] - origin, c[2] - origin), c[0] - origin) / 6;
+    }
+    return volume;
+}
+
 bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to)
 {
     CellRange r{};

@@ -91,6 +91,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     thread_local std::vector<Prior> prior;
     prior.clear();
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
+    const std::optional<double> shell_before = small_shell_volume(v);
     begin_edit();
     save_star(v);
     save_star(w);
@@ -113,6 +114,14 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     if (!surroundings_ok(changed, prior)) {
         undo();
         return false;
+    }
+    if (shell_before) {
+        const std::optional<double> shell_after = small_shell_volume(w);
+        if (!shell_after || !(*shell_after * *shell_before > 0)) {
+            ++counters_.topology;
+            undo();
+            return false;
+        }
     }
     for (const std::uint32_t t : dying) unfile(t);
     for (const std::uint32_t t : changed) {
