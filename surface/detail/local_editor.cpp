@@ -363,7 +363,7 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
 
 std::optional<double> LocalEditor::small_shell_volume(std::uint32_t v) const
 {
-    constexpr std::size_t limit = 64;
+    constexpr std::size_t limit = 24;
     if (stars_[v].empty()) return std::nullopt;
     const LabelPair pair = sides_[stars_[v].front()];
     std::vector<std::uint32_t> vertices{v}, triangles;

@@ -123,10 +123,10 @@ private:
     /// flattened over a few moves and then pushed through its opposite face ends inside out, intersection-free,
     /// with every tilt small; its tissue then claims the space around it (TetGen's tets disagree on their tissue).
     bool path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to);
-    /// The enclosed volume of the closed piece of surface around v when it is small (at most 64 triangles, all
+    /// The enclosed volume of the closed piece of surface around v when it is small (at most 24 triangles, all
     /// of one tissue pair): positive for the `from` tissue inside. nullopt for larger or mixed pieces. A
-    /// collapse may shrink a small island (a white-matter speck in grey matter) to a tetrahedron inside out,
-    /// each new triangle within the tilt limit of the one it replaces and nothing crossing.
+    /// collapse may shrink a small island (a white-matter speck in grey matter) to a tetrahedron inside out, or
+    /// flat, each new triangle within the tilt limit of the one it replaces and nothing crossing.
     std::optional<double> small_shell_volume(std::uint32_t v) const;
     std::array<Vec3, 3> corners(const Triangle& t) const;
     /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the

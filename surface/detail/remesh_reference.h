@@ -51,6 +51,17 @@ public:
         segments_ = BoxIndex(boxes, ids);
     }
 
+    /// `q` with each coordinate the corners share exactly set to theirs. A point projected onto a triangle in an
+    /// axis plane (surface nets put many vertices on the planes of their cubes' margins) is otherwise off it by
+    /// rounding, 1e-15 mm: neighbours that should be coplanar are then nearly so, and TetGen makes tets of 1e-15
+    /// mm^3 between them that nothing can mend (the 1 mm usc19-5 head).
+    static Vec3 on_shared_planes(Vec3 q, const TriangleCorners& c)
+    {
+        for (int a = 0; a < 3; ++a)
+            if (c[0][a] == c[1][a] && c[0][a] == c[2][a]) q[a] = c[0][a];
+        return q;
+    }
+
     /// The nearest point of the input patch of `pair` to p (p itself when none is within reach); of equally
     /// near triangles, the first in the input's order.
     Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach) const
@@ -60,7 +71,7 @@ public:
             // The box is never further than the triangle: most candidates end here, at a fraction of the cost.
             const TriangleCorners c = corners(t);
             if (box_distance(p, bounding_box(c)) > nearest_so_far) return std::nullopt;
-            return closest_point_on_triangle(p, c);
+            return on_shared_planes(closest_point_on_triangle(p, c), c);
         });
     }
 
@@ -70,7 +81,8 @@ public:
     {
         return nearest(segments_, p, reach, [&](std::uint32_t s, double nearest_so_far) -> std::optional<Vec3> {
             if (box_distance(p, bounding_box(segment(s))) > nearest_so_far) return std::nullopt;
-            return closest_point_on_segment(p, input_.vertices[junction_[s].first], input_.vertices[junction_[s].second]);
+            const Vec3 &a = input_.vertices[junction_[s].first], &b = input_.vertices[junction_[s].second];
+            return on_shared_planes(closest_point_on_segment(p, a, b), {a, b, b});
         });
     }
 
