@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "fem/assemble.h"
 #include "fem/detail/lead_field_sources.h"
+#include "fem/detail/local_stiffness.h"
 #include "fem/detail/locality_order.h"
 #include "fem/detail/point_location.h"
 #include "fem/detail/reduce.h"
@@ -168,13 +169,7 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
     // Everything runs on a copy numbered for locality (as solve_potential does).
     const detail::LocalMesh renumbered = detail::renumber_for_locality(mesh);
     const TetMesh& m = renumbered.mesh;
-    SparseMatrix stiffness;
-    try {
-        stiffness = assemble_stiffness(m, conductivities);
-    } catch (const InputError&) {
-        assemble_stiffness(mesh, conductivities);  // the message names the tet as the caller numbers it
-        throw;
-    }
+    SparseMatrix stiffness = detail::assemble_local_stiffness(mesh, renumbered, conductivities);
     // The node held at 0 V is solve_potential()'s, the caller's node 0: subtraction's loads carry a net current
     // of quadrature error, which that node takes up (holding another node moved the EEG lead field of the small
     // test head by 1.6e-4, relative), so the same node gives the same potentials as direct solves.

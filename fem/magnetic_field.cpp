@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "fem/assemble.h"
+#include "fem/detail/tet_quadrature.h"
 #include "fem/sarvas_field.h"
 
 namespace tissuemesh::fem {
@@ -21,41 +22,6 @@ Vec3 kernel_at(const Vec3& coil_m, const Vec3& y_m)
     return (1 / (r2 * std::sqrt(r2))) * r;
 }
 
-double longest_edge(const std::array<Vec3, 4>& c)
-{
-    double longest = 0;
-    for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) longest = std::max(longest, distance(c[i], c[j]));
-    return longest;
-}
-
-// Integral of (x - y)/|x - y|^3 over the tet `c` (metres, `volume` m^3): the 4-point degree-2 rule, on the 8
-// midpoint children (each of volume / 8) while the tet is large against its distance to the coil.
-Vec3 tet_integral(const std::array<Vec3, 4>& c, double volume, const Vec3& coil_m, const VolumeCurrentOptions& options,
-                  int depth)
-{
-    const Vec3 centre = 0.25 * (c[0] + c[1] + c[2] + c[3]);
-    if (depth >= options.max_splits || longest_edge(c) <= options.split_ratio * distance(centre, coil_m)) {
-        constexpr double a = 0.5854101966249685, b = 0.1381966011250105;
-        Vec3 sum{0, 0, 0};
-        for (int k = 0; k < 4; ++k) {
-            Vec3 point{0, 0, 0};
-            for (int i = 0; i < 4; ++i) point = point + (i == k ? a : b) * c[i];
-            sum = sum + kernel_at(coil_m, point);
-        }
-        return (volume / 4) * sum;
-    }
-    const auto mid = [&](int i, int j) { return 0.5 * (c[i] + c[j]); };
-    const Vec3 m01 = mid(0, 1), m02 = mid(0, 2), m03 = mid(0, 3), m12 = mid(1, 2), m13 = mid(1, 3), m23 = mid(2, 3);
-    const std::array<std::array<Vec3, 4>, 8> children{{{c[0], m01, m02, m03}, {m01, c[1], m12, m13},
-                                                       {m02, m12, c[2], m23}, {m03, m13, m23, c[3]},
-                                                       {m01, m02, m03, m13}, {m01, m02, m12, m13},
-                                                       {m02, m03, m13, m23}, {m02, m12, m13, m23}}};
-    Vec3 sum{0, 0, 0};
-    for (const auto& child : children) sum = sum + tet_integral(child, volume / 8, coil_m, options, depth + 1);
-    return sum;
-}
-
 // Adds the kernel of one coil (with `sign`) to `kernel`.
 void add_coil(const TetMesh& mesh, const Conductivities& conductivities, const Vec3& coil_mm, const Vec3& normal,
               double sign, const VolumeCurrentOptions& options, std::vector<double>& kernel)
@@ -69,7 +35,10 @@ void add_coil(const TetMesh& mesh, const Conductivities& conductivities, const V
         const P1Element element = p1_element(mesh, tet);
         std::array<Vec3, 4> corners{};
         for (int k = 0; k < 4; ++k) corners[k] = metres_per_mm * mesh.vertices[mesh.tets[tet][k]];
-        const Vec3 g_cross_n = cross(tet_integral(corners, element.volume_m3, coil_m, options, 0), normal);
+        const Vec3 integral = detail::adaptive_tet_integral(corners, element.volume_m3, coil_m, options.split_ratio,
+                                                            options.max_splits,
+                                                            [&](const Vec3& y) { return kernel_at(coil_m, y); });
+        const Vec3 g_cross_n = cross(integral, normal);
         const Vec3 weighted = multiply(conductivities.of(mesh.tet_labels[tet], tet), g_cross_n);  // sigma symmetric
         for (int k = 0; k < 4; ++k) loads[tet][k] = -sign * biot_savart * dot(element.gradients[k], weighted);
     }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "fem/assemble.h"
+#include "fem/detail/local_stiffness.h"
 #include "fem/detail/locality_order.h"
 #include "fem/detail/reduce.h"
 #include "fem/detail/sources.h"
@@ -118,13 +119,7 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
     const detail::LocalMesh renumbered = detail::renumber_for_locality(mesh);
     // Assembly first: it checks every tet and tissue, which the parallel source loops rely on. A bad tet
     // is reported as the caller numbers it: the original mesh is assembled again to throw its message.
-    SparseMatrix stiffness;
-    try {
-        stiffness = assemble_stiffness(renumbered.mesh, conductivities);
-    } catch (const InputError&) {
-        assemble_stiffness(mesh, conductivities);
-        throw;
-    }
+    SparseMatrix stiffness = detail::assemble_local_stiffness(mesh, renumbered, conductivities);
     local.assembly_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
     std::vector<double> fixed(mesh.vertex_count(), unset);

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "fem/assemble.h"
+#include "fem/detail/local_stiffness.h"
 #include "fem/detail/locality_order.h"
 #include "fem/detail/reduce.h"
 #include "fem/detail/sources.h"
@@ -26,13 +27,7 @@ TdcsLeadField compute_tdcs_lead_field(const TetMesh& mesh, const Conductivities&
     validate_indices(mesh, "mesh");
     const detail::LocalMesh renumbered = detail::renumber_for_locality(mesh);
     const TetMesh& m = renumbered.mesh;
-    SparseMatrix stiffness;
-    try {
-        stiffness = assemble_stiffness(m, conductivities);
-    } catch (const InputError&) {
-        assemble_stiffness(mesh, conductivities);  // the message names the tet as the caller numbers it
-        throw;
-    }
+    SparseMatrix stiffness = detail::assemble_local_stiffness(mesh, renumbered, conductivities);
     std::vector<double> fixed(m.vertex_count(), std::nan(""));
     fixed[renumbered.local[0]] = 0;  // one node at 0 V, as solve_potential() holds; each row gets zero mean at the end
     const detail::ReducedSystem system = detail::reduce(stiffness, {}, fixed, m.vertices);

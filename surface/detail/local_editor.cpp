@@ -91,16 +91,12 @@ void LocalEditor::reclassify(std::uint32_t v, const std::vector<std::uint32_t>& 
 
 void LocalEditor::reclassify_around(std::uint32_t v)
 {
-    reclassified_.clear();
-    const auto update = [&](std::uint32_t u) {
-        const VertexKind kind = classify(u);
-        if (kind != roles_[u]) reclassified_.push_back(u);
-        roles_[u] = kind;
-    };
-    update(v);
     thread_local std::vector<RingEntry> around;
+    thread_local std::vector<std::uint32_t> others;
     ring(v, around);
-    for (const RingEntry& n : around) update(n.vertex);
+    others.clear();
+    for (const RingEntry& n : around) others.push_back(n.vertex);
+    reclassify(v, others);
 }
 
 double LocalEditor::mean_edge_length() const
@@ -384,33 +380,38 @@ std::optional<double> LocalEditor::small_shell_volume(std::uint32_t v) const
     return volume;
 }
 
-bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to)
+template <typename Visit>
+bool LocalEditor::any_in_cells(const CellRange& r, const Visit& visit)
 {
-    CellRange r{};
-    for (int a = 0; a < 3; ++a)
-        r[a] = cell_at(std::min(from[a], to[a]), a), r[3 + a] = cell_at(std::max(from[a], to[a]), a);
-    ++query_;
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i)
                 for (const std::uint32_t u : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
                     if (stamp_[u] == query_ || !alive_[u]) continue;
                     stamp_[u] = query_;
-                    const Triangle& tri = triangles_[u];
-                    if (has(tri, v)) continue;
-                    const Box b = box_of(tri);
-                    bool apart = false;
-                    for (int a = 0; a < 3; ++a)
-                        apart = apart || std::max(from[a], to[a]) < b.low[a] || std::min(from[a], to[a]) > b.high[a];
-                    if (apart) continue;
-                    const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
-                    const int side_from = orientation(p, q, s, from), side_to = orientation(p, q, s, to);
-                    if (side_from * side_to > 0 || (side_from == 0 && side_to == 0)) continue;
-                    const int e0 = orientation(from, to, p, q), e1 = orientation(from, to, q, s), e2 = orientation(from, to, s, p);
-                    const bool inside = (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
-                    if (inside) return true;
+                    if (visit(u)) return true;
                 }
     return false;
+}
+
+bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to)
+{
+    Box path{};
+    CellRange r{};
+    for (int a = 0; a < 3; ++a) {
+        path.low[a] = std::min(from[a], to[a]), path.high[a] = std::max(from[a], to[a]);
+        r[a] = cell_at(path.low[a], a), r[3 + a] = cell_at(path.high[a], a);
+    }
+    ++query_;
+    return any_in_cells(r, [&](std::uint32_t u) {
+        const Triangle& tri = triangles_[u];
+        if (has(tri, v) || !overlap(box_of(tri), path)) return false;
+        const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
+        const int side_from = orientation(p, q, s, from), side_to = orientation(p, q, s, to);
+        if (side_from * side_to > 0 || (side_from == 0 && side_to == 0)) return false;
+        const int e0 = orientation(from, to, p, q), e1 = orientation(from, to, q, s), e2 = orientation(from, to, s, p);
+        return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+    });
 }
 
 bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before)
@@ -433,27 +434,24 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     for (int a = 0; a < 3; ++a) r[a] = cell_at(all.low[a], a), r[3 + a] = cell_at(all.high[a], a);
     ++query_;
     for (const std::uint32_t t : changed) stamp_[t] = query_;
-    for (std::size_t k = r[2]; k <= r[5]; ++k)
-        for (std::size_t j = r[1]; j <= r[4]; ++j)
-            for (std::size_t i = r[0]; i <= r[3]; ++i)
-                for (const std::uint32_t u : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
-                    if (stamp_[u] == query_ || !alive_[u]) continue;
-                    stamp_[u] = query_;
-                    const Box ub = box_of(triangles_[u]);
-                    if (!overlap(ub, all)) continue;
-                    for (std::size_t n = 0; n < changed.size(); ++n) {
-                        const std::uint32_t t = changed[n];
-                        if (!overlap(ub, boxes[n]) || share_vertex(triangles_[t], triangles_[u])) continue;
-                        if (triangles_meet(positions_, triangles_[t], triangles_[u])) {
-                            ++counters_.intersection;
-                            return false;
-                        }
-                        if (gap > 0 && !same_sheet_direction(t, u) && !gap_ok(t, before, u)) {
-                            ++counters_.gap;
-                            return false;
-                        }
-                    }
-                }
+    const bool offender = any_in_cells(r, [&](std::uint32_t u) {
+        const Box ub = box_of(triangles_[u]);
+        if (!overlap(ub, all)) return false;
+        for (std::size_t n = 0; n < changed.size(); ++n) {
+            const std::uint32_t t = changed[n];
+            if (!overlap(ub, boxes[n]) || share_vertex(triangles_[t], triangles_[u])) continue;
+            if (triangles_meet(positions_, triangles_[t], triangles_[u])) {
+                ++counters_.intersection;
+                return true;
+            }
+            if (gap > 0 && !same_sheet_direction(t, u) && !gap_ok(t, before, u)) {
+                ++counters_.gap;
+                return true;
+            }
+        }
+        return false;
+    });
+    if (offender) return false;
     // Triangles sharing a vertex with a changed one: the stars of their vertices.
     thread_local std::vector<std::uint32_t> vertices;
     vertices.clear();

@@ -117,6 +117,10 @@ private:
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).
     bool surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before);
+    /// Calls visit(u) for every alive triangle filed in the cells of r and not yet stamped with the current
+    /// query (stamping it); true at the first visit that returns true.
+    template <typename Visit>
+    bool any_in_cells(const CellRange& r, const Visit& visit);
     /// Whether vertex v, moved in a straight line from `from` to `to`, passes through a triangle outside its
     /// star (exact). Each step of a smoothing or relaxation may be valid where it ends and still carry a vertex
     /// through the surface: a small closed piece (a tetrahedron of four triangles around a two-voxel pocket)
