@@ -213,6 +213,9 @@ int main(int argc, char** argv)
             const bool nets = method == "surface-nets";
             const bool streamed = !nets && extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
+            if (priority.size() > 1 && std::find(priority.begin(), priority.end(), "auto") != priority.end())
+                throw InputError("--priority auto ranks every tissue itself: give it alone (--priority auto) or give "
+                                 "TISSUE=N pairs (--priority csf=2,3=1)");
             if (priority.size() == 1 && priority.front() == "auto") {
                 // Every tissue ranked by thickness, the thinnest first (surface/thin_first_priority.h).
                 options.priority = surface::thin_first_priority(image, options.background);

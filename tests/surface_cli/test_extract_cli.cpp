@@ -100,6 +100,11 @@ TEST(ExtractCli, PriorityKeepsAOneVoxelShellBetweenBallAndOutside)
     EXPECT_EQ(ball_meets_outside({"--priority", "shell=1"}), 0u);
     std::ifstream in(dir / "s.json");
     EXPECT_EQ(nlohmann::json::parse(in)["priority"]["1"].get<int>(), 1);
+    // auto ranks the one-voxel shell above the ball: the same result without naming it.
+    EXPECT_EQ(ball_meets_outside({"--priority", "auto"}), 0u);
+    std::ifstream ranked(dir / "s.json");
+    const nlohmann::json priority = nlohmann::json::parse(ranked)["priority"];
+    EXPECT_GT(priority["1"].get<int>(), priority["2"].get<int>());
 }
 
 TEST(ExtractCli, StreamedPlyEqualsTheInMemoryPathByteForByte)
@@ -182,6 +187,8 @@ TEST(ExtractCli, BadInputExitsTwoWithOneLineAndNoOutput)
          "--priority bone=1"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "7=1"},
          "priority given for label 7"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "auto,1=2"},
+         "--priority auto ranks every tissue itself"},
     };
     for (const auto& c : cases) {
         const auto result = run_cli("tm-extract", c.args);
