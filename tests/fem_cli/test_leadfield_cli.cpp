@@ -108,8 +108,8 @@ TEST(LeadfieldCli, TmSolveSumsAMontageFromTheTdcsLeadField)
         const CliResult direct = run_cli("tm-solve", {"-i", head.mesh, "-o", head.path("direct.vtu"), "--electrodes", head.path("montage.csv"),
                                                       "--tolerance", "1e-12", "--processes", "1"});
         ASSERT_EQ(direct.exit_code, 0) << direct.err;
-        const std::vector<double>& a = io::read_vtu(head.path("summed.vtu")).point_array("potential_V")->values;
-        const std::vector<double>& b = io::read_vtu(head.path("direct.vtu")).point_array("potential_V")->values;
+        const std::vector<double> a = io::read_vtu(head.path("summed.vtu")).point_array("potential_V")->values;
+        const std::vector<double> b = io::read_vtu(head.path("direct.vtu")).point_array("potential_V")->values;
         ASSERT_EQ(a.size(), b.size());
         const auto [low, high] = std::minmax_element(b.begin(), b.end());
         double worst = 0;
