@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "render/charts.h"
 #include "render/tissue_colours.h"
-#include "volume/check_mesh.h"
 
 namespace tissuemesh::render {
 
@@ -31,7 +31,7 @@ QualityHistograms quality_histograms(const TetMesh& mesh)
     h.min_dihedral_deg.assign(h.tissues.size(), 180);
     h.max_radius_edge_ratio.assign(h.tissues.size(), 0);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const volume::TetShape shape = volume::tet_shape(mesh, t);
+        const TetShape shape = tet_shape(mesh, t);
         const std::size_t s = stack.at(mesh.tet_labels[t]);
         const auto dihedral_bin = static_cast<std::size_t>(std::clamp(shape.min_dihedral_deg / 5, 0.0, 17.0));
         h.min_dihedral[dihedral_bin][s] += 1;

@@ -22,7 +22,7 @@ struct QualityHistograms {
     static const std::vector<double>& radius_edge_edges(); ///< lower bin edges 0.6, 0.8, 1, 1.25, 1.5, 2, 3, 5, 10 (last: and above)
 };
 
-/// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (volume::tet_shape).
+/// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (tet_shape, core/tet_shape.h).
 QualityHistograms quality_histograms(const TetMesh& mesh);
 
 /// Two bar charts side by side of `histograms` (from quality_histograms(mesh)): smallest dihedral angle and

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "fem/compute_fields.h"
 #include "fem/estimate_error.h"
 #include "fem/outer_boundary.h"
@@ -22,7 +23,6 @@
 #include "io/write_vtu.h"
 #include "tools/lead_field_files.h"
 #include "tools/run_tool.h"
-#include "volume/check_mesh.h"
 
 using namespace tissuemesh;
 
@@ -123,7 +123,7 @@ double min_dihedral_deg(const TetMesh& mesh)
     const auto count = static_cast<std::int64_t>(mesh.tet_count());
 #pragma omp parallel for schedule(static) reduction(min : smallest)
     for (std::int64_t t = 0; t < count; ++t)
-        smallest = std::min(smallest, volume::tet_shape(mesh, static_cast<std::size_t>(t)).min_dihedral_deg);
+        smallest = std::min(smallest, tet_shape(mesh, static_cast<std::size_t>(t)).min_dihedral_deg);
     return smallest;
 }
 

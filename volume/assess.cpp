@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "volume/check_mesh.h"
 #include "volume/rasterize.h"
 

@@ -61,10 +61,4 @@ inline constexpr double flat_volume_ratio = 1e-9;
 /// Checks `mesh`; with a non-empty `image`, also each tissue's voxel agreement (Dice), by rasterize_tets().
 MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image = nullptr, const Progress& progress = {});
 
-/// Smallest and largest dihedral angle (degrees) and radius-edge ratio of tet `t`.
-struct TetShape {
-    double min_dihedral_deg, max_dihedral_deg, radius_edge_ratio;
-};
-TetShape tet_shape(const TetMesh& mesh, std::size_t t);
-
 } // namespace tissuemesh::volume

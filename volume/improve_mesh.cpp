@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/flips.h"
 #include "volume/detail/insert_node.h"

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "surface/check_complex.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/face_map.h"

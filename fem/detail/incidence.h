@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/tet_mesh.h"
+#include "core/tet_shape.h"
 
 namespace tissuemesh::fem::detail {
 
@@ -21,9 +22,8 @@ NodeTets node_tets(const TetMesh& mesh);
 /// No tet across the face (it is on the outer boundary).
 inline constexpr std::uint32_t no_tet = 0xffffffffu;
 
-/// The vertices of face k of a tet (the face opposite vertex k), in the order that makes its right-hand
-/// normal point out of a positively oriented tet.
-inline constexpr int face_vertices[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+/// The vertices of face k of a tet (the face opposite vertex k), right-hand normal outward: core's table.
+inline constexpr const auto& face_vertices = tet_faces;
 
 /// For face k of tet t, the other tet that holds it, or no_tet: entry 4 t + k (#T by 4). The result does
 /// not depend on the thread count.

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/tetgen_adapter.h"
 #include "volume/improve_mesh.h"

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/tet_shape.h"
 #include "image/connected_components.h"
 #include "image/phantom.h"
 #include "io/read_label_image.h"
@@ -200,7 +201,7 @@ TEST(TetraQuality, BoundsHoldForTetsOffTheInterfaces)
         const Tet& tet = mesh.tets[t];
         if (on_interface[tet[0]] || on_interface[tet[1]] || on_interface[tet[2]] || on_interface[tet[3]]) continue;
         ++off;
-        const volume::TetShape shape = volume::tet_shape(mesh, t);
+        const TetShape shape = tet_shape(mesh, t);
         smallest_dihedral = std::min(smallest_dihedral, shape.min_dihedral_deg);
         if (shape.radius_edge_ratio > 2.0 + 1e-9) ++over_ratio;
     }

@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/tet_shape.h"
+
 namespace tissuemesh::volume::detail {
 
 struct FaceKey {
@@ -38,8 +40,11 @@ struct FaceUse {
 };
 
 /// Local faces of a tet, opposite vertex i, ordered so that for a positive tet the face normal (right-hand
-/// rule) points into the tet, towards vertex i.
-inline constexpr int local_faces[4][3] = {{1, 3, 2}, {0, 2, 3}, {0, 3, 1}, {0, 1, 2}};
+/// rule) points into the tet, towards vertex i: core's tet_faces, each face turned over.
+inline constexpr int local_faces[4][3] = {{tet_faces[0][0], tet_faces[0][2], tet_faces[0][1]},
+                                          {tet_faces[1][0], tet_faces[1][2], tet_faces[1][1]},
+                                          {tet_faces[2][0], tet_faces[2][2], tet_faces[2][1]},
+                                          {tet_faces[3][0], tet_faces[3][2], tet_faces[3][1]}};
 
 /// Maps every face of `tets` (any 4-index type) to the tets that use it.
 template <typename TetList>

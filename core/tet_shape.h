@@ -1,0 +1,26 @@
+// One tetrahedron's local geometry: its face numbering, and the shape measures every report, chart and
+// quality check quotes.
+#pragma once
+
+#include <cstddef>
+
+#include "core/tet_mesh.h"
+
+namespace tissuemesh {
+
+/// The faces of a tet by local corners: face k is the one opposite corner k, ordered so that its right-hand
+/// normal points out of a positively oriented tet. The one face numbering of the project (the FE face
+/// loops, the mesh checks and the improver read it).
+inline constexpr int tet_faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+/// Smallest and largest dihedral angle (degrees) and radius-edge ratio (circumradius over shortest edge;
+/// infinite for a flat tet) of a tet. A regular tet has 70.5 degrees everywhere and a ratio of 0.61.
+struct TetShape {
+    double min_dihedral_deg, max_dihedral_deg, radius_edge_ratio;
+};
+
+/// The shape of tet `t` of `mesh`.
+/// @pre t < mesh.tets.size() and its vertex indices are in range
+TetShape tet_shape(const TetMesh& mesh, std::size_t t);
+
+} // namespace tissuemesh
