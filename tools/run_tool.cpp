@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -80,6 +81,20 @@ double peak_memory_mb()
     return static_cast<double>(std::max(self.ru_maxrss, children.ru_maxrss)) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+/// Why the --json summary cannot be written at `path`, or "" when its folder exists and takes files. Checked
+/// before the work, so that a run never ends with its outputs written and its summary refused.
+std::string summary_path_problem(const std::filesystem::path& path)
+{
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) return "it is a folder; give a file name";
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    if (!std::filesystem::is_directory(folder, ignored))
+        return concat("its folder ", folder.string(), " does not exist; create it or give another path");
+    if (::access(folder.c_str(), W_OK) != 0)
+        return concat("its folder ", folder.string(), " is not writable; give a path in a folder you can write");
+    return "";
+}
+
 /// Writes the --json summary; false (the error on stderr) when it cannot be written: the run then did not
 /// deliver what was asked, and its exit code says so.
 bool write_summary(const std::string& path, nlohmann::json summary, const std::string& tool)
@@ -129,6 +144,12 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
         std::fprintf(stderr, "%s: error: %s; see %s --help\n", spec.name.c_str(), one_line(e.what()).c_str(),
                      spec.name.c_str());
         return 2;
+    }
+    if (!json_path.empty()) {
+        if (const std::string problem = summary_path_problem(json_path); !problem.empty()) {
+            std::fprintf(stderr, "%s: error: --json %s: %s\n", spec.name.c_str(), json_path.c_str(), problem.c_str());
+            return 2;
+        }
     }
 
     ToolContext context;
