@@ -46,8 +46,8 @@ struct LeadFieldSource {
 
 /// Settings of compute_lead_fields(). Lengths in mm.
 struct LeadFieldOptions {
-    /// Venant: the most accurate of our models on our meshes at the eccentricities EEG sources have (README,
-    /// Measured figures); subtraction costs a pass over the mesh per source column.
+    /// Venant: the most accurate of our models on our meshes at the eccentricities EEG sources have
+    /// (docs/fem.md, accuracy); subtraction costs a pass over the mesh per source column.
     DipoleModel dipole_model = DipoleModel::venant;
     VenantOptions venant;                       ///< used only with DipoleModel::venant
     std::vector<Label> source_tissues;          ///< sources must lie in these tissues (empty: any)

@@ -40,12 +40,12 @@ enum class DipoleModel {
     /// has no free parameter, keeps sum(b) = 0 exactly and costs one point location. The loads carry the
     /// dipole moment exactly but also a spurious quadrupole of the size of that one tet, set by its shape
     /// and the moment's direction in it: the error varies from tet to tet by a factor of 5 or more and grows as the
-    /// dipole nears a conductivity jump (measured in the README).
+    /// dipole nears a conductivity jump (measured in docs/fem.md).
     partial_integration,
     /// phi = phi_inf + phi_corr: the dipole's exact potential in an unbounded medium of the source tissue's
     /// conductivity plus a smooth P1 correction whose loads are integrals over the tissues of other
     /// conductivity and the outer boundary (fem/detail/subtraction.h). Far more accurate near interfaces
-    /// (see the README); needs an isotropic tissue at the source and a source off the nodes, and costs a
+    /// (see docs/fem.md); needs an isotropic tissue at the source and a source off the nodes, and costs a
     /// quadrature pass over the tets of other conductivity per dipole. Nodal potentials (and E, J from
     /// them) then hold the singular part too.
     subtraction,
@@ -54,7 +54,7 @@ enum class DipoleModel {
     /// tissue, chosen so that they carry the dipole's moment, no net current and no traceless second moment
     /// (the part of the second moments the potential at a distance sees), regularised to keep them small.
     /// Works in any tissue and on nodes, costs what partial integration costs, and is as accurate as
-    /// subtraction or better near the interfaces (see the README): it spreads the source over a node
+    /// subtraction or better near the interfaces (see docs/fem.md): it spreads the source over a node
     /// star, so it does not carry the quadrupole of the one tet that holds the dipole.
     venant,
 };

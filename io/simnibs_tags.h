@@ -19,7 +19,7 @@ struct SimnibsTissue {
 
 /// The tissues with a standard SimNIBS tag and the names accepted for each: white matter 1, grey matter 2,
 /// CSF 3, bone/skull 4, scalp/skin 5, eyes 6, compact bone 7, spongy bone 8, blood 9, muscle 10, edema 11,
-/// fat 12 (the full table: README, "SimNIBS numbering").
+/// fat 12 (the full table: docs/interop.md).
 const std::vector<SimnibsTissue>& simnibs_tissues();
 
 /// How names are compared: lower case, '_' and '-' as spaces, runs of spaces as one, trimmed ("Grey_Matter" ->

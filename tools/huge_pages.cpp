@@ -9,7 +9,7 @@
 // of 2 MiB or more are therefore marked MADV_HUGEPAGE, so they fault in 2 MiB at a time where the kernel
 // allows transparent huge pages (Debian's default "madvise" mode); elsewhere the advice is refused and
 // nothing changes. Aligning the blocks to 2 MiB (aligned_alloc) was as fast but cost 40% more peak memory.
-// Figures in the README (the surface chain's sixth round). Same results, byte for byte: only where memory
+// Figures in bench/HISTORY.md (the surface chain's sixth round). Same results, byte for byte: only where memory
 // comes from changes.
 //
 // Not under AddressSanitizer, whose own operator new checks that blocks are freed the way they were made.

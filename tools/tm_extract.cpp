@@ -105,7 +105,7 @@ nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceS
 }
 
 // Memory of an extraction, measured on spheres4 at 1 and 2 mm, the thin phantom and the 1 mm usc19-5 head
-// (README, "Resource limits"): reading holds the file's voxels and 4 B more per voxel (the 1 mm head, streamed to
+// (docs/robustness.md): reading holds the file's voxels and 4 B more per voxel (the 1 mm head, streamed to
 // .ply: 46 MiB in all, 6 B per voxel); extracting holds the labels and about 65 B per triangle, and marching cubes on Freudenthal's tets makes 6-8 triangles per voxel
 // face between two labels, so about 500 B per such face.
 constexpr double read_bytes_per_voxel = 4;

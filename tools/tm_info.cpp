@@ -74,8 +74,8 @@ nlohmann::json to_json(const image::LabelStatistics& stats)
             {"voxel_counts", counts},      {"labels", labels}};
 }
 
-// Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head (README,
-// "Resource limits"): the labels, the component maps of the statistics and their queues.
+// Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head
+// (docs/robustness.md): the labels, the component maps of the statistics and their queues.
 constexpr double bytes_per_voxel = 14;
 
 } // namespace

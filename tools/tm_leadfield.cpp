@@ -176,7 +176,8 @@ int main(int argc, char** argv)
             app.add_option("--min-meg-distance-mm", options.min_meg_distance_mm,
                            "MEG coils nearer the surface are refused")->capture_default_str()->check(CLI::NonNegativeNumber);
             app.add_option("--tolerance", tolerance, "Relative residual of every solve (1e-6 keeps the lead field within "
-                           "4e-5 of its converged value, README)")->capture_default_str()->check(CLI::PositiveNumber);
+                           "4e-5 of its converged value, docs/fem.md)")
+                ->capture_default_str()->check(CLI::PositiveNumber);
             app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
             app.add_option("--processes", processes, "MPI processes for the AMG-CG: 0 = one per core, 1 = none")
                 ->check(CLI::Range(0, 1024));

@@ -93,8 +93,8 @@ nlohmann::json to_json(const image::PrepReport& report)
             {"changed_voxels", report.changed_voxels}};
 }
 
-// Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head (README,
-// "Resource limits"): the labels; the clean-ups (--keep-largest, --remove-islands, --fill-holes: component maps
+// Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head
+// (docs/robustness.md): the labels; the clean-ups (--keep-largest, --remove-islands, --fill-holes: component maps
 // and queues) on the grid they run on, which is the output's when resampling; a resampled output's labels and
 // the writer's buffer.
 constexpr double bytes_per_label = 2;

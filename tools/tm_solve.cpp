@@ -164,7 +164,7 @@ fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, con
 
 // Memory of a solve, the mesh it read included: 2.9-3.0 kB per node on TetGen meshes of spheres4 (0.23 and
 // 0.56 M nodes, 5.5-6.1 tets per node; the matrix, its reduction, BoomerAMG's hierarchy, fields and .vtu),
-// 2.1-2.3 kB on structured boxes (README, "Resource limits").
+// 2.1-2.3 kB on structured boxes (docs/robustness.md).
 constexpr double bytes_per_node = 3000;
 
 /// Refuses a solve that would need more memory than --max-memory allows, before the assembly.

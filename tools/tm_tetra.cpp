@@ -72,8 +72,8 @@ std::map<Label, TissueExtent> tissue_extents(const InterfaceComplex& complex)
 }
 
 // Memory of a TetGen run (the child process's peak), fitted to runs on the thin phantom and spheres4 at 3 mm with
-// and without a volume bound, and matching the README's 2 mm sphere head and 1 mm usc19-5 head within 2% (README,
-// "Resource limits"): about bytes_per_triangle per interface triangle (TetGen's subfaces, segments and its
+// and without a volume bound, and matching the 2 mm sphere head and 1 mm usc19-5 head of bench/HISTORY.md within
+// 2% (docs/robustness.md): about bytes_per_triangle per interface triangle (TetGen's subfaces, segments and its
 // constrained recovery) and bytes_per_tet per tet. TetGen made 2.3-3.4 tets per triangle under the quality
 // bounds alone, and about 2.1 tets per bound's volume of tissue where a volume bound acts. With the interfaces
 // kept as they are (no Steiner point on them), the bound acts only farther than about a triangle's edge from

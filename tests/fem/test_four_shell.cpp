@@ -116,7 +116,7 @@ TEST(FourShellHead, SubtractionEccentricitiesLong)
 // 0.0163 / 0.0095, 1.010 / 1.005; 0.95: 0.0305 / 0.0126, 1.015 / 1.004. The target (RDM and |MAG - 1| under 2%)
 // holds up to 0.9 on this 62 k-node mesh, where partial integration reaches 0.032 and subtraction 0.0185
 // (0.95: 3.9 mm from the CSF, one brain element: subtraction 0.0375, partial integration 0.036). Over 13
-// directions at 0.9 Venant stayed at or under 0.0184 (README).
+// directions at 0.9 Venant stayed at or under 0.0184 (docs/fem.md).
 TEST(FourShellHead, VenantEccentricitiesLong)
 {
     const TetMesh mesh = testing::four_shell_head(4, 10.0);

@@ -105,7 +105,7 @@ TEST(PipelineSpheres, LongSmoothedSurfacesAt2mm)
 
 /// The 1 mm phantom through the same chain (decimation bound 0.5 mm, 2 mm interface edges, tets up to
 /// 10 mm^3: 188 k nodes, 1.05 M tets), the three dipole models at eccentricities 0.2 to 0.95 (0.95: 3.9 mm
-/// from the CSF). Measured today (radial / tangential RDM, MAG; the full table in the README):
+/// from the CSF). Measured today (radial / tangential RDM, MAG; the full table in docs/fem.md):
 ///   Venant       0.2: 0.0041 / 0.0039, 1.006 / 1.005 ... 0.9: 0.0119 / 0.0102, 1.015 / 1.006;
 ///                0.95: 0.0084 / 0.0138, 1.016 / 1.004
 ///   subtraction  0.2: 0.0028 / 0.0023, 1.006 / 1.005 ... 0.9: 0.0128 / 0.0158, 1.015 / 1.010;
@@ -133,7 +133,7 @@ TEST(PipelineSpheres, LongSmoothedSurfacesAt1mm)
     std::printf("[pipeline] worst RDM, |MAG - 1|: Venant 0.2-0.9 %.4f %.4f, 0.95 %.4f %.4f; subtraction 0.2-0.9 "
                 "%.4f %.4f, 0.95 %.4f %.4f; partial integration 0.2-0.95 %.4f %.4f\n", rdm_venant, mag_venant, rdm_venant_95,
                 mag_venant_95, rdm_sub, mag_sub, rdm_sub_95, mag_sub_95, rdm_pi, mag_pi);
-    // The target up to eccentricity 0.9, met by the two models the README recommends (measured
+    // The target up to eccentricity 0.9, met by the two models docs/fem.md recommends (measured
     // worst: Venant 0.0119 / 0.0149, subtraction 0.0158 / 0.0150).
     EXPECT_LT(rdm_venant, 0.02);
     EXPECT_LT(mag_venant, 0.02);
@@ -142,7 +142,7 @@ TEST(PipelineSpheres, LongSmoothedSurfacesAt1mm)
     // At 0.95 the source is within one brain element of the CSF (measured: Venant 0.0138 / 0.0157,
     // subtraction 0.0209 / 0.0193). |MAG - 1| there follows the surfaces' deviation from the spheres as
     // much as the source model: both models give 1.016-1.019 on this axis, and over 13 directions at 0.95
-    // Venant reached RDM 0.030 and |MAG - 1| 0.019, subtraction 0.058 and 0.038 (README). Bounds: 0.03.
+    // Venant reached RDM 0.030 and |MAG - 1| 0.019, subtraction 0.058 and 0.038 (docs/fem.md). Bounds: 0.03.
     EXPECT_LT(rdm_venant_95, 0.03);
     EXPECT_LT(mag_venant_95, 0.03);
     EXPECT_LT(rdm_sub_95, 0.03);

@@ -66,7 +66,7 @@ TEST(Venant, MonopolesCarryTheDipoleMomentAndNoNetCurrent)
     for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(m.first[i], moment[i], 1e-12 * norm(moment)) << i;
     // 15 nodes leave room to cancel the traceless second moment too; what is left is the regulariser's
     // trade-off (measured 1.3e-15 A*m^2, about 3e-5 of |p| times the 2 mm edge). Partial integration
-    // leaves 0.2 to 3 times |p| times the tet's longest edge (README), so 1e-3 tells the two apart.
+    // leaves 0.2 to 3 times |p| times the tet's longest edge (docs/fem.md), so 1e-3 tells the two apart.
     std::printf("[venant] %zu nodes, largest current %.3e A, traceless second moment %.3e A*m^2\n",
                 monopoles.nodes.size(), m.largest, m.traceless_second);
     EXPECT_LT(m.traceless_second, 1e-3 * norm(moment) * 2e-3);

@@ -223,7 +223,7 @@ def nifti_voxels(path):
 
 
 # MiB per unit of the count that drives each step's peak, and MiB for the program: the tools' own estimates where
-# they make one (README, "Resource limits": tm-tetra 1.9 kB per triangle and 3.4 tets of 165 B each, tm-solve 3 kB
+# they make one (docs/robustness.md: tm-tetra 1.9 kB per triangle and 3.4 tets of 165 B each, tm-solve 3 kB
 # per node), else the --json peak_memory_mb of the usc19-5 head at 4 and 6 mm and spheres4 at 4 mm (2026-12-04),
 # divided by the count and rounded up: smooth 0.25-0.41 kB per triangle, decimate 0.22-0.24, remesh 0.41 per
 # triangle in, assess 0.29-0.45 kB per tet, refine 1.06-1.09, check-mesh 0.26-0.36, pictures 0.15 kB per tet.
