@@ -357,27 +357,47 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
     return true;
 }
 
-std::optional<double> LocalEditor::small_shell_volume(std::uint32_t v) const
+void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
 {
     constexpr std::size_t limit = 24;
-    if (stars_[v].empty()) return std::nullopt;
-    const LabelPair pair = sides_[stars_[v].front()];
-    std::vector<std::uint32_t> vertices{v}, triangles;
-    for (std::size_t next = 0; next < vertices.size(); ++next)
-        for (const std::uint32_t t : stars_[vertices[next]]) {
-            if (std::find(triangles.begin(), triangles.end(), t) != triangles.end()) continue;
-            if (!(sides_[t] == pair) || triangles.size() == limit) return std::nullopt;
-            triangles.push_back(t);
-            for (const std::uint32_t x : triangles_[t])
-                if (std::find(vertices.begin(), vertices.end(), x) == vertices.end()) vertices.push_back(x);
+    out.clear();
+    if (vertex_stamp_.size() < positions_.size()) vertex_stamp_.resize(positions_.size(), 0);
+    thread_local std::vector<std::uint32_t> vertices, triangles;
+    thread_local std::vector<Label> seen;
+    seen.clear();
+    for (const std::uint32_t first : stars_[v])
+        for (const Label tissue : {sides_[first].from, sides_[first].to}) {
+            if (tissue == background_ || std::find(seen.begin(), seen.end(), tissue) != seen.end()) continue;
+            seen.push_back(tissue);
+            // Breadth first through shared vertices over the triangles with `tissue` on a side, at most `limit`.
+            ++query_;
+            vertices.assign(1, v), triangles.clear();
+            vertex_stamp_[v] = query_;
+            bool small = true;
+            for (std::size_t next = 0; next < vertices.size() && small; ++next)
+                for (const std::uint32_t t : stars_[vertices[next]]) {
+                    if ((sides_[t].from != tissue && sides_[t].to != tissue) || stamp_[t] == query_) continue;
+                    if (triangles.size() == limit) {
+                        small = false;
+                        break;
+                    }
+                    stamp_[t] = query_;
+                    triangles.push_back(t);
+                    for (const std::uint32_t x : triangles_[t])
+                        if (vertex_stamp_[x] != query_) vertex_stamp_[x] = query_, vertices.push_back(x);
+                }
+            if (!small) continue;
+            // Normals point from `from` into `to`: outward where the tissue is `from`.
+            SmallPiece piece{tissue, 0, 0};
+            const Vec3 origin = positions_[v];
+            for (const std::uint32_t t : triangles) {
+                const TriangleCorners c = corners(triangles_[t]);
+                const double sign = sides_[t].from == tissue ? 1 : -1;
+                piece.volume += sign * dot(cross(c[1] - origin, c[2] - origin), c[0] - origin) / 6;
+                piece.area += norm(cross(c[1] - c[0], c[2] - c[0])) / 2;
+            }
+            out.push_back(piece);
         }
-    double volume = 0;
-    const Vec3 origin = positions_[v];
-    for (const std::uint32_t t : triangles) {
-        const TriangleCorners c = corners(triangles_[t]);
-        volume += dot(cross(c[1] - origin, c[2] - origin), c[0] - origin) / 6;
-    }
-    return volume;
 }
 
 template <typename Visit>

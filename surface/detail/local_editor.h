@@ -38,6 +38,13 @@ struct LocalLimits {
 };
 
 
+/// A small closed piece of one tissue (LocalEditor::small_pieces).
+struct SmallPiece {
+    Label tissue = 0;
+    double volume = 0;  ///< enclosed by its triangles, positive with the tissue inside
+    double area = 0;
+};
+
 class LocalEditor {
 public:
     /// Takes the complex over; `cell_mm` is the neighbour grid's cell (about twice the longest edge expected).
@@ -127,11 +134,13 @@ private:
     /// flattened over a few moves and then pushed through its opposite face ends inside out, intersection-free,
     /// with every tilt small; its tissue then claims the space around it (TetGen's tets disagree on their tissue).
     bool path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to);
-    /// The enclosed volume of the closed piece of surface around v when it is small (at most 24 triangles, all
-    /// of one tissue pair): positive for the `from` tissue inside. nullopt for larger or mixed pieces. A
-    /// collapse may shrink a small island (a white-matter speck in grey matter) to a tetrahedron inside out, or
-    /// flat, each new triangle within the tilt limit of the one it replaces and nothing crossing.
-    std::optional<double> small_shell_volume(std::uint32_t v) const;
+    /// The small pieces of tissue around v: for each tissue (not the background) on a side of a triangle at v,
+    /// the triangles with that tissue on a side reachable from v through shared vertices, when there are at
+    /// most 24 of them (a closed island: a white-matter speck in grey matter, a pocket of one organ between
+    /// two others). A collapse or a move may shrink such a piece to a tetrahedron inside out, or flat, or to a
+    /// sliver, each new triangle within the tilt limit of the one it replaces and nothing crossing; TetGen
+    /// then has only flat tets to fill it with.
+    void small_pieces(std::uint32_t v, std::vector<SmallPiece>& out);
     std::array<Vec3, 3> corners(const Triangle& t) const;
     /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the
     /// gap rule leaves alone (a sheet folding back towards itself faces the other way where it nears).
@@ -186,6 +195,7 @@ private:
     std::size_t triangles_before_edit_ = 0, vertices_before_edit_ = 0;
     std::vector<std::uint32_t> stamp_;  ///< per triangle: the query that last met it (candidates once each)
     std::uint32_t query_ = 0;
+    std::vector<std::uint32_t> vertex_stamp_;  ///< per vertex: the query that last met it (small_pieces)
     std::optional<EditFence> fence_;
     EditCounters counters_;
 };

@@ -17,6 +17,30 @@ namespace {
 /// mm^3 it passes every check and leaves TetGen a tet of no volume between its faces.
 constexpr double flat_shell_ratio = 1e-3;
 
+/// Nor may an edit leave it thinner than this volume over area^1.5 (a cube 0.068, a regular tet 0.052; of
+/// random tets, those above 0.02 all have dihedral angles of 6 degrees or more), unless it was thinner
+/// before and gets no thinner: a sliver-shaped pocket can only be meshed with sliver tets.
+constexpr double fat_piece_ratio = 0.02;
+
+double fatness(const SmallPiece& p) { return p.area > 0 ? std::abs(p.volume) / std::pow(p.area, 1.5) : 0; }
+
+/// Whether the small pieces after an edit are as fit to be meshed as before: each piece small before keeps
+/// its sign, a share of its volume and its fatness (or stays above fat_piece_ratio); a piece small only
+/// after is fat.
+bool pieces_ok(const std::vector<SmallPiece>& before, const std::vector<SmallPiece>& after)
+{
+    for (const SmallPiece& b : before) {
+        const auto a = std::find_if(after.begin(), after.end(), [&](const SmallPiece& p) { return p.tissue == b.tissue; });
+        if (a == after.end() || !(a->volume / b.volume > flat_shell_ratio)) return false;
+        if (fatness(*a) < fat_piece_ratio && fatness(*a) < fatness(b)) return false;
+    }
+    for (const SmallPiece& a : after)
+        if (std::none_of(before.begin(), before.end(), [&](const SmallPiece& p) { return p.tissue == a.tissue; }) &&
+            fatness(a) < fat_piece_ratio)
+            return false;
+    return true;
+}
+
 } // namespace
 
 bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
@@ -99,7 +123,12 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     thread_local std::vector<Prior> prior;
     prior.clear();
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
-    const std::optional<double> shell_before = small_shell_volume(v);
+    thread_local std::vector<SmallPiece> pieces_before, pieces_after;
+    small_pieces(v, pieces_before);
+    small_pieces(w, pieces_after);  // w's own pieces count too: the collapse may thin a piece at w alone
+    for (const SmallPiece& p : pieces_after)
+        if (std::none_of(pieces_before.begin(), pieces_before.end(), [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
+            pieces_before.push_back(p);
     begin_edit();
     save_star(v);
     save_star(w);
@@ -123,13 +152,11 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         undo();
         return false;
     }
-    if (shell_before) {
-        const std::optional<double> shell_after = small_shell_volume(w);
-        if (!shell_after || !(*shell_after / *shell_before > flat_shell_ratio)) {
-            ++counters_.topology;
-            undo();
-            return false;
-        }
+    small_pieces(w, pieces_after);
+    if (!pieces_ok(pieces_before, pieces_after)) {
+        ++counters_.topology;
+        undo();
+        return false;
     }
     for (const std::uint32_t t : dying) unfile(t);
     for (const std::uint32_t t : changed) {
@@ -339,15 +366,15 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         positions_[v] = old;
         return false;
     }
-    if (const std::optional<double> shell_after = small_shell_volume(v)) {
-        positions_[v] = old;
-        const std::optional<double> shell_before = small_shell_volume(v);
-        if (!(*shell_after / *shell_before > flat_shell_ratio)) {
-            ++counters_.topology;
-            return false;
-        }
-        positions_[v] = p;
+    thread_local std::vector<SmallPiece> pieces_before, pieces_after;
+    small_pieces(v, pieces_after);
+    positions_[v] = old;
+    small_pieces(v, pieces_before);
+    if (!pieces_ok(pieces_before, pieces_after)) {
+        ++counters_.topology;
+        return false;
     }
+    positions_[v] = p;
     for (const std::uint32_t t : stars_[v]) {
         unfile(t);
         file(t);

@@ -2,6 +2,8 @@
 // On the 1 mm usc19-5 head, remeshing turned a two-voxel air pocket in the skull (decimated to a tetrahedron of
 // four triangles) inside out by small moves, none of them tilting a triangle much or making an intersection;
 // tm-check-surface passed it and TetGen's tets then disagreed on their tissue around it.
+#include <map>
+
 #include <gtest/gtest.h>
 
 #include "surface/check_complex.h"
@@ -12,13 +14,34 @@ namespace {
 
 using surface::detail::LocalEditor;
 
-/// Tissue 1 in a tetrahedron (apex 3 over the base 0, 1, 2 in z = 0), the background 0 around it.
-InterfaceComplex pocket()
+/// Tissue 1 in a tetrahedron (apex over the base (0, 0, 0), (2, 0, 0), (0, 2, 0) in z = 0), the background 0
+/// around it, its faces cut into 40 triangles (the base into 25 by a 5 x 5 grid, each side into a fan of 5) so
+/// that the small-piece rule (at most 24 triangles: test_small_pieces.cpp) leaves it alone: the path rule alone
+/// must keep it right side out. Returns the apex's index in `apex`.
+InterfaceComplex pocket(std::uint32_t& apex)
 {
+    constexpr int n = 5;
     InterfaceComplex complex;
-    complex.vertices = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 1}};
-    for (const Triangle& t : {Triangle{0, 2, 1}, Triangle{0, 1, 3}, Triangle{1, 2, 3}, Triangle{2, 0, 3}})
-        complex.add_triangle(t, {1, 0});  // normals outwards: from tissue 1 to the background
+    std::map<std::pair<int, int>, std::uint32_t> grid;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i + j <= n; ++i) {
+            grid[{i, j}] = static_cast<std::uint32_t>(complex.vertices.size());
+            complex.vertices.push_back({2.0 * i / n, 2.0 * j / n, 0});
+        }
+    apex = static_cast<std::uint32_t>(complex.vertices.size());
+    complex.vertices.push_back({0.5, 0.5, 1});
+    const auto p = [&](int i, int j) { return grid.at({i, j}); };
+    const LabelPair sides{1, 0};  // normals outwards: from tissue 1 to the background
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i + j < n; ++i) {
+            complex.add_triangle({p(i, j), p(i, j + 1), p(i + 1, j)}, sides);  // base: normals down
+            if (i + j < n - 1) complex.add_triangle({p(i + 1, j), p(i, j + 1), p(i + 1, j + 1)}, sides);
+        }
+    for (int k = 0; k < n; ++k) {
+        complex.add_triangle({p(k, 0), p(k + 1, 0), apex}, sides);
+        complex.add_triangle({p(0, k + 1), p(0, k), apex}, sides);
+        complex.add_triangle({p(n - k, k), p(n - k - 1, k + 1), apex}, sides);
+    }
     return complex;
 }
 
@@ -29,19 +52,22 @@ double signed_volume(const std::array<Vec3, 4>& p)
 
 TEST(LocalEditor, AMoveThroughTheOppositeFaceIsRefusedThoughEveryStepLooksFine)
 {
-    ASSERT_TRUE(surface::check_complex(pocket()).ok());
-    LocalEditor editor(pocket(), {.min_angle_deg = 5, .max_tilt_deg = 45, .min_gap_mm = 0}, 2.0);
+    std::uint32_t apex = 0;
+    const InterfaceComplex complex = pocket(apex);
+    ASSERT_EQ(complex.triangles.size(), 40u);
+    ASSERT_TRUE(surface::check_complex(complex).ok());
+    LocalEditor editor(complex, {.min_angle_deg = 1, .max_tilt_deg = 45, .min_gap_mm = 0}, 2.0);
     // Down towards the base: each step tilts the side triangles by 16-23 degrees and is kept.
-    for (const double z : {0.5, 0.2, 0.05}) EXPECT_TRUE(editor.try_move(3, {0.5, 0.5, z})) << z;
+    for (const double z : {0.5, 0.2, 0.05}) EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, z})) << z;
     // Through the base: the side triangles tilt by 11 degrees and meet nothing, but the pocket would be inside out.
-    EXPECT_FALSE(editor.try_move(3, {0.5, 0.5, -0.05}));
-    EXPECT_DOUBLE_EQ(editor.position(3)[2], 0.05);
-    EXPECT_GT(signed_volume({editor.position(0), editor.position(1), editor.position(2), editor.position(3)}), 0);
+    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, -0.05}));
+    EXPECT_DOUBLE_EQ(editor.position(apex)[2], 0.05);
+    EXPECT_GT(signed_volume({editor.position(0), editor.position(5), editor.position(20), editor.position(apex)}), 0);  // the corners
     EXPECT_TRUE(surface::check_complex(editor.result()).ok());
     // Beside the base (not through it) the same depth would make triangles cross: refused as before.
-    EXPECT_FALSE(editor.try_move(3, {2.5, 2.5, -0.05}));
+    EXPECT_FALSE(editor.try_move(apex, {2.5, 2.5, -0.05}));
     // Back up: allowed.
-    EXPECT_TRUE(editor.try_move(3, {0.5, 0.5, 0.3}));
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.3}));
 }
 
 } // namespace
