@@ -29,6 +29,8 @@ nlohmann::json summarize(const volume::RefineReport& report, const volume::Refin
             {"mesh_volume_mm3", report.mesh_volume_mm3}, {"start_nodes", first.nodes},
             {"start_error_volume_mm3", first.total_error_volume_mm3}, {"nodes", last.nodes}, {"tets", last.tets},
             {"total_error_volume_mm3", last.total_error_volume_mm3}, {"worst_quality_key", last.worst_quality_key},
+            {"improved_error_volume_mm3", report.improved_error_volume_mm3 >= 0 ? nlohmann::json(report.improved_error_volume_mm3)
+                                                                                : nlohmann::json(nullptr)},
             {"refine_seconds", last.seconds}, {"iterations", rounds}};
 }
 
@@ -49,9 +51,9 @@ int main(int argc, char** argv)
          "coarse lattice over the image box, each tet taking its majority tissue (the mesh covers the box; background "
          "tets carry label 0). With -i MESH (from tm-tetra): constrained, every interface face kept exactly and nodes "
          "added inside the tissues only, so the error volume stays what the interfaces give while shapes and resolution "
-         "improve; at the end the tets are improved (tm-improve's improver, here flips and moves of nodes inside "
-         "tissues only: interfaces and nodes stay the last round's; --improve-insert-below-deg turns insertion on, "
-         "--no-improve leaves the last rebuild as it is). Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
+         "improve; at the end the tets are improved as tm-tetra improves them (interface nodes slide on the "
+         "interfaces, so the error volume is measured again; no new nodes with --max-nodes; --improve-keep-interfaces "
+         "--improve-insert-below-deg 0 keeps the last round's interfaces and nodes; --no-improve the last rebuild as it is). Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
          "tissue change walking from edge midpoints or from the centroid towards the vertices).",
          "Examples:\n  tm-refine --image head.nii.gz -o head.msh --log refine.csv --plot refine.svg --target-error-percent 2\n"
          "  tm-refine -i head.msh --image head.nii.gz -o finer.msh --log refine.csv --max-nodes 200000\n"
@@ -95,7 +97,7 @@ int main(int argc, char** argv)
                 write_text_atomically(plot_path, volume::refine_plot_svg(report, concat("tm-refine ", volume::placement_name(options.placement),
                                                                                          ": ", image_path)));
             context.summary = summarize(report, options, !input.empty());
-            // The written mesh: the last round's, its tets changed by the improver's flips (nodes kept unless insertion is on).
+            // The written mesh: the last round's, improved (moves, flips and new nodes).
             context.summary["nodes"] = mesh.vertices.size(), context.summary["tets"] = mesh.tets.size();
             if (report.improved) {
                 context.summary["improvement"] = tools::improve_json(report.improvement);
@@ -104,7 +106,9 @@ int main(int argc, char** argv)
             const volume::RefineIteration& last = report.iterations.back();
             std::printf("%s: %zu rounds, %zu -> %zu nodes, %zu tets, error volume %.1f -> %.1f mm^3 (%s)\n", output.c_str(),
                         report.iterations.size() - 1, report.iterations.front().nodes, mesh.vertices.size(), mesh.tets.size(),
-                        report.iterations.front().total_error_volume_mm3, last.total_error_volume_mm3, report.stop_reason.c_str());
+                        report.iterations.front().total_error_volume_mm3,
+                        report.improved_error_volume_mm3 >= 0 ? report.improved_error_volume_mm3 : last.total_error_volume_mm3,
+                        report.stop_reason.c_str());
             if ((options.target_error_mm3 > 0 || options.target_error_percent > 0) && !report.target_reached)
                 context.progress.warn("refine", concat("target error volume not reached (", report.stop_reason,
                                                        "); raise --iterations or --max-nodes"));

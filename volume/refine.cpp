@@ -350,8 +350,15 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     detail::drop_unused_nodes(r.mesh);
     if (!r.constrained) mark_interfaces(r.mesh, options.assess.background);
     if (options.improve) {
-        rep.improvement = improve_mesh(r.mesh, options.improvement, progress);
+        ImproveOptions improvement = options.improvement;
+        if (options.max_nodes > 0) improvement.insert = improvement.insert_on_interfaces = false;  // the budget holds
+        // Delaunay-only: the interfaces are the labels' staircase faces, no surface worth sliding on; a box mesh of
+        // majority tissues would also take nodes by the thousand. Flips and inner moves only.
+        if (!r.constrained) improvement.insert = improvement.insert_on_interfaces = improvement.move_interface_nodes = false;
+        rep.improvement = improve_mesh(r.mesh, improvement, progress);
         rep.improved = true;
+        if (improvement.move_interface_nodes || improvement.insert || improvement.insert_on_interfaces)
+            rep.improved_error_volume_mm3 = assess_elements(r.mesh, image, options.assess, progress).total_error_volume_mm3;
     }
     return std::move(r.mesh);
 }

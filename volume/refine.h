@@ -39,10 +39,11 @@ struct RefineOptions {
     AssessOptions assess;              ///< priority weights and quality key weights
     bool improve = true;               ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
                                        ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
-    /// Its options. By default only flips and moves of nodes inside tissues: refinement's own promises hold
-    /// (every interface face kept, the node budget, the nodes of the last round), and so does its error volume,
-    /// since no tissue boundary moves. Turning insertion or interface moves on trades them for better angles.
-    ImproveOptions improvement{.insert = false, .move_interface_nodes = false, .insert_on_interfaces = false};
+    /// Its options: by default tm-tetra's (flips, moves, interface nodes sliding on their interfaces, new nodes),
+    /// so the refined mesh is no worse shaped than the one tm-tetra made. Interface moves and new nodes change
+    /// what the tets cover a little: the error volume is then measured again (RefineReport). With a node budget
+    /// the improver adds no node; Delaunay-only, it flips and moves inner nodes only.
+    ImproveOptions improvement{};
 };
 
 /// One round: the mesh after it (iteration 0 is the start mesh).
@@ -66,6 +67,8 @@ struct RefineReport {
     double mesh_volume_mm3 = 0;
     bool improved = false;                 ///< improve_mesh() ran on the result; `improvement` says what it did
     ImproveReport improvement;
+    double improved_error_volume_mm3 = -1; ///< the error volume of the improved mesh when the improver could change
+                                           ///< it (interface moves, new nodes); -1: not measured (unchanged)
 };
 
 /// Refines a tet mesh against `image` by the paper's loop: assess every tet, place one node in each of the
@@ -90,9 +93,8 @@ struct RefineReport {
 /// fewer than a tenth of a batch's nodes remain, the batch
 /// is placed again with the tets' centroids in place of the dropped nodes (dropped again when too close).
 /// A valid mesh is always returned: the last complete round's, improved (options.improve) by improve_mesh()
-/// against its own interface faces. With the default improvement options its nodes are the last round's (inner
-/// ones moved), its interface faces and error volume unchanged; the minimum distance of new nodes to the
-/// interfaces is a rule of placement, which the improver's moves do not keep.
+/// against its own interface faces (interface nodes slide on them; see RefineOptions::improvement); the minimum
+/// distance of new nodes to the interfaces is a rule of placement, which the improver's moves do not keep.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
 /// @throws AlgorithmError when TetGen fails
