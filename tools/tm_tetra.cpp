@@ -11,6 +11,7 @@
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 #include "volume/tetrahedralize.h"
 
 using namespace tissuemesh;
@@ -18,7 +19,8 @@ using namespace tissuemesh;
 namespace {
 
 /// Parses "8" (every tissue) or "scalp=8,4=2.5" (per tissue, by name or label) into the options.
-void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool as_edge_mm, volume::TetrahedralizeOptions& options)
+void parse_sizes(const std::string& text, const tools::TissueTable& tissues, const std::string& option, bool as_edge_mm,
+                 volume::TetrahedralizeOptions& options)
 {
     // A regular tet with edge L has volume L^3 / (6 sqrt 2).
     auto to_volume = [&](double value) { return as_edge_mm ? value * value * value / (6.0 * std::sqrt(2.0)) : value; };
@@ -30,17 +32,11 @@ void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool 
         const double value = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(value > 0))
             throw InputError(concat("size \"", item, "\" is not a positive number; write e.g. 8 or scalp=8,brain=4"));
-        if (equals == std::string::npos) {
+        if (equals == std::string::npos)
             options.max_volume_mm3 = to_volume(value);
-            continue;
-        }
-        const std::string tissue = item.substr(0, equals);
-        bool found = false;
-        for (const auto& [label, name] : complex.names)
-            if (name == tissue) options.max_volume_per_tissue_mm3[label] = to_volume(value), found = true;
-        if (!found && !tissue.empty() && tissue.find_first_not_of("0123456789") == std::string::npos)
-            options.max_volume_per_tissue_mm3[static_cast<Label>(std::stoul(tissue))] = to_volume(value), found = true;
-        if (!found) throw InputError(concat("unknown tissue \"", tissue, "\" in the sizes; use a tissue name or label of the surface"));
+        else
+            options.max_volume_per_tissue_mm3[tools::parse_tissue_setting(item, tissues, option, "scalp=8,4=2.5").tissue] =
+                to_volume(value);
     }
 }
 
@@ -153,8 +149,9 @@ int main(int argc, char** argv)
             options.mesh_background_cavities = !drop_cavities;
             options.improve = !improve_flags.off;
             options.improvement = improve_flags.to_options();
-            if (!max_volume.empty()) parse_sizes(max_volume, complex, false, options);
-            if (!max_edge.empty()) parse_sizes(max_edge, complex, true, options);
+            const tools::TissueTable tissues = tools::tissue_table(complex, input);
+            if (!max_volume.empty()) parse_sizes(max_volume, tissues, "--max-volume", false, options);
+            if (!max_edge.empty()) parse_sizes(max_edge, tissues, "--max-edge-mm", true, options);
             check_memory(context, input, complex, options);
             volume::TetrahedralizeReport report;
             const TetMesh mesh =
