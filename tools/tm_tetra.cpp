@@ -133,7 +133,8 @@ int main(int argc, char** argv)
             app.add_option("--radius-edge", options.max_radius_edge_ratio, "Bound on circumradius / shortest edge (>= 1)")
                 ->capture_default_str();
             app.add_option("--min-dihedral-deg", options.min_dihedral_deg, "Bound on the smallest dihedral angle")->capture_default_str();
-            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->capture_default_str();
+            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->check(CLI::Range(0, 10))
+                ->capture_default_str();
             app.add_flag("--no-quality", no_quality, "Do not refine for the radius-edge and dihedral bounds");
             app.add_flag("--allow-steiner", allow_steiner, "Let TetGen split interface triangles for the bounds (it still "
                                                            "misses them next to small input angles); interfaces kept "

@@ -27,7 +27,7 @@ std::string build_switches(const TetrahedralizeOptions& options, bool with_regio
     if (options.improve_quality) switches += concat("q", options.max_radius_edge_ratio, "/", options.min_dihedral_deg);
     if (with_regions) switches += "Aa";
     if (options.max_volume_mm3 > 0) switches += concat("a", options.max_volume_mm3);
-    switches += concat("O", std::clamp(options.optimisation_level, 0, 10));
+    switches += concat("O", options.optimisation_level);
     return switches;
 }
 
@@ -267,6 +267,9 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     if (options.improve_quality && options.max_radius_edge_ratio < 1.0)
         throw InputError(concat("radius-edge ratio bound ", options.max_radius_edge_ratio, " is below 1; TetGen needs >= 1 "
                                 "(2 is a good default)"));
+    if (options.optimisation_level < 0 || options.optimisation_level > 10)
+        throw InputError(concat("mesh optimisation level ", options.optimisation_level, " is outside 0..10 (TetGen -O; 2 is "
+                                "the default)"));
     for (const auto& [tissue, volume] : options.max_volume_per_tissue_mm3)
         if (!(volume > 0)) throw InputError(concat("maximum volume for tissue ", tissue, " is ", volume, "; give a positive mm^3"));
     validate_indices(complex, "surface");

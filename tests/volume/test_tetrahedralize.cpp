@@ -273,7 +273,18 @@ TEST(Tetrahedralize, RejectsBadOptions)
     EXPECT_THROW(tetrahedralize(nested_boxes(), options), InputError);
 }
 
-
+// Issue 32: the optimisation level was clamped into TetGen's 0..10; out of range it is the caller's error.
+TEST(Tetrahedralize, OptimisationLevelOutsideZeroToTenIsRefusedNotClamped)
+{
+    for (const int level : {-1, 11}) {
+        try {
+            tetrahedralize(nested_boxes(), {.optimisation_level = level});
+            FAIL() << "level " << level << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(concat("level ", level, " is outside 0..10")), std::string::npos) << e.what();
+        }
+    }
+}
 
 } // namespace
 } // namespace tissuemesh::volume

@@ -128,7 +128,24 @@ TEST(TetraCli, MaxVolumeFor65537IsAnErrorNamingTheRangeNotABoundOnTissue1)
     EXPECT_EQ(any_case.exit_code, 0) << any_case.err;
 }
 
-
+// Issue 32: options out of range are refused with one line naming option, value and range, not clamped.
+TEST(TetraCli, OptimiseAndInsertBelowOutOfRangeAreErrorsNotClamped)
+{
+    TempDir dir;
+    make_surface(dir, "thin", "4");
+    const auto optimise = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                               "--optimise", "11"});
+    EXPECT_EQ(optimise.exit_code, 2);
+    EXPECT_NE(optimise.err.find("--optimise"), std::string::npos) << optimise.err;
+    EXPECT_NE(optimise.err.find("11"), std::string::npos) << optimise.err;
+    EXPECT_NE(optimise.err.find("not in range 0 to 10"), std::string::npos) << optimise.err;
+    const auto insert = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                             "--improve-insert-below-deg", "30", "--improve-target-deg", "20"});
+    EXPECT_EQ(insert.exit_code, 2);
+    EXPECT_NE(insert.err.find("--improve-insert-below-deg 30 is above --improve-target-deg 20"), std::string::npos)
+        << insert.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.msh")) << "no mesh may be left behind";
+}
 
 } // namespace
 } // namespace tissuemesh
