@@ -122,7 +122,7 @@ int main(int argc, char** argv)
          "Delaunay mesher, then improves the tets (tm-improve's improver: slivers and flat tets next to the interfaces "
          "smoothed, flipped or split; interface nodes stay on the input surface). Every interface is kept; each tet's "
          "tissue comes from the interfaces around it. The output format follows the extension: .msh (Gmsh 2.2, SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
-         "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8 --max-volume-tissue brain=2\n"
+         "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8,brain=2\n"
          "  tm-tetra -i head.ply -o head.vtu --max-edge-mm scalp=4,brain=2 --radius-edge 1.5"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply from tm-extract)")->required()->check(CLI::ExistingFile);
