@@ -37,11 +37,20 @@ struct ImproveFlags {
                      "Improver: interface nodes stay where they are and none is added on interfaces");
     }
 
+    /// The improver's options from the flags.
+    /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg
     volume::ImproveOptions to_options() const
     {
         volume::ImproveOptions o = options;
         if (keep_interfaces) o.move_interface_nodes = false, o.insert_on_interfaces = false;
-        if (insert_below != nullptr && insert_below->count() > 0) o.insert = o.insert_below_deg > 0;
+        if (insert_below != nullptr && insert_below->count() > 0) {
+            // The improver works only below its target, so a higher insertion bound would act as the target.
+            if (o.insert_below_deg > o.target_dihedral_deg)
+                throw InputError(concat("--improve-insert-below-deg ", o.insert_below_deg, " is above --improve-target-deg ",
+                                        o.target_dihedral_deg, "; the improver inserts only in tets below its target: give "
+                                        "0..", o.target_dihedral_deg, " or raise the target"));
+            o.insert = o.insert_below_deg > 0;
+        }
         if (o.insert_below_deg <= 0) o.insert = false;
         return o;
     }

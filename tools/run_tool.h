@@ -47,10 +47,12 @@ auto with_source(const std::string& source, Step&& step) -> decltype(step())
 struct ToolSpec {
     std::string name;         ///< "tm-info"
     std::string description;  ///< one paragraph for --help
-    std::string examples;     ///< shown at the end of --help
+    std::string examples;     ///< shown at the end of --help; every command in it (a line "  tm-...") must parse
+                              ///< (tests/help_cli)
 };
 
-/// Parses the command line (adding -v/-q/--json/--version/--max-memory to the tool's own options), runs `body`,
+/// Parses the command line (adding -v/-q/--json/--version/--max-memory, and the hidden --parse-only that stops
+/// after parsing, to the tool's own options), runs `body`,
 /// writes the summary, and maps exceptions to exit codes with one line on stderr:
 ///     tm-info: error: head.nii: spacing along axis 2 is 0 mm; ...
 int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<void(CLI::App&)>& add_options,

@@ -9,6 +9,7 @@
 #include "io/tet_mesh_io.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 #include "volume/assess.h"
 #include "volume/mark_interfaces.h"
 #include "io/write_vtu.h"
@@ -17,26 +18,32 @@ using namespace tissuemesh;
 
 namespace {
 
-/// Parses "scalp=2,4=1.5" (tissue by name or label = positive weight) into options.priority.
-void parse_priority(const std::string& text, const TetMesh& mesh, const LabelImage& image, volume::AssessOptions& options)
+/// Parses "scalp=2,4=1.5" (tissue by name or label = positive weight) into options.priority; the tissues are
+/// those of the mesh and of the image.
+void parse_priority(const std::string& text, const tools::TissueTable& tissues, volume::AssessOptions& options)
 {
     std::stringstream items(text);
     for (std::string item; std::getline(items, item, ',');) {
         const auto equals = item.find('=');
-        const std::string tissue = item.substr(0, equals), number = equals == std::string::npos ? "" : item.substr(equals + 1);
+        const std::string number = equals == std::string::npos ? "" : item.substr(equals + 1);
         char* end = nullptr;
         const double weight = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(weight > 0))
             throw InputError(concat("priority \"", item, "\" is not tissue=positive number; write e.g. scalp=2,4=1.5"));
-        bool found = false;
-        for (const TissueNames* names : {&mesh.names, &image.names()})
-            for (const auto& [label, name] : *names)
-                if (name == tissue) options.priority[label] = weight, found = true;
-        if (!found && !tissue.empty() && tissue.size() < 6 && tissue.find_first_not_of("0123456789") == std::string::npos &&
-            std::stoul(tissue) <= 65535)
-            options.priority[static_cast<Label>(std::stoul(tissue))] = weight, found = true;
-        if (!found) throw InputError(concat("unknown tissue \"", tissue, "\" in --priority; use a tissue name or label"));
+        options.priority[tools::parse_tissue_setting(item, tissues, "--priority", "scalp=2,4=1.5").tissue] = weight;
     }
+}
+
+/// The tissues --priority may name: the mesh's and the image's (the mesh's name first where both name a label).
+tools::TissueTable mesh_and_image_tissues(const TetMesh& mesh, const LabelImage& image, const std::string& mesh_path,
+                                          const std::string& image_path)
+{
+    tools::TissueTable tissues = tools::tissue_table(mesh, mesh_path);
+    const tools::TissueTable voxels = tools::tissue_table(image, image_path);
+    tissues.names.insert(voxels.names.begin(), voxels.names.end());
+    tissues.present.insert(voxels.present.begin(), voxels.present.end());
+    tissues.source = concat(mesh_path, " and ", image_path);
+    return tissues;
 }
 
 nlohmann::json summarize(const TetMesh& mesh, const volume::Assessment& a, std::size_t relabelled)
@@ -110,7 +117,7 @@ int main(int argc, char** argv)
             format_flags.check();
             TetMesh mesh = io::read_tet_mesh(input);
             const LabelImage image = io::read_label_image(image_path);
-            if (!priority.empty()) parse_priority(priority, mesh, image, options);
+            if (!priority.empty()) parse_priority(priority, mesh_and_image_tissues(mesh, image, input, image_path), options);
             const auto start = std::chrono::steady_clock::now();
             volume::Assessment assessment = volume::assess_elements(mesh, image, options, context.progress);
             const std::chrono::duration<double> assess_seconds = std::chrono::steady_clock::now() - start;

@@ -19,6 +19,7 @@
 #include "surface/thin_first_priority.h"
 #include "surface/tissue_surface.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 
 namespace fs = std::filesystem;
 using namespace tissuemesh;
@@ -58,27 +59,17 @@ nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const surf
     return written;
 }
 
-/// "csf=2", "3=1", ...: tissue (a name from --labels or a number) = integer priority.
-std::map<Label, int> parse_priority(const std::vector<std::string>& items, const LabelImage& image)
+/// "csf=2", "3=1", ...: tissue (a name or a label number) = integer priority.
+std::map<Label, int> parse_priority(const std::vector<std::string>& items, const tools::TissueTable& tissues)
 {
     std::map<Label, int> priority;
     for (const std::string& item : items) {
-        const auto eq = item.find('=');
-        const std::string tissue = item.substr(0, eq == std::string::npos ? 0 : eq);
-        const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
-        std::optional<Label> label;
-        for (const auto& [l, name] : image.names())
-            if (name == tissue) label = l;
+        const tools::TissueSetting setting = tools::parse_tissue_setting(item, tissues, "--priority", "csf=2,3=1");
         int number = 0;
-        const auto parse_int = [](const std::string& text, int& out) {
-            const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-            return !text.empty() && error == std::errc{} && end == text.data() + text.size();
-        };
-        if (!label && parse_int(tissue, number) && number >= 0 && number <= 65535) label = static_cast<Label>(number);
-        if (!label || !parse_int(value, number))
-            throw InputError(concat("--priority ", item, ": expected TISSUE=INTEGER with TISSUE a label number or a "
-                                    "name from --labels (e.g. --priority csf=2,3=1)"));
-        priority[*label] = number;
+        const auto [end, error] = std::from_chars(setting.value.data(), setting.value.data() + setting.value.size(), number);
+        if (setting.value.empty() || error != std::errc{} || end != setting.value.data() + setting.value.size())
+            throw InputError(concat("--priority ", item, ": expected TISSUE=INTEGER (e.g. --priority csf=2,3=1)"));
+        priority[setting.tissue] = number;
     }
     return priority;
 }
@@ -149,7 +140,7 @@ int main(int argc, char** argv)
 {
     std::string input, output, per_tissue_dir, per_tissue_format = "stl", method = "marching-cubes";
     surface::NetSmoothOptions smoothing;
-    std::vector<std::string> priority;
+    std::vector<std::string> priority, tissues;
     io::ReadImageOptions read_options;
     surface::ExtractOptions options;
     return tools::run_tool(
@@ -167,8 +158,8 @@ int main(int argc, char** argv)
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Label image (.nii, .nii.gz, .nrrd, .mha, ...)")->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
-            app.add_option("--tissues", options.tissues, "Keep only these labels (others become background)")
-                ->delimiter(',')->check(CLI::Range(0, 65535));
+            app.add_option("--tissues", tissues, "Keep only these tissues, names or labels (others become background)")
+                ->delimiter(',');
             app.add_option("--background", options.background, "Background label (also outside the image)")->check(CLI::Range(0, 65535))
                 ->capture_default_str();
             app.add_option("--priority", priority,
@@ -213,6 +204,8 @@ int main(int argc, char** argv)
             const bool nets = method == "surface-nets";
             const bool streamed = !nets && extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
+            const tools::TissueTable table = tools::tissue_table(image, input);
+            for (const std::string& tissue : tissues) options.tissues.push_back(tools::parse_tissue(tissue, table, "--tissues"));
             if (priority.size() > 1 && std::find(priority.begin(), priority.end(), "auto") != priority.end())
                 throw InputError("--priority auto ranks every tissue itself: give it alone (--priority auto) or give "
                                  "TISSUE=N pairs (--priority csf=2,3=1)");
@@ -224,7 +217,7 @@ int main(int argc, char** argv)
                         return std::find(options.tissues.begin(), options.tissues.end(), entry.first) == options.tissues.end();
                     });
             } else {
-                options.priority = parse_priority(priority, image);
+                options.priority = parse_priority(priority, table);
             }
             surface::InterfaceSummarizer counter;
             CollectingSink collector;

@@ -1,9 +1,6 @@
 // tm-leadfield: EEG and MEG lead fields by reciprocity (a transfer matrix: one solve per sensor, the AMG
 // hierarchy set up once), and the tDCS lead field (one solve per electrode against a reference).
-#include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
 #include "fem/lead_field.h"
@@ -17,39 +14,11 @@
 #include "io/tet_mesh_io.h"
 #include "tools/lead_field_files.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 
 using namespace tissuemesh;
 
 namespace {
-
-std::string lower(std::string text)
-{
-    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return text;
-}
-
-/// "grey,white" or "4,5" -> labels of the mesh's tets (names in any case, or label numbers).
-std::vector<Label> tissue_labels(const TetMesh& mesh, const std::string& list)
-{
-    std::vector<Label> labels;
-    std::stringstream items(list);
-    for (std::string item; std::getline(items, item, ',');) {
-        const auto named_so = std::find_if(mesh.names.begin(), mesh.names.end(), [&](const auto& entry) { return lower(entry.second) == lower(item); });
-        const bool number = !item.empty() && item.size() < 6 && std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; });
-        const Label label = named_so != mesh.names.end() ? named_so->first : number ? static_cast<Label>(std::stoi(item)) : Label(0);
-        if ((named_so == mesh.names.end() && !number) ||
-            std::find(mesh.tet_labels.begin(), mesh.tet_labels.end(), label) == mesh.tet_labels.end()) {
-            std::string known;
-            for (const auto& [known_label, name] : mesh.names)
-                if (std::find(mesh.tet_labels.begin(), mesh.tet_labels.end(), known_label) != mesh.tet_labels.end())
-                    known += (known.empty() ? "" : ", ") + name;
-            throw InputError(concat("--source-tissues: unknown tissue '", item, "'; the mesh's tissues are ",
-                                    known.empty() ? "unnamed (give label numbers)" : known));
-        }
-        labels.push_back(label);
-    }
-    return labels;
-}
 
 std::string named(const std::string& name, const std::string& file, std::size_t line, const std::string& what, std::size_t index)
 {
@@ -209,7 +178,7 @@ int main(int argc, char** argv)
             options.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
                                    : dipole_model == "partial-integration" ? fem::DipoleModel::partial_integration
                                                                            : fem::DipoleModel::venant;
-            options.source_tissues = source_tissues.empty() ? std::vector<Label>{} : tissue_labels(mesh, source_tissues);
+            options.source_tissues = source_tissues.empty() ? std::vector<Label>{} : tools::parse_tissue_list(source_tissues, tools::tissue_table(mesh, input), "--source-tissues");
             context.summary.update({{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}});
             const nlohmann::json common{{"tool", "tm-leadfield"}, {"version", TM_VERSION}, {"mesh", tools::mesh_description(input, mesh)},
                                         {"conductivities", tools::conductivity_description(mesh, sigma)}};

@@ -1,6 +1,5 @@
 // tm-remesh: well-shaped triangles of a target size on the same interfaces, junction curves kept.
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +7,7 @@
 #include "surface/remesh.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
+#include "tools/tissue_arguments.h"
 
 using namespace tissuemesh;
 
@@ -15,36 +15,25 @@ namespace {
 
 /// "1:0=3", "skull:scalp=2": tissue pair (labels or names) = edge length in mm.
 std::map<std::pair<Label, Label>, double> parse_pair_lengths(const std::vector<std::string>& items,
-                                                             const InterfaceComplex& complex)
+                                                             const tools::TissueTable& tissues)
 {
-    const auto label_of = [&](const std::string& text) -> std::optional<Label> {
-        for (const auto& [label, name] : complex.names)
-            if (name == text) return label;
-        try {
-            std::size_t used = 0;
-            const unsigned long value = std::stoul(text, &used);
-            if (used == text.size() && value <= 65535) return static_cast<Label>(value);
-        } catch (const std::exception&) {
-        }
-        return std::nullopt;
-    };
     std::map<std::pair<Label, Label>, double> lengths;
     for (const std::string& item : items) {
         const auto colon = item.find(':'), eq = item.find('=');
-        std::optional<Label> a, b;
         double length = 0;
         if (colon != std::string::npos && eq != std::string::npos && colon < eq) {
-            a = label_of(item.substr(0, colon));
-            b = label_of(item.substr(colon + 1, eq - colon - 1));
             try {
                 length = std::stod(item.substr(eq + 1));
             } catch (const std::exception&) {
             }
         }
-        if (!a || !b || !(length > 0))
+        if (!(length > 0))
             throw InputError(concat("--edge-mm-pair ", item, ": expected TISSUE:TISSUE=MM with tissues as labels or "
                                     "names in the surface (e.g. --edge-mm-pair 1:0=4,skull:scalp=2)"));
-        lengths[std::minmax(*a, *b)] = length;
+        const std::string option = concat("--edge-mm-pair ", item);
+        const Label a = tools::parse_tissue(std::string_view(item).substr(0, colon), tissues, option);
+        const Label b = tools::parse_tissue(std::string_view(item).substr(colon + 1, eq - colon - 1), tissues, option);
+        lengths[std::minmax(a, b)] = length;
     }
     return lengths;
 }
@@ -88,7 +77,7 @@ int main(int argc, char** argv)
             tools::require_complex_output(output);
             tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
             InterfaceComplex& complex = in.complex;
-            options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, complex);
+            options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, tools::tissue_table(complex, input));
             surface::RemeshReport report;
             const double seconds = tools::run_checked_step(complex, output, "remeshed",
                                                            [&] { report = surface::remesh(complex, options, ctx.progress); });

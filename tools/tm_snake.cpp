@@ -1,6 +1,5 @@
 // tm-snake: active contours on a label or grey-level image: closed surfaces that settle on tissue boundaries,
 // nested snakes as one interface complex fit for tetrahedralization.
-#include <charconv>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,23 +12,11 @@
 #include "surface/snake.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
+#include "tools/tissue_arguments.h"
 
 using namespace tissuemesh;
 
 namespace {
-
-/// A tissue given by name (from the image or --labels) or by number.
-Label parse_tissue(const std::string& text, const LabelImage& image)
-{
-    for (const auto& [label, name] : image.names())
-        if (name == text) return label;
-    unsigned number = 0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), number);
-    if (text.empty() || error != std::errc{} || end != text.data() + text.size() || number > 65535)
-        throw InputError(concat("tissue \"", text, "\" is neither a label number nor a name the image or --labels "
-                                "gives; run tm-info to list them"));
-    return static_cast<Label>(number);
-}
 
 struct Start {
     std::string init = "auto";
@@ -132,9 +119,10 @@ int main(int argc, char** argv)
                 image = io::read_label_image(input, {.names_json = names_json});
                 const Vec3& s = image.spacing_mm();
                 const double sigma = sigma_mm.value_or(std::min({s[0], s[1], s[2]}));
+                const tools::TissueTable table = tools::tissue_table(image, input);
                 std::vector<Label> tissues;
                 for (const std::string& t : nested.empty() ? std::vector<std::string>{tissue} : nested)
-                    tissues.push_back(parse_tissue(t, image));
+                    tissues.push_back(tools::parse_tissue(t, table, nested.empty() ? "--tissue" : "--nested"));
                 targets = surface::nested_label_targets(image, tissues, sigma);
             }
             const double voxel = targets.front().field.smallest_spacing_mm();

@@ -11,6 +11,7 @@
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 #include "volume/tetrahedralize.h"
 
 using namespace tissuemesh;
@@ -18,7 +19,8 @@ using namespace tissuemesh;
 namespace {
 
 /// Parses "8" (every tissue) or "scalp=8,4=2.5" (per tissue, by name or label) into the options.
-void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool as_edge_mm, volume::TetrahedralizeOptions& options)
+void parse_sizes(const std::string& text, const tools::TissueTable& tissues, const std::string& option, bool as_edge_mm,
+                 volume::TetrahedralizeOptions& options)
 {
     // A regular tet with edge L has volume L^3 / (6 sqrt 2).
     auto to_volume = [&](double value) { return as_edge_mm ? value * value * value / (6.0 * std::sqrt(2.0)) : value; };
@@ -30,17 +32,11 @@ void parse_sizes(const std::string& text, const InterfaceComplex& complex, bool 
         const double value = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(value > 0))
             throw InputError(concat("size \"", item, "\" is not a positive number; write e.g. 8 or scalp=8,brain=4"));
-        if (equals == std::string::npos) {
+        if (equals == std::string::npos)
             options.max_volume_mm3 = to_volume(value);
-            continue;
-        }
-        const std::string tissue = item.substr(0, equals);
-        bool found = false;
-        for (const auto& [label, name] : complex.names)
-            if (name == tissue) options.max_volume_per_tissue_mm3[label] = to_volume(value), found = true;
-        if (!found && !tissue.empty() && tissue.find_first_not_of("0123456789") == std::string::npos)
-            options.max_volume_per_tissue_mm3[static_cast<Label>(std::stoul(tissue))] = to_volume(value), found = true;
-        if (!found) throw InputError(concat("unknown tissue \"", tissue, "\" in the sizes; use a tissue name or label of the surface"));
+        else
+            options.max_volume_per_tissue_mm3[tools::parse_tissue_setting(item, tissues, option, "scalp=8,4=2.5").tissue] =
+                to_volume(value);
     }
 }
 
@@ -126,7 +122,7 @@ int main(int argc, char** argv)
          "Delaunay mesher, then improves the tets (tm-improve's improver: slivers and flat tets next to the interfaces "
          "smoothed, flipped or split; interface nodes stay on the input surface). Every interface is kept; each tet's "
          "tissue comes from the interfaces around it. The output format follows the extension: .msh (Gmsh 2.2, SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
-         "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8 --max-volume-tissue brain=2\n"
+         "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8,brain=2\n"
          "  tm-tetra -i head.ply -o head.vtu --max-edge-mm scalp=4,brain=2 --radius-edge 1.5"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply from tm-extract)")->required()->check(CLI::ExistingFile);
@@ -137,7 +133,8 @@ int main(int argc, char** argv)
             app.add_option("--radius-edge", options.max_radius_edge_ratio, "Bound on circumradius / shortest edge (>= 1)")
                 ->capture_default_str();
             app.add_option("--min-dihedral-deg", options.min_dihedral_deg, "Bound on the smallest dihedral angle")->capture_default_str();
-            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->capture_default_str();
+            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->check(CLI::Range(0, 10))
+                ->capture_default_str();
             app.add_flag("--no-quality", no_quality, "Do not refine for the radius-edge and dihedral bounds");
             app.add_flag("--allow-steiner", allow_steiner, "Let TetGen split interface triangles for the bounds (it still "
                                                            "misses them next to small input angles); interfaces kept "
@@ -153,8 +150,9 @@ int main(int argc, char** argv)
             options.mesh_background_cavities = !drop_cavities;
             options.improve = !improve_flags.off;
             options.improvement = improve_flags.to_options();
-            if (!max_volume.empty()) parse_sizes(max_volume, complex, false, options);
-            if (!max_edge.empty()) parse_sizes(max_edge, complex, true, options);
+            const tools::TissueTable tissues = tools::tissue_table(complex, input);
+            if (!max_volume.empty()) parse_sizes(max_volume, tissues, "--max-volume", false, options);
+            if (!max_edge.empty()) parse_sizes(max_edge, tissues, "--max-edge-mm", true, options);
             check_memory(context, input, complex, options);
             volume::TetrahedralizeReport report;
             const TetMesh mesh =

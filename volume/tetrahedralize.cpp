@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <numeric>
 
 #include "core/error.h"
 #include "core/tet_shape.h"
@@ -27,7 +28,7 @@ std::string build_switches(const TetrahedralizeOptions& options, bool with_regio
     if (options.improve_quality) switches += concat("q", options.max_radius_edge_ratio, "/", options.min_dihedral_deg);
     if (with_regions) switches += "Aa";
     if (options.max_volume_mm3 > 0) switches += concat("a", options.max_volume_mm3);
-    switches += concat("O", std::clamp(options.optimisation_level, 0, 10));
+    switches += concat("O", options.optimisation_level);
     return switches;
 }
 
@@ -38,28 +39,69 @@ Vec3 triangle_normal(const InterfaceComplex& complex, std::size_t t)
     return cross(complex.vertices[tri[1]] - a, complex.vertices[tri[2]] - a);
 }
 
-/// One seed per connected piece of each sized tissue's surface, just behind its roomiest triangle.
+/// The closed shells around `tissue`: the edge-connected pieces of the triangles with the tissue on one side,
+/// each a list of triangles. A tissue never touches itself along an edge, so the triangles at an edge of a
+/// shell all bound one wedge of the tissue, and each shell bounds one connected piece of it; a piece bounds
+/// itself with one shell, or more when it holds cavities (a hollow ball: its outer and its inner sphere).
+std::vector<std::vector<std::size_t>> tissue_shells(const InterfaceComplex& complex, Label tissue)
+{
+    std::vector<std::size_t> triangles;
+    for (std::size_t t = 0; t < complex.triangles.size(); ++t)
+        if (complex.sides[t].from == tissue || complex.sides[t].to == tissue) triangles.push_back(t);
+    std::vector<std::size_t> root(triangles.size());
+    std::iota(root.begin(), root.end(), std::size_t{0});
+    const auto find = [&](std::size_t i) {
+        while (root[i] != i) i = root[i] = root[root[i]];
+        return i;
+    };
+    // Triangles sharing an edge (its two vertex numbers, smaller first) join one shell.
+    std::vector<std::pair<std::uint64_t, std::size_t>> edges;
+    edges.reserve(3 * triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        const Triangle& tri = complex.triangles[triangles[i]];
+        for (int e = 0; e < 3; ++e) {
+            const std::uint64_t a = tri[e], b = tri[(e + 1) % 3];
+            edges.emplace_back(std::min(a, b) << 32 | std::max(a, b), i);
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t k = 1; k < edges.size(); ++k)
+        if (edges[k].first == edges[k - 1].first) root[find(edges[k].second)] = find(edges[k - 1].second);
+    std::vector<std::vector<std::size_t>> shells;
+    std::vector<std::size_t> shell_of(triangles.size(), triangles.size());
+    for (std::size_t i = 0; i < triangles.size(); ++i) {
+        std::size_t& shell = shell_of[find(i)];
+        if (shell == triangles.size()) shell = shells.size(), shells.emplace_back();
+        shells[shell].push_back(triangles[i]);
+    }
+    return shells;
+}
+
+/// One seed per closed shell of each sized tissue, just behind the shell's roomiest triangle: every connected
+/// piece of the tissue gets its bound (a piece with cavities gets a seed per shell, all of the same region).
 std::vector<detail::TetgenRegion> region_seeds(const InterfaceComplex& complex, const TetrahedralizeOptions& options)
 {
     std::vector<detail::TetgenRegion> regions;
     for (const auto& [tissue, max_volume] : options.max_volume_per_tissue_mm3) {
-        std::size_t best = complex.triangles.size();
-        double best_area = 0;
-        for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
-            if (complex.sides[t].from != tissue && complex.sides[t].to != tissue) continue;
-            const double area = norm(triangle_normal(complex, t));
-            if (area > best_area) best_area = area, best = t;
-        }
-        if (best == complex.triangles.size())
+        const std::vector<std::vector<std::size_t>> shells = tissue_shells(complex, tissue);
+        if (shells.empty())
             throw InputError(concat("--max-volume names tissue ", tissue, ", which the surface does not contain"));
-        // A point a small fraction of the triangle's size away from its centroid, on the tissue's side.
-        const Triangle& tri = complex.triangles[best];
-        const Vec3 centroid = (1.0 / 3.0) * (complex.vertices[tri[0]] + complex.vertices[tri[1]] + complex.vertices[tri[2]]);
-        Vec3 normal = triangle_normal(complex, best);
-        normal = (1.0 / norm(normal)) * normal;
-        const double offset = 0.05 * std::sqrt(best_area);
-        const double side = complex.sides[best].to == tissue ? 1.0 : -1.0;
-        regions.push_back({centroid + (side * offset) * normal, tissue, max_volume});
+        for (const std::vector<std::size_t>& shell : shells) {
+            std::size_t best = shell.front();
+            double best_area = 0;
+            for (const std::size_t t : shell) {
+                const double area = norm(triangle_normal(complex, t));
+                if (area > best_area) best_area = area, best = t;
+            }
+            // A point a small fraction of the triangle's size away from its centroid, on the tissue's side.
+            const Triangle& tri = complex.triangles[best];
+            const Vec3 centroid = (1.0 / 3.0) * (complex.vertices[tri[0]] + complex.vertices[tri[1]] + complex.vertices[tri[2]]);
+            Vec3 normal = triangle_normal(complex, best);
+            normal = (1.0 / norm(normal)) * normal;
+            const double offset = 0.05 * std::sqrt(best_area);
+            const double side = complex.sides[best].to == tissue ? 1.0 : -1.0;
+            regions.push_back({centroid + (side * offset) * normal, tissue, max_volume});
+        }
     }
     return regions;
 }
@@ -226,6 +268,9 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     if (options.improve_quality && options.max_radius_edge_ratio < 1.0)
         throw InputError(concat("radius-edge ratio bound ", options.max_radius_edge_ratio, " is below 1; TetGen needs >= 1 "
                                 "(2 is a good default)"));
+    if (options.optimisation_level < 0 || options.optimisation_level > 10)
+        throw InputError(concat("mesh optimisation level ", options.optimisation_level, " is outside 0..10 (TetGen -O; 2 is "
+                                "the default)"));
     for (const auto& [tissue, volume] : options.max_volume_per_tissue_mm3)
         if (!(volume > 0)) throw InputError(concat("maximum volume for tissue ", tissue, " is ", volume, "; give a positive mm^3"));
     validate_indices(complex, "surface");

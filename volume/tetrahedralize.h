@@ -59,7 +59,9 @@ struct TetrahedralizeReport {
 /// @pre  `complex` is fit for tetrahedralization (surface::check_complex(complex).ok())
 /// @post every tet positively oriented; faces/face_sides hold the interface and boundary faces; the mesh
 ///       passes check_mesh() (conforming, interfaces present and rightly labelled, no tissues touching elsewhere)
-/// @throws InputError when the complex is not fit (names the first defect, tissues and place)
+/// @throws InputError when the complex is not fit (names the first defect, tissues and place), or an option is out of
+///         its range (radius-edge bound below 1, optimisation level outside 0..10, a tissue bound not positive or
+///         for a tissue the complex lacks)
 /// @throws AlgorithmError when TetGen fails or crashes (its diagnosis, the place in mm when known, and a hint),
 ///         or when its mesh fails check_mesh() (the first problems and a hint)
 TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOptions& options = {},

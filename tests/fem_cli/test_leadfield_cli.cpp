@@ -143,7 +143,7 @@ TEST(LeadfieldCli, BadInputExitsTwoWithOneLineAndNoOutput)
         {{"-i", mesh, "--meg-sensors", head.path("inside.csv"), "--sources", src, "--meg-output", out},
          "MEG0111 (" + head.path("inside.csv") + " line 2) has a coil at (0, 0, 50) mm inside the head"},
         {{"-i", mesh, "--sensors", eeg, "--source-grid-mm", "10", "--source-tissues", "gray_matter", "-o", out},
-         "--source-tissues: unknown tissue 'gray_matter'; the mesh's tissues are scalp, skull, csf, brain"},
+         "--source-tissues: unknown tissue \"gray_matter\"; the tissues of " + mesh + " are 1 scalp, 2 skull, 3 csf, 4 brain"},
         {{"-i", mesh, "--sensors", eeg, "-o", out}, "the EEG and MEG lead fields need sources"},
         {{"-i", mesh, "--sensors", eeg, "--sources", src, "-o", out, "--reference", "Cz"}, "--reference Cz: no electrode of"},
         {{"-i", mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-output", out, "--tdcs-reference", "Oz"}, "--tdcs-reference Oz"},

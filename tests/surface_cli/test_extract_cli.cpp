@@ -107,6 +107,32 @@ TEST(ExtractCli, PriorityKeepsAOneVoxelShellBetweenBallAndOutside)
     EXPECT_GT(priority["1"].get<int>(), priority["2"].get<int>());
 }
 
+// Issue 32: with a label file saying "CSF", --priority csf=1 failed with a message naming no tissue. Names match in
+// any case, --tissues takes names too, and an unknown name's error lists the tissues of the image.
+TEST(ExtractCli, PriorityCsfMatchesALabelFileSayingCsfAndUnknownNamesListTheKnownOnes)
+{
+    TempDir dir;
+    io::write_label_image(image::make_phantom("thin", {.voxel_mm = 4.0}).image, dir / "thin.nii.gz");
+    std::ofstream(dir / "names.json") << R"({"0": "Air", "1": "CSF", "2": "Grey Matter"})";
+    const std::vector<std::string> common{"-i", (dir / "thin.nii.gz").string(), "-o", (dir / "out.ply").string(),
+                                          "--labels", (dir / "names.json").string(), "--json", (dir / "s.json").string()};
+    const auto with = [&](std::vector<std::string> extra) {
+        extra.insert(extra.begin(), common.begin(), common.end());
+        return run_cli("tm-extract", extra);
+    };
+    const auto named = with({"--priority", "csf=1", "--tissues", "csf,grey matter", "-q"});
+    ASSERT_EQ(named.exit_code, 0) << named.err;
+    std::ifstream in(dir / "s.json");
+    EXPECT_EQ(nlohmann::json::parse(in)["priority"]["1"].get<int>(), 1);
+    const auto unknown = with({"--priority", "bone=1"});
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("--priority bone=1: unknown tissue \"bone\""), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("0 Air, 1 CSF, 2 Grey Matter"), std::string::npos) << unknown.err;
+    const auto wrapped = with({"--tissues", "65537"});
+    EXPECT_EQ(wrapped.exit_code, 2);
+    EXPECT_NE(wrapped.err.find("tissue 65537 is not a label number; labels are 0..65535"), std::string::npos) << wrapped.err;
+}
+
 TEST(ExtractCli, StreamedPlyEqualsTheInMemoryPathByteForByte)
 {
     // A lone .ply is streamed slab by slab; with --per-tissue the whole complex is built in memory. Both
@@ -180,13 +206,13 @@ TEST(ExtractCli, BadInputExitsTwoWithOneLineAndNoOutput)
         {{"-i", (dir / "broken.nii.gz").string(), "-o", (dir / "out.ply").string()}, "broken.nii.gz"},
         {{"-i", (dir / "missing.nii.gz").string(), "-o", (dir / "out.ply").string()}, "missing.nii.gz"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.stl").string()}, ".ply or .vtp"},
-        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "7"}, "tissue 7"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "7"}, "has no tissue 7"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "1",
           "--background", "1"}, "background"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "bone=1"},
          "--priority bone=1"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "7=1"},
-         "priority given for label 7"},
+         "small.nii.gz has no tissue 7"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "auto,1=2"},
          "--priority auto ranks every tissue itself"},
     };

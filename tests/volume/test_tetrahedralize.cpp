@@ -169,6 +169,69 @@ TEST(Tetrahedralize, PerTissueVolumeBoundHoldsInThatTissueOnly)
     EXPECT_GT(largest_outer, 0.5) << "the bound must not spread to the other tissue";
 }
 
+/// The largest tet volume of `tissue` among tets whose centroid lies in the box [low, high].
+double largest_tet_in(const TetMesh& mesh, Label tissue, const Vec3& low, const Vec3& high)
+{
+    double largest = 0;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        if (mesh.tet_labels[t] != tissue) continue;
+        Vec3 centroid{0, 0, 0};
+        for (const std::uint32_t v : mesh.tets[t]) centroid = centroid + 0.25 * mesh.vertices[v];
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) inside = inside && centroid[a] > low[a] && centroid[a] < high[a];
+        if (inside) largest = std::max(largest, signed_volume(mesh, t));
+    }
+    return largest;
+}
+
+// Issue 32: region_seeds made one seed per tissue, so a tissue in two pieces had its volume bound (TetGen -a per
+// region) in one piece only, and the warning then blamed the interface triangles.
+TEST(Tetrahedralize, TissueInTwoPiecesHasItsVolumeBoundInBothPieces)
+{
+    // Two 4 mm boxes of tissue 2, apart, in a box of tissue 1. Without -Y as above: with it the 4 mm boxes'
+    // triangles would refuse the refinement.
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {20, 10, 10}, 1, {0, 0, 0, 0, 0, 0});
+    boxes.add_box({3, 3, 3}, {7, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
+    boxes.add_box({13, 3, 3}, {17, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
+    TetrahedralizeOptions options;
+    options.preserve_interfaces = false;
+    options.improve = false;  // TetGen's tets as bounded: the improver's moves may enlarge tets past the bound
+    options.max_volume_per_tissue_mm3 = {{2, 0.5}};
+    TetrahedralizeReport report;
+    const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
+    const double left = largest_tet_in(mesh, 2, {3, 3, 3}, {7, 7, 7}), right = largest_tet_in(mesh, 2, {13, 3, 3}, {17, 7, 7});
+    EXPECT_GT(left, 0.0);
+    EXPECT_GT(right, 0.0);
+    EXPECT_LE(left, 0.5 * (1 + 1e-9));
+    EXPECT_LE(right, 0.5 * (1 + 1e-9));
+    EXPECT_EQ(report.tets_over_volume_bound, 0u);
+    EXPECT_NEAR(volumes_by_tissue(mesh).at(2), 128.0, 1e-9);
+}
+
+// The nested case of the same finding: tissue 1 as a hollow box (two shells: its outside and its cavity wall)
+// with tissue 2 in the cavity, and a second piece of tissue 1 inside tissue 2.
+TEST(Tetrahedralize, TissueInAHollowPieceAndAnIslandInItsCavityHasItsBoundInBoth)
+{
+    BoxComplex boxes;
+    boxes.add_box({0, 0, 0}, {12, 12, 12}, 1, {0, 0, 0, 0, 0, 0});
+    boxes.add_box({3, 3, 3}, {9, 9, 9}, 2, {1, 1, 1, 1, 1, 1});
+    boxes.add_box({5, 5, 5}, {7, 7, 7}, 1, {2, 2, 2, 2, 2, 2});
+    TetrahedralizeOptions options;
+    options.preserve_interfaces = false;
+    options.improve = false;  // as above (with it, 7 tets here grew to 0.58 mm^3)
+    options.max_volume_per_tissue_mm3 = {{1, 0.5}};
+    TetrahedralizeReport report;
+    const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
+    const double island = largest_tet_in(mesh, 1, {5, 5, 5}, {7, 7, 7}), hollow = largest_tet_in(mesh, 1, {-1, -1, -1}, {13, 13, 13});
+    EXPECT_GT(island, 0.0);
+    EXPECT_LE(island, 0.5 * (1 + 1e-9)) << "the island in the cavity lacks the bound";
+    EXPECT_LE(hollow, 0.5 * (1 + 1e-9));
+    EXPECT_GT(largest_tet_in(mesh, 2, {3, 3, 3}, {9, 9, 9}), 0.5) << "the bound must not spread to tissue 2";
+    EXPECT_EQ(report.tets_over_volume_bound, 0u);
+    EXPECT_NEAR(volumes_by_tissue(mesh).at(1), 1728.0 - 216.0 + 8.0, 1e-9);
+}
+
 TEST(Tetrahedralize, QualityBoundsHoldWhereInterfacesMaySplit)
 {
     // Without -Y TetGen may split interface triangles, so on boxes (no input angle under 90 degrees) it refines
@@ -208,6 +271,19 @@ TEST(Tetrahedralize, RejectsBadOptions)
     TetrahedralizeOptions options;
     options.max_volume_per_tissue_mm3 = {{7, 1.0}};
     EXPECT_THROW(tetrahedralize(nested_boxes(), options), InputError);
+}
+
+// Issue 32: the optimisation level was clamped into TetGen's 0..10; out of range it is the caller's error.
+TEST(Tetrahedralize, OptimisationLevelOutsideZeroToTenIsRefusedNotClamped)
+{
+    for (const int level : {-1, 11}) {
+        try {
+            tetrahedralize(nested_boxes(), {.optimisation_level = level});
+            FAIL() << "level " << level << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(concat("level ", level, " is outside 0..10")), std::string::npos) << e.what();
+        }
+    }
 }
 
 } // namespace

@@ -1,8 +1,11 @@
 // The surface-to-mesh steps as a user runs them: tm-phantom -> tm-extract -> tm-tetra -> tm-check-mesh.
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tests/support/cli.h"
@@ -92,6 +95,7 @@ TEST(TetraCli, BadOptionsAndFilesExitTwoWithOneLine)
     const auto unknown = run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.msh").string(), "--max-volume", "liver=3"});
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.err.find("unknown tissue \"liver\""), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("1 shell"), std::string::npos) << "the known tissues are listed: " << unknown.err;
     const auto format = run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.xyz").string()});
     EXPECT_EQ(format.exit_code, 2);
     EXPECT_NE(format.err.find("unknown mesh format"), std::string::npos) << format.err;
@@ -99,6 +103,48 @@ TEST(TetraCli, BadOptionsAndFilesExitTwoWithOneLine)
     const auto truncated = run_cli("tm-check-mesh", {(dir / "broken.msh").string()});
     EXPECT_EQ(truncated.exit_code, 2);
     EXPECT_NE(truncated.err.find("broken.msh: expected"), std::string::npos) << truncated.err;
+}
+
+// Issue 32: --max-volume 65537=2 exited 0 and bounded tissue 1 (the number wrapped to 16 bits).
+TEST(TetraCli, MaxVolumeFor65537IsAnErrorNamingTheRangeNotABoundOnTissue1)
+{
+    TempDir dir;
+    make_surface(dir, "thin", "4");
+    for (const char* option : {"--max-volume", "--max-edge-mm"}) {
+        const auto result = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                                 option, "65537=2"});
+        EXPECT_EQ(result.exit_code, 2) << option;
+        EXPECT_NE(result.err.find(concat(option, " 65537=2: tissue 65537 is not a label number; labels are 0..65535")),
+                  std::string::npos) << result.err;
+        EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "one line: " << result.err;
+    }
+    const auto absent = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                             "--max-volume", "7=2"});
+    EXPECT_EQ(absent.exit_code, 2);
+    EXPECT_NE(absent.err.find("surface.ply has no tissue 7"), std::string::npos) << absent.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.msh")) << "no mesh may be left behind";
+    const auto any_case = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                               "--max-volume", "SHELL=50", "-q"});
+    EXPECT_EQ(any_case.exit_code, 0) << any_case.err;
+}
+
+// Issue 32: options out of range are refused with one line naming option, value and range, not clamped.
+TEST(TetraCli, OptimiseAndInsertBelowOutOfRangeAreErrorsNotClamped)
+{
+    TempDir dir;
+    make_surface(dir, "thin", "4");
+    const auto optimise = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                               "--optimise", "11"});
+    EXPECT_EQ(optimise.exit_code, 2);
+    EXPECT_NE(optimise.err.find("--optimise"), std::string::npos) << optimise.err;
+    EXPECT_NE(optimise.err.find("11"), std::string::npos) << optimise.err;
+    EXPECT_NE(optimise.err.find("not in range 0 to 10"), std::string::npos) << optimise.err;
+    const auto insert = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
+                                             "--improve-insert-below-deg", "30", "--improve-target-deg", "20"});
+    EXPECT_EQ(insert.exit_code, 2);
+    EXPECT_NE(insert.err.find("--improve-insert-below-deg 30 is above --improve-target-deg 20"), std::string::npos)
+        << insert.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "m.msh")) << "no mesh may be left behind";
 }
 
 } // namespace
