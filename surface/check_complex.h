@@ -88,6 +88,12 @@ struct CheckOptions {
     bool check_intersections = true;        ///< false skips the (most expensive) intersection test
 };
 
+/// The closed shells around `tissue`: the edge-connected pieces of the triangles with the tissue on one side
+/// (the pieces check_complex() counts as a tissue's components), in the order of their first triangle, each
+/// in increasing order. A tissue never touches itself along an edge, so each shell bounds one connected piece
+/// of it; a piece bounds itself with one shell, or more when it holds cavities (a hollow ball: two spheres).
+std::vector<std::vector<std::uint32_t>> tissue_shells(const InterfaceComplex& complex, Label tissue);
+
 /// Checks that `complex` is fit for tetrahedralization: every tissue's outward surface is closed and
 /// consistently oriented and encloses a positive volume (negative for the background), no tissue
 /// touches itself along an edge, around every junction edge the tissue between neighbouring triangles

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/tet_shape.h"
+#include "core/union_find.h"
 #include "volume/detail/face_map.h"
 #include "volume/rasterize.h"
 
@@ -39,12 +40,6 @@ bool on_opposite_sides(const TetMesh& mesh, const detail::FaceKey& key, std::siz
         return false;
     };
     return side(a) != side(b);
-}
-
-std::size_t find(std::vector<std::size_t>& parent, std::size_t x)
-{
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
 }
 
 double longest_edge(const TetMesh& mesh, const Tet& tet)
@@ -134,8 +129,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     }
 
     // Conformity, tissue changes across unmarked faces, closed outer boundary, tissue components.
-    std::vector<std::size_t> parent(mesh.tets.size());
-    std::iota(parent.begin(), parent.end(), std::size_t{0});
+    UnionFind pieces(mesh.tets.size());
     std::unordered_map<std::uint64_t, int> boundary_edges;
     for (const auto& [key, use] : faces) {
         if (use.count > 2) {
@@ -147,7 +141,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
                 ++report.nonconforming_faces;
                 note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ", where(mesh.vertices[key.v[0]])));
             }
-            if (mesh.tet_labels[t0] == mesh.tet_labels[t1]) parent[find(parent, t0)] = find(parent, t1);
+            if (mesh.tet_labels[t0] == mesh.tet_labels[t1]) pieces.unite(static_cast<std::uint32_t>(t0), static_cast<std::uint32_t>(t1));
             else if (!marked.count(key)) {
                 ++report.unmarked_interfaces;
                 note(report, concat("tissues ", mesh.tet_labels[t0], " and ", mesh.tet_labels[t1], " meet near ",
@@ -172,7 +166,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     report.open_boundary_edges /= 2;  // each unmatched edge was counted in both directions
     if (report.open_boundary_edges > 0) note(report, concat(report.open_boundary_edges, " edges of the outer boundary are open"));
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (find(parent, t) == t) ++report.tissues[mesh.tet_labels[t]].components;
+        if (pieces.find(static_cast<std::uint32_t>(t)) == t) ++report.tissues[mesh.tet_labels[t]].components;
     progress.update("check-mesh", 0.6);
 
     if (image != nullptr && !image->empty()) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <numeric>
 
 #include "core/error.h"
 #include "core/tet_shape.h"
@@ -39,57 +38,19 @@ Vec3 triangle_normal(const InterfaceComplex& complex, std::size_t t)
     return cross(complex.vertices[tri[1]] - a, complex.vertices[tri[2]] - a);
 }
 
-/// The closed shells around `tissue`: the edge-connected pieces of the triangles with the tissue on one side,
-/// each a list of triangles. A tissue never touches itself along an edge, so the triangles at an edge of a
-/// shell all bound one wedge of the tissue, and each shell bounds one connected piece of it; a piece bounds
-/// itself with one shell, or more when it holds cavities (a hollow ball: its outer and its inner sphere).
-std::vector<std::vector<std::size_t>> tissue_shells(const InterfaceComplex& complex, Label tissue)
-{
-    std::vector<std::size_t> triangles;
-    for (std::size_t t = 0; t < complex.triangles.size(); ++t)
-        if (complex.sides[t].from == tissue || complex.sides[t].to == tissue) triangles.push_back(t);
-    std::vector<std::size_t> root(triangles.size());
-    std::iota(root.begin(), root.end(), std::size_t{0});
-    const auto find = [&](std::size_t i) {
-        while (root[i] != i) i = root[i] = root[root[i]];
-        return i;
-    };
-    // Triangles sharing an edge (its two vertex numbers, smaller first) join one shell.
-    std::vector<std::pair<std::uint64_t, std::size_t>> edges;
-    edges.reserve(3 * triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const Triangle& tri = complex.triangles[triangles[i]];
-        for (int e = 0; e < 3; ++e) {
-            const std::uint64_t a = tri[e], b = tri[(e + 1) % 3];
-            edges.emplace_back(std::min(a, b) << 32 | std::max(a, b), i);
-        }
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t k = 1; k < edges.size(); ++k)
-        if (edges[k].first == edges[k - 1].first) root[find(edges[k].second)] = find(edges[k - 1].second);
-    std::vector<std::vector<std::size_t>> shells;
-    std::vector<std::size_t> shell_of(triangles.size(), triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        std::size_t& shell = shell_of[find(i)];
-        if (shell == triangles.size()) shell = shells.size(), shells.emplace_back();
-        shells[shell].push_back(triangles[i]);
-    }
-    return shells;
-}
-
 /// One seed per closed shell of each sized tissue, just behind the shell's roomiest triangle: every connected
 /// piece of the tissue gets its bound (a piece with cavities gets a seed per shell, all of the same region).
 std::vector<detail::TetgenRegion> region_seeds(const InterfaceComplex& complex, const TetrahedralizeOptions& options)
 {
     std::vector<detail::TetgenRegion> regions;
     for (const auto& [tissue, max_volume] : options.max_volume_per_tissue_mm3) {
-        const std::vector<std::vector<std::size_t>> shells = tissue_shells(complex, tissue);
+        const std::vector<std::vector<std::uint32_t>> shells = surface::tissue_shells(complex, tissue);
         if (shells.empty())
             throw InputError(concat("--max-volume names tissue ", tissue, ", which the surface does not contain"));
-        for (const std::vector<std::size_t>& shell : shells) {
+        for (const std::vector<std::uint32_t>& shell : shells) {
             std::size_t best = shell.front();
             double best_area = 0;
-            for (const std::size_t t : shell) {
+            for (const std::uint32_t t : shell) {
                 const double area = norm(triangle_normal(complex, t));
                 if (area > best_area) best_area = area, best = t;
             }

@@ -4,6 +4,8 @@
 #include <functional>
 #include <numeric>
 
+#include "core/union_find.h"
+#include "surface/check_complex.h"
 #include "surface/detail/edge_fan.h"
 
 namespace tissuemesh::surface::detail {
@@ -21,26 +23,6 @@ struct EdgeUse {
     std::uint64_t key;
     std::uint32_t local;     ///< the triangle's index in the tissue's triangle list
     std::int32_t direction;  ///< +1 when traversed from the lower to the higher vertex index
-};
-
-class UnionFind {
-public:
-    explicit UnionFind(std::size_t size) : parent_(size) { std::iota(parent_.begin(), parent_.end(), 0u); }
-    std::uint32_t find(std::uint32_t x)
-    {
-        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-        return x;
-    }
-    void unite(std::uint32_t a, std::uint32_t b) { parent_[find(a)] = find(b); }
-    std::size_t roots()
-    {
-        std::size_t count = 0;
-        for (std::uint32_t x = 0; x < parent_.size(); ++x) count += find(x) == x ? 1 : 0;
-        return count;
-    }
-
-private:
-    std::vector<std::uint32_t> parent_;
 };
 
 /// The triangle as seen from `tissue`: normal pointing out of it.
@@ -221,6 +203,34 @@ void check_tissue_surfaces(DefectLog& log, CheckReport& report)
         check.volume_mm3 = enclosed_volume(complex, tissue, triangles, origin);
     }
 }
+
+} // namespace tissuemesh::surface::detail
+
+namespace tissuemesh::surface {
+
+std::vector<std::vector<std::uint32_t>> tissue_shells(const InterfaceComplex& complex, Label tissue)
+{
+    std::vector<std::uint32_t> triangles;
+    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t)
+        if (complex.sides[t].from == tissue || complex.sides[t].to == tissue) triangles.push_back(t);
+    const std::vector<detail::EdgeUse> uses = detail::edge_uses(complex, tissue, triangles);
+    UnionFind components(triangles.size());
+    for (std::size_t k = 1; k < uses.size(); ++k)
+        if (uses[k].key == uses[k - 1].key) components.unite(uses[k - 1].local, uses[k].local);
+    // Shells in the order of their first triangle, each in increasing order.
+    std::vector<std::vector<std::uint32_t>> shells;
+    std::vector<std::size_t> shell_of(triangles.size(), triangles.size());
+    for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+        std::size_t& shell = shell_of[components.find(i)];
+        if (shell == triangles.size()) shell = shells.size(), shells.emplace_back();
+        shells[shell].push_back(triangles[i]);
+    }
+    return shells;
+}
+
+} // namespace tissuemesh::surface
+
+namespace tissuemesh::surface::detail {
 
 void check_volume_signs(DefectLog& log, const CheckReport& report, const std::set<Label>& crossing)
 {

@@ -123,10 +123,10 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     thread_local std::vector<Prior> prior;
     prior.clear();
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
-    thread_local std::vector<SmallPiece> pieces_before, pieces_after;
+    thread_local std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
     small_pieces(v, pieces_before);
-    small_pieces(w, pieces_after);  // w's own pieces count too: the collapse may thin a piece at w alone
-    for (const SmallPiece& p : pieces_after)
+    small_pieces(w, pieces_at_w);  // w's own pieces count too: the collapse may thin a piece at w alone
+    for (const SmallPiece& p : pieces_at_w)
         if (std::none_of(pieces_before.begin(), pieces_before.end(), [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
             pieces_before.push_back(p);
     begin_edit();

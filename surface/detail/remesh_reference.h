@@ -53,8 +53,8 @@ public:
 
     /// `q` with each coordinate the corners share exactly set to theirs. A point projected onto a triangle in an
     /// axis plane (surface nets put many vertices on the planes of their cubes' margins) is otherwise off it by
-    /// rounding, 1e-15 mm: neighbours that should be coplanar are then nearly so, and TetGen makes tets of 1e-15
-    /// mm^3 between them that nothing can mend (the 1 mm usc19-5 head).
+    /// rounding, 1e-15 mm, and neighbours that should be coplanar are only nearly so. A guard: on the 1 mm usc19-5
+    /// head it made no measured difference (its flat tets came from flattened small pieces, local_edits.cpp).
     static Vec3 on_shared_planes(Vec3 q, const TriangleCorners& c)
     {
         for (int a = 0; a < 3; ++a)
