@@ -178,7 +178,8 @@ int main(int argc, char** argv)
             options.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
                                    : dipole_model == "partial-integration" ? fem::DipoleModel::partial_integration
                                                                            : fem::DipoleModel::venant;
-            options.source_tissues = source_tissues.empty() ? std::vector<Label>{} : tools::parse_tissue_list(source_tissues, tools::tissue_table(mesh, input), "--source-tissues");
+            if (!source_tissues.empty())
+                options.source_tissues = tools::parse_tissue_list(source_tissues, tools::tissue_table(mesh, input), "--source-tissues");
             context.summary.update({{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}});
             const nlohmann::json common{{"tool", "tm-leadfield"}, {"version", TM_VERSION}, {"mesh", tools::mesh_description(input, mesh)},
                                         {"conductivities", tools::conductivity_description(mesh, sigma)}};

@@ -46,12 +46,15 @@ struct MeshCheckReport {
     QualityStats quality;
     std::vector<std::string> problems;      ///< one line each, with a location in mm (capped)
 
-    /// True when the mesh is fit for FEM: conforming, no inverted tets, closed boundary, interfaces right.
-    bool ok() const
+    /// How many defects of the tets and their faces there are: inverted or flat tets, non-conforming faces, open
+    /// boundary edges, missing, mislabelled or unmarked interface faces (unused nodes are not counted).
+    std::size_t tet_defects() const
     {
-        return inverted_tets == 0 && flat_tets == 0 && nonconforming_faces == 0 && open_boundary_edges == 0 && unused_nodes == 0 &&
-               missing_interface_faces == 0 && mislabelled_interface_faces == 0 && unmarked_interfaces == 0;
+        return inverted_tets + flat_tets + nonconforming_faces + open_boundary_edges + missing_interface_faces +
+               mislabelled_interface_faces + unmarked_interfaces;
     }
+    /// True when the mesh is fit for FEM: conforming, no inverted tets, closed boundary, interfaces right.
+    bool ok() const { return tet_defects() == 0 && unused_nodes == 0; }
 };
 
 /// Volume over the cube of the longest edge below which a tet counts as flat. A regular tet has

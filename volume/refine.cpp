@@ -8,8 +8,8 @@
 
 #include "core/error.h"
 #include "surface/detail/triangle_grid.h"
-#include "volume/detail/refine_mesh.h"
 #include "volume/check_mesh.h"
+#include "volume/detail/refine_mesh.h"
 #include "volume/detail/refine_placement.h"
 #include "volume/mark_interfaces.h"
 
@@ -254,12 +254,7 @@ std::string stop_reason(const Refinement& r, const RefineReport& report, double 
 
 /// Defects that make a mesh unfit for FEM (tissues across unmarked faces, flat or inverted tets, ...); the
 /// quality figures and unused nodes (dropped at the end) do not count.
-std::size_t fem_defects(const TetMesh& mesh)
-{
-    const MeshCheckReport c = check_mesh(mesh);
-    return c.inverted_tets + c.flat_tets + c.nonconforming_faces + c.open_boundary_edges + c.missing_interface_faces +
-           c.mislabelled_interface_faces + c.unmarked_interfaces;
-}
+std::size_t fem_defects(const TetMesh& mesh) { return check_mesh(mesh).tet_defects(); }
 
 enum class RoundResult { refined, no_nodes, rebuild_unfit };
 
@@ -279,12 +274,12 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
     const std::vector<TetState> old_state = r.state;
     if (r.constrained) {
         r.mesh = detail::insert_constrained(old, nodes.points, nodes.sources);
-        if (const std::size_t now = fem_defects(r.mesh); now > defects) {
+        const std::size_t now = fem_defects(r.mesh);
+        if (now > defects) {
             r.mesh = std::move(old);
             return RoundResult::rebuild_unfit;
-        } else {
-            defects = now;
         }
+        defects = now;
     } else {
         r.mesh.vertices.insert(r.mesh.vertices.end(), nodes.points.begin(), nodes.points.end());
         r.mesh.tets = detail::delaunay_tets(r.mesh.vertices);
