@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "surface/detail/edge_fan.h"
 #include "surface/detail/local_editor.h"
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/remesh_reference.h"
@@ -40,6 +41,8 @@ void validate(const RemeshOptions& options)
                                 " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));
     if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
         throw InputError(concat("remesh: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
+    if (!(options.min_sector_deg >= 0 && options.min_sector_deg < 90))
+        throw InputError(concat("remesh: min sector ", options.min_sector_deg, " deg is outside [0, 90)"));
 }
 
 
@@ -60,7 +63,8 @@ public:
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
                    .max_tilt_deg = options.max_normal_change_deg,
-                   .min_gap_mm = options.min_gap_mm},
+                   .min_gap_mm = options.min_gap_mm,
+                   .min_sector_deg = options.min_sector_deg},
                   cell_mm),
           reference_(reference)
     {
@@ -465,6 +469,7 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     RemeshReport report;
     report.triangles_before = complex.triangle_count();
     report.min_angle_before_deg = smallest_angle_deg(complex);
+    report.min_sector_before_deg = detail::smallest_sector_deg(complex);
     const InterfaceComplex input = complex;
     const double cell_mm = 2 * std::max(detail::mean_edge_length(complex), options.target_edge_mm);
     const Reference reference(input, cell_mm);
@@ -502,11 +507,14 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     }
     report.triangles_after = complex.triangle_count();
     report.min_angle_after_deg = smallest_angle_deg(complex);
+    report.min_sector_after_deg = detail::smallest_sector_deg(complex);
     report.mean_edge_after_mm = detail::mean_edge_length(complex);
     report.max_distance_mm = distance_to_input(complex, reference, cell_mm);
     progress.info("remesh", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; smallest angle ",
                                    format_mm(report.min_angle_before_deg, 2), " -> ",
-                                   format_mm(report.min_angle_after_deg, 2), " deg"));
+                                   format_mm(report.min_angle_after_deg, 2), " deg; smallest tissue sector ",
+                                   format_mm(report.min_sector_before_deg, 2), " -> ",
+                                   format_mm(report.min_sector_after_deg, 2), " deg"));
     return report;
 }
 

@@ -21,6 +21,9 @@ struct RemeshOptions {
     double min_angle_deg = 15;           ///< no edit may create an angle below this (unless not worse)
     double max_normal_change_deg = 30;   ///< one edit may tilt a triangle at most this much
     double min_gap_mm = 0.1;             ///< distance kept between patches (unless closer before)
+    /// Smallest angle kept between neighbouring triangles around an edge that holds a tissue (unless an edit
+    /// leaves it no smaller than before): it bounds the dihedral angles of the tets there (0: no rule).
+    double min_sector_deg = 15;
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
     /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
@@ -39,6 +42,10 @@ struct RemeshReport {
     std::size_t slabs = 1;                ///< slabs remeshed side by side (RemeshOptions::slabs)
     double min_angle_before_deg = 0;      ///< smallest triangle angle
     double min_angle_after_deg = 0;
+    /// Smallest angle between neighbouring triangles around an edge that holds a tissue (edge_fan.h's
+    /// smallest_sector_deg()): it bounds the dihedral angles of any tet mesh keeping the complex.
+    double min_sector_before_deg = 0;
+    double min_sector_after_deg = 0;
     double mean_edge_after_mm = 0;
     double max_distance_mm = 0;           ///< largest distance of a final vertex to the input surface
 };

@@ -67,6 +67,10 @@ int main(int argc, char** argv)
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle an edit may create")
                 ->capture_default_str();
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
+            app.add_option("--min-sector-deg", options.min_sector_deg,
+                           "Smallest angle an edit may leave between neighbouring triangles around an edge, on the side "
+                           "of a tissue (it bounds the dihedral angles of tm-tetra's tets there; 0: no rule)")
+                ->capture_default_str();
             app.add_option("--slabs", options.slabs,
                            "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
                            "triangles, at most 8; 64 at most (the result depends on it, not on the thread count)")
@@ -83,7 +87,8 @@ int main(int argc, char** argv)
                                                            [&] { report = surface::remesh(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles, smallest angle ",
                            format_mm(report.min_angle_before_deg, 3), " -> ", format_mm(report.min_angle_after_deg, 3),
-                           " deg (", format_mm(seconds, 2), " s)"));
+                           " deg, smallest tissue sector ", format_mm(report.min_sector_before_deg, 3), " -> ",
+                           format_mm(report.min_sector_after_deg, 3), " deg (", format_mm(seconds, 2), " s)"));
             tools::write_checked(complex, output);
             ctx.summary = {{"input", input},
                            {"input_checked", in.checked},
@@ -98,6 +103,8 @@ int main(int argc, char** argv)
                            {"slabs", report.slabs},
                            {"min_angle_before_deg", report.min_angle_before_deg},
                            {"min_angle_after_deg", report.min_angle_after_deg},
+                           {"min_sector_before_deg", report.min_sector_before_deg},
+                           {"min_sector_after_deg", report.min_sector_after_deg},
                            {"mean_edge_after_mm", report.mean_edge_after_mm},
                            {"max_distance_to_input_mm", report.max_distance_mm},
                            {"seconds_remesh", seconds}};

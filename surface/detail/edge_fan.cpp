@@ -1,6 +1,8 @@
 #include "surface/detail/edge_fan.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "surface/detail/cgal_intersections.h"
@@ -50,6 +52,60 @@ FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blade
         if (ahead(blades[p.second]) != behind(blades[q.second])) return FanOrder::out_of_order;
     }
     return FanOrder::in_order;
+}
+
+double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades, Label background)
+{
+    constexpr double pi = 3.14159265358979323846;
+    const std::size_t n = blades.size();
+    const double length = norm(b - a);
+    if (n < 2 || n > 16 || !(length > 0)) return 360;
+    // Angles of a right-hand turn about b - a in a frame (u, v) across the edge.
+    const Vec3 e = (1 / length) * (b - a);
+    const Vec3 across = cross(e, std::abs(e[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
+    const Vec3 u = (1 / norm(across)) * across, v = cross(e, u);
+    std::array<std::pair<double, Label>, 16> turn{};  // (angle, tissue ahead)
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3 r = blades[i].apex - a;
+        turn[i] = {std::atan2(dot(r, v), dot(r, u)), ahead(blades[i])};
+    }
+    std::sort(turn.begin(), turn.begin() + static_cast<std::ptrdiff_t>(n));
+    double smallest = 360;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (turn[i].second == background) continue;
+        const double next = i + 1 < n ? turn[i + 1].first : turn[0].first + 2 * pi;
+        smallest = std::min(smallest, (next - turn[i].first) * 180 / pi);
+    }
+    return smallest;
+}
+
+double smallest_sector_deg(const InterfaceComplex& complex)
+{
+    // Every (edge, triangle) once, sorted by edge: the triangles of an edge are neighbours in the list.
+    struct Use {
+        std::uint32_t a, b, triangle;
+    };
+    std::vector<Use> uses;
+    uses.reserve(3 * complex.triangles.size());
+    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t p = complex.triangles[t][k], q = complex.triangles[t][(k + 1) % 3];
+            uses.push_back({std::min(p, q), std::max(p, q), t});
+        }
+    std::sort(uses.begin(), uses.end(), [](const Use& x, const Use& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+    double smallest = 360;
+    std::vector<FanBlade> blades;
+    for (std::size_t i = 0; i < uses.size();) {
+        std::size_t j = i;
+        blades.clear();
+        for (; j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b; ++j)
+            blades.push_back(blade_on(complex.triangles[uses[j].triangle], uses[i].a, uses[i].b, complex.vertices,
+                                      complex.sides[uses[j].triangle]));
+        smallest = std::min(smallest, smallest_sector_deg(complex.vertices[uses[i].a], complex.vertices[uses[i].b],
+                                                          blades, complex.background));
+        i = j;
+    }
+    return smallest;
 }
 
 } // namespace tissuemesh::surface::detail

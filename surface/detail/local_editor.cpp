@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "core/error.h"
 #include "surface/detail/cgal_intersections.h"
@@ -355,6 +356,37 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
             if (blades.size() >= 3 && fan_order(positions_[a], positions_[b], blades) != FanOrder::in_order) return false;
         }
     return true;
+}
+
+double LocalEditor::smallest_sector_deg(std::uint32_t a, std::uint32_t b) const
+{
+    std::array<FanBlade, 16> blades{};
+    std::size_t count = 0;
+    for (const std::uint32_t t : stars_[a]) {
+        if (!has(triangles_[t], b)) continue;
+        if (count == blades.size()) return 360;  // no judgement on crowded edges
+        blades[count++] = blade_on(triangles_[t], a, b, positions_, sides_[t]);
+    }
+    return detail::smallest_sector_deg(positions_[a], positions_[b], std::span(blades.data(), count), background_);
+}
+
+double LocalEditor::smallest_sector_deg(const std::vector<std::uint32_t>& triangles) const
+{
+    double smallest = 360;
+    if (!(limits_.min_sector_deg > 0)) return smallest;
+    for (const std::uint32_t t : triangles)
+        for (int k = 0; k < 3; ++k)
+            smallest = std::min(smallest, smallest_sector_deg(triangles_[t][k], triangles_[t][(k + 1) % 3]));
+    return smallest;
+}
+
+bool LocalEditor::sectors_ok(const std::vector<std::uint32_t>& changed, double before)
+{
+    if (!(limits_.min_sector_deg > 0)) return true;
+    const double after = smallest_sector_deg(changed);
+    if (after >= limits_.min_sector_deg || after >= before - 1e-9) return true;
+    ++counters_.wedge;
+    return false;
 }
 
 void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)

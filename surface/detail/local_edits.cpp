@@ -129,6 +129,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     for (const SmallPiece& p : pieces_at_w)
         if (std::none_of(pieces_before.begin(), pieces_before.end(), [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
             pieces_before.push_back(p);
+    const double sectors_before = std::min(smallest_sector_deg(stars_[v]), smallest_sector_deg(stars_[w]));
     begin_edit();
     save_star(v);
     save_star(w);
@@ -148,7 +149,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         stars_[w].push_back(t);
     }
     stars_[v].clear();
-    if (!surroundings_ok(changed, prior)) {
+    if (!sectors_ok(stars_[w], sectors_before) || !surroundings_ok(changed, prior)) {
         undo();
         return false;
     }
@@ -178,6 +179,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
     for (const std::uint32_t t : stars_[v])
         if (has(triangles_[t], w)) parents.push_back(t);
     if (parents.size() < 2) return std::nullopt;
+    const double sectors_before = smallest_sector_deg(parents);
     begin_edit();
     if (positions_.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw InputError("LocalEditor: over 2^32 vertices");
@@ -218,7 +220,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
         undo();
         return std::nullopt;
     }
-    if (!surroundings_ok(changed, before)) {
+    if (!sectors_ok(changed, sectors_before) || !surroundings_ok(changed, before)) {
         undo();
         return std::nullopt;
     }
@@ -298,6 +300,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
         ++counters_.fence;
         return false;
     }
+    const double sectors_before = smallest_sector_deg(changed);
     begin_edit();
     for (const std::uint32_t x : {v, w, a, b}) save_star(x);
     thread_local std::vector<Prior> prior;
@@ -310,7 +313,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
     remove_from_star(w, first);
     stars_[a].push_back(second);
     stars_[b].push_back(first);
-    if (!surroundings_ok(changed, prior)) {
+    if (!sectors_ok(changed, sectors_before) || !surroundings_ok(changed, prior)) {
         undo();
         return false;
     }
@@ -334,6 +337,7 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
     thread_local std::vector<Prior> before;
     before.clear();
     for (const std::uint32_t t : stars_[v]) before.emplace_back(t, corners(triangles_[t]));
+    const double sectors_before = smallest_sector_deg(stars_[v]);
     const Vec3 old = positions_[v];
     positions_[v] = p;
     for (const auto& [t, was] : before) {
@@ -357,7 +361,7 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         positions_[v] = old;
         return false;
     }
-    if (!surroundings_ok(stars_[v], before)) {
+    if (!sectors_ok(stars_[v], sectors_before) || !surroundings_ok(stars_[v], before)) {
         positions_[v] = old;
         return false;
     }

@@ -2,11 +2,13 @@
 // On the 1 mm usc19-5 head, remeshing turned a two-voxel air pocket in the skull (decimated to a tetrahedron of
 // four triangles) inside out by small moves, none of them tilting a triangle much or making an intersection;
 // tm-check-surface passed it and TetGen's tets then disagreed on their tissue around it.
+#include <cmath>
 #include <map>
 
 #include <gtest/gtest.h>
 
 #include "surface/check_complex.h"
+#include "surface/detail/edge_fan.h"
 #include "surface/detail/local_editor.h"
 
 namespace tissuemesh {
@@ -68,6 +70,32 @@ TEST(LocalEditor, AMoveThroughTheOppositeFaceIsRefusedThoughEveryStepLooksFine)
     EXPECT_FALSE(editor.try_move(apex, {2.5, 2.5, -0.05}));
     // Back up: allowed.
     EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.3}));
+}
+
+// The sector rule: the pocket's tissue fills the angle between its base and its sides at the base's edges (the
+// apex over (0.5, 0.5): atan(z / 0.5) at the edges on the axes, atan(z / 0.707) at the third), which bounds the
+// dihedral angles of every tet tm-tetra can put there. A move may not close it below the limit, unless it leaves
+// it wider than it was.
+TEST(LocalEditor, AMoveThatClosesATissueSectorBelowTheLimitIsRefused)
+{
+    constexpr double pi = 3.14159265358979323846;
+    std::uint32_t apex = 0;
+    const InterfaceComplex complex = pocket(apex);
+    const surface::detail::LocalLimits without{.min_angle_deg = 1, .max_tilt_deg = 45, .min_gap_mm = 0};
+    surface::detail::LocalLimits with = without;
+    with.min_sector_deg = 15;
+    LocalEditor editor(complex, with, 2.0);
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.2}));   // 21.8 and 15.8 degrees
+    EXPECT_NEAR(surface::detail::smallest_sector_deg(editor.result()), std::atan(0.2 / std::sqrt(0.5)) * 180 / pi, 1e-9);
+    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.1}));  // 8.0 degrees at the third edge
+    EXPECT_DOUBLE_EQ(editor.position(apex)[2], 0.2);
+    // Without the rule the same move is made; with it again, a sector under the limit may open but not close.
+    editor.set_limits(without);
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.1}));
+    editor.set_limits(with);
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.12}));
+    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.11}));
+    EXPECT_TRUE(surface::check_complex(editor.result()).ok());
 }
 
 } // namespace
