@@ -29,6 +29,8 @@ void validate(const DecimateOptions& options)
     if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
         throw InputError(concat("decimate: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
     if (!(options.min_gap_mm >= 0)) throw InputError("decimate: min gap must not be negative");
+    if (!(options.min_sector_deg >= 0 && options.min_sector_deg < 90))
+        throw InputError(concat("decimate: min sector ", options.min_sector_deg, " deg is outside [0, 90)"));
     if (options.mode == DecimateMode::size && !(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
         throw InputError("decimate: size mode needs a target edge length (target_edge_mm or per tissue pair)");
     if (options.mode == DecimateMode::size && options.max_edge_mm > 0)

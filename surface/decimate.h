@@ -32,6 +32,9 @@ struct DecimateOptions {
     double max_normal_change_deg = 20;   ///< a collapse may tilt a triangle at most this much
     double min_angle_deg = 5;            ///< no collapse may create an angle below this (unless not worse)
     double min_gap_mm = 0.1;             ///< triangles sharing no vertex keep this distance (unless closer before)
+    /// Smallest angle kept between neighbouring triangles around an edge that holds a tissue (unless a
+    /// collapse leaves it no smaller than before): it bounds the dihedral angles of the tets there (0: no rule).
+    double min_sector_deg = 15;
     /// Size mode: target edge length (0: none). Edges shorter than 4/5 of it collapse, longer than 4/3 split.
     double target_edge_mm = 0;
     /// Size mode: target edge length per tissue pair (either order), overriding target_edge_mm.

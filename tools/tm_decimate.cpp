@@ -45,6 +45,10 @@ int main(int argc, char** argv)
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle a collapse may create")
                 ->capture_default_str();
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
+            app.add_option("--min-sector-deg", options.min_sector_deg,
+                           "Smallest angle a collapse may leave between neighbouring triangles around an edge, on the "
+                           "side of a tissue (it bounds the dihedral angles of tm-tetra's tets there; 0: no rule)")
+                ->capture_default_str();
             app.add_option("--target-edge-mm", options.target_edge_mm, "Size mode: target edge length")
                 ->capture_default_str();
             app.add_option("--slabs", options.slabs,

@@ -88,7 +88,8 @@ public:
           editor_(std::move(complex),
                   {.min_angle_deg = options.min_angle_deg,
                    .max_tilt_deg = options.max_normal_change_deg,
-                   .min_gap_mm = options.min_gap_mm},
+                   .min_gap_mm = options.min_gap_mm,
+                   .min_sector_deg = options.min_sector_deg},
                   cell_mm),
           quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab),
           fence_(slab ? std::optional(slab->fence(options.min_gap_mm)) : std::nullopt)
