@@ -12,6 +12,7 @@
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/check_topology.h"
 #include "surface/detail/defect_log.h"
+#include "surface/detail/edge_fan.h"
 
 namespace tissuemesh::surface {
 namespace {
@@ -311,5 +312,7 @@ std::string repair_hint(const CheckReport& report)
     return concat("tm-repair may fix it (it merges coincident vertices, drops repeated and zero-area triangles, turns "
                   "flipped ones and moves crossing surfaces apart), or ", extract);
 }
+
+double smallest_tissue_sector_deg(const InterfaceComplex& complex) { return detail::smallest_sector_deg(complex); }
 
 } // namespace tissuemesh::surface

@@ -110,6 +110,11 @@ CheckReport check_complex(const InterfaceComplex& complex, const CheckOptions& o
 /// (holes, a tissue touching itself, an inverted tissue).
 std::string repair_hint(const CheckReport& report);
 
+/// The smallest angle (degrees) a tissue other than the background fills about an edge, between neighbouring
+/// triangles: no tet mesh that keeps the complex can have a smaller largest-possible dihedral angle there (every
+/// tet of the tissue at the edge lies inside it). 360 when no edge has a tissue sector.
+double smallest_tissue_sector_deg(const InterfaceComplex& complex);
+
 /// For steps that need a valid complex: runs check_complex() and throws when it is not fit.
 /// @throws InputError naming `what`, the number of errors and the first defect, with repair_hint()
 ///         (which always ends "re-extract it with tm-extract ..."); also when the complex has no triangle.

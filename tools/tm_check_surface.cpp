@@ -134,11 +134,14 @@ int main(int argc, char** argv)
             print_report(input, complex, report, max_report);
             ctx.summary = to_json(complex, report, max_report);
             ctx.summary["input"] = input;
+            const double sector = surface::smallest_tissue_sector_deg(complex);
+            ctx.summary["min_tissue_sector_deg"] = sector;
             if (!report.ok())
                 throw AlgorithmError(concat(input, ": not fit for tetrahedralization: ", error_summary(report),
                                             "; first: ", report.first_error()->description,
                                             "; ", surface::repair_hint(report)));
             ctx.log(concat(input, ": fit for tetrahedralization (", report.triangles, " triangles, ",
-                           report.warning_count(), " warnings)"));
+                           report.warning_count(), " warnings); smallest angle a tissue fills about an edge ",
+                           format_mm(sector, 2), " deg (no tet there can have all its dihedral angles above it)"));
         });
 }

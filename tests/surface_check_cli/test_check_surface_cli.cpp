@@ -41,6 +41,8 @@ TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
     EXPECT_NEAR(summary["tissues"][1]["volume_mm3"].get<double>(), 26.0, 1e-9);
     EXPECT_NEAR(summary["tissues"][2]["volume_mm3"].get<double>(), 1.0, 1e-9);
     EXPECT_EQ(summary["tissues"][1]["components"], 2);  // skull's outer and inner sheets
+    // Each tissue fills 90 degrees about its box's edges (the skull 270 about the brain's), 180 about face diagonals.
+    EXPECT_NEAR(summary["min_tissue_sector_deg"].get<double>(), 90.0, 1e-9);
 }
 
 TEST(CheckSurfaceCli, IntersectingBoxesExitOneNamingTissuesAndPlace)
