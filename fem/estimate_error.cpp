@@ -4,9 +4,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/tet_adjacency.h"
+#include "core/tet_shape.h"
 #include "fem/assemble.h"
 #include "fem/compute_fields.h"
-#include "fem/detail/incidence.h"
 
 namespace tissuemesh::fem {
 namespace {
@@ -32,7 +33,7 @@ std::vector<double> estimate_error(const TetMesh& mesh, const Conductivities& co
                                    const std::vector<double>& potential_v)
 {
     const TetFields fields = compute_fields(mesh, conductivities, potential_v);
-    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
+    const TetAdjacency adjacency(mesh.tets, mesh.vertex_count());
     const auto count = static_cast<std::int64_t>(mesh.tet_count());
     std::vector<double> indicator(mesh.tet_count(), 0.0);
     // Each tet sums its own faces (k = 0..3): every interior face is evaluated from both sides.
@@ -42,10 +43,10 @@ std::vector<double> estimate_error(const TetMesh& mesh, const Conductivities& co
         const Tet& tet = mesh.tets[tet_index];
         double squared = 0;
         for (int k = 0; k < 4; ++k) {
-            const std::uint32_t other = neighbours[4 * tet_index + static_cast<std::size_t>(k)];
-            if (other == detail::no_tet) continue;
-            const Triangle face{tet[detail::face_vertices[k][0]], tet[detail::face_vertices[k][1]],
-                                tet[detail::face_vertices[k][2]]};
+            const std::uint32_t other = adjacency.across(tet_index, k);
+            if (other == no_tet) continue;
+            const Triangle face{tet[tet_faces[k][0]], tet[tet_faces[k][1]],
+                                tet[tet_faces[k][2]]};
             squared += face_share(mesh, face, fields.current_a_per_m2[tet_index], fields.current_a_per_m2[other]);
         }
         indicator[tet_index] = std::sqrt(squared);

@@ -5,7 +5,8 @@
 #include <cstddef>
 
 #include "core/error.h"
-#include "fem/detail/incidence.h"
+#include "core/tet_adjacency.h"
+#include "core/tet_shape.h"
 
 namespace tissuemesh::fem {
 namespace {
@@ -17,8 +18,8 @@ struct BoundaryFace {
 
 BoundaryFace face_of(const Tet& tet, int k)
 {
-    BoundaryFace face{{}, {tet[detail::face_vertices[k][0]], tet[detail::face_vertices[k][1]],
-                           tet[detail::face_vertices[k][2]]}};
+    BoundaryFace face{{}, {tet[tet_faces[k][0]], tet[tet_faces[k][1]],
+                           tet[tet_faces[k][2]]}};
     face.sorted = face.oriented;
     std::sort(face.sorted.begin(), face.sorted.end());
     return face;
@@ -44,11 +45,11 @@ OuterBoundary outer_boundary(const TetMesh& mesh)
 {
     if (mesh.tets.empty()) return {};
     validate_indices(mesh, "mesh");
-    const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
+    const TetAdjacency adjacency(mesh.tets, mesh.vertex_count());
     std::vector<BoundaryFace> faces;
     for (std::size_t t = 0; t < mesh.tet_count(); ++t)
         for (int k = 0; k < 4; ++k)
-            if (neighbours[4 * t + static_cast<std::size_t>(k)] == detail::no_tet) faces.push_back(face_of(mesh.tets[t], k));
+            if (adjacency.across(t, k) == no_tet) faces.push_back(face_of(mesh.tets[t], k));
     return boundary_from(std::move(faces));
 }
 

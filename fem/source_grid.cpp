@@ -7,7 +7,8 @@
 #include <unordered_map>
 
 #include "core/error.h"
-#include "fem/detail/incidence.h"
+#include "core/tet_adjacency.h"
+#include "core/tet_shape.h"
 #include "fem/detail/nearest_on_triangle.h"
 #include "fem/detail/point_location.h"
 
@@ -25,14 +26,14 @@ class BoundaryFaces {
 public:
     BoundaryFaces(const TetMesh& mesh, const std::vector<Label>& tissues, double cell_mm) : mesh_(mesh), cell_(cell_mm)
     {
-        const std::vector<std::uint32_t> neighbours = detail::face_neighbours(mesh);
+        const TetAdjacency adjacency(mesh.tets, mesh.vertex_count());
         for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
             if (!chosen(tissues, mesh.tet_labels[t])) continue;
             for (int k = 0; k < 4; ++k) {
-                const std::uint32_t other = neighbours[4 * t + static_cast<std::size_t>(k)];
-                if (other != detail::no_tet && chosen(tissues, mesh.tet_labels[other])) continue;
-                const Triangle face{mesh.tets[t][detail::face_vertices[k][0]], mesh.tets[t][detail::face_vertices[k][1]],
-                                    mesh.tets[t][detail::face_vertices[k][2]]};
+                const std::uint32_t other = adjacency.across(t, k);
+                if (other != no_tet && chosen(tissues, mesh.tet_labels[other])) continue;
+                const Triangle face{mesh.tets[t][tet_faces[k][0]], mesh.tets[t][tet_faces[k][1]],
+                                    mesh.tets[t][tet_faces[k][2]]};
                 Vec3 low = mesh.vertices[face[0]], high = low;
                 for (const std::uint32_t v : face)
                     for (int a = 0; a < 3; ++a)

@@ -26,13 +26,6 @@ using Local = std::array<int, 3>;
 /// split cubes only).
 using Labels9 = std::array<Label, 9>;
 
-/// The 6 Kuhn tetrahedra of a cube, as chains of cube corners (bit 0: +x, bit 1: +y, bit 2: +z): every
-/// tetrahedron runs from corner 0 to corner 7 adding one axis at a time, so each corner is a subset of the
-/// next and every tetrahedron edge goes in a non-negative grid direction.
-constexpr std::array<std::array<int, 4>, 6> kuhn_tets{{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
-}};
-
 /// Slot of a triangle of the triangulation with corners base, base + a, base + b (a subset of b, as axis
 /// bit sets): 12 triangle kinds per grid point.
 constexpr std::array<std::int8_t, 64> face_slots = [] {
@@ -137,16 +130,12 @@ private:
                 for (int c = 1; c < 8; ++c) uniform = uniform && corners[c] == corners[0];
                 if (uniform) continue;
                 i_ = i, j_ = j;
-                if (rule_.active()) {
-                    const detail::CubePlan plan = rule_.plan(corners);
-                    if (plan.split) {
-                        extract_split_cube(plan, corners);
-                        continue;
-                    }
-                }
+                const detail::CubePlan plan = rule_.active() ? rule_.plan(corners) : detail::CubePlan{};
                 Labels9 labels{};
                 std::copy(corners.begin(), corners.end(), labels.begin());
-                for (const auto& tet : kuhn_tets) extract_tet(tet, labels);
+                labels[8] = plan.split ? plan.centre : Label{0};
+                const detail::CubeTets tets = detail::cube_tetrahedra(plan);
+                for (std::size_t t = 0; t < tets.count; ++t) extract_tet(tets.tets[t], labels);
             }
         }
     }
@@ -167,23 +156,6 @@ private:
     static Local vertex_local(int v)
     {
         return v == 8 ? Local{12, 12, 12} : Local{24 * (v & 1), 24 * (v >> 1 & 1), 24 * (v >> 2 & 1)};
-    }
-
-    /// The priority rule's split cube: 12 tetrahedra, each a face triangle (on the face's chosen diagonal)
-    /// coned to the centre.
-    void extract_split_cube(const detail::CubePlan& plan, const std::array<Label, 8>& corners)
-    {
-        Labels9 labels{};
-        std::copy(corners.begin(), corners.end(), labels.begin());
-        labels[8] = plan.centre;
-        for (std::size_t f = 0; f < detail::cube_faces.size(); ++f) {
-            const auto& c = detail::cube_faces[f];
-            // The face's two triangles on its chosen diagonal, each coned to the centre.
-            const std::array<std::array<int, 3>, 2> triangles =
-                plan.anti[f] ? std::array<std::array<int, 3>, 2>{{{c[1], c[3], c[0]}, {c[1], c[3], c[2]}}}
-                             : std::array<std::array<int, 3>, 2>{{{c[0], c[2], c[1]}, {c[0], c[2], c[3]}}};
-            for (const auto& t : triangles) extract_tet({t[0], t[1], t[2], 8}, labels);
-        }
     }
 
     /// The barycentric-dual surface in tetrahedron `tet` (cube vertices; a Kuhn tetrahedron lists them

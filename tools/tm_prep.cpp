@@ -9,6 +9,7 @@
 #include "io/read_label_image.h"
 #include "io/write_label_image.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 
 using namespace tissuemesh;
 
@@ -34,43 +35,38 @@ Number parse_number(const std::string& text, const std::string& option)
     return value;
 }
 
-Label parse_label(const std::string& text, const std::string& option)
+/// The command-line strings that need no image (--spacing-mm) into `options`; bad values throw InputError naming
+/// the option.
+void parse_spacing(const std::string& spacing, image::PrepOptions& options)
 {
-    const auto value = parse_number<long>(text, option);
-    if (value < 0 || value > 65535) throw InputError(concat(option, ": label ", text, " is outside 0..65535"));
-    return static_cast<Label>(value);
+    if (spacing.empty()) return;
+    const auto parts = split(spacing, ',');
+    if (parts.size() != 1 && parts.size() != 3) throw InputError(concat("--spacing-mm: '", spacing, "' must be X or X,Y,Z in mm"));
+    Vec3 s;
+    for (int a = 0; a < 3; ++a) s[a] = parse_number<double>(parts[parts.size() == 1 ? 0 : a], "--spacing-mm");
+    options.spacing_mm = s;
 }
 
-std::vector<Label> parse_labels(const std::string& text, const std::string& option)
+/// The tissue arguments, by name or number (tools/tissue_arguments.h), against the tissues of the input image:
+/// --relabel's FROM must be one of them, its TO may be any label (a new one too), and the later steps may name
+/// the TO labels as well.
+void parse_tissue_options(const std::string& relabel, const std::vector<std::string>& merges,
+                          const std::string& keep_largest, const std::string& fill_holes_in,
+                          tools::TissueTable tissues, image::PrepOptions& options)
 {
-    std::vector<Label> labels;
-    for (const std::string& part : split(text, ',')) labels.push_back(parse_label(part, option));
-    return labels;
-}
-
-/// Turns the command-line strings into PrepOptions; bad values throw InputError naming the option.
-image::PrepOptions parse_options(const std::string& relabel, const std::vector<std::string>& merges,
-                                 const std::string& spacing, const std::string& keep_largest,
-                                 const std::string& fill_holes_in, image::PrepOptions options)
-{
+    const tools::TissueTable any_label{tissues.names, {}, tissues.source};
     if (!relabel.empty())
         for (const std::string& pair : split(relabel, ',')) {
             const auto ends = split(pair, ':');
             if (ends.size() != 2) throw InputError(concat("--relabel: '", pair, "' is not FROM:TO (e.g. 5:4,6:0)"));
-            options.relabel[parse_label(ends[0], "--relabel")] = parse_label(ends[1], "--relabel");
+            const Label to = tools::parse_tissue(ends[1], any_label, "--relabel");
+            options.relabel[tools::parse_tissue(ends[0], tissues, "--relabel")] = to;
         }
-    for (const std::string& group : merges) options.merge.push_back(parse_labels(group, "--merge"));
-    if (!spacing.empty()) {
-        const auto parts = split(spacing, ',');
-        if (parts.size() != 1 && parts.size() != 3)
-            throw InputError(concat("--spacing-mm: '", spacing, "' must be X or X,Y,Z in mm"));
-        Vec3 s;
-        for (int a = 0; a < 3; ++a) s[a] = parse_number<double>(parts[parts.size() == 1 ? 0 : a], "--spacing-mm");
-        options.spacing_mm = s;
-    }
-    if (!keep_largest.empty()) options.keep_largest = parse_labels(keep_largest, "--keep-largest");
-    if (!fill_holes_in.empty()) options.fill_holes = true, options.fill_holes_tissues = parse_labels(fill_holes_in, "--fill-holes-in");
-    return options;
+    for (const auto& [from, to] : options.relabel) tissues.present.insert(to);
+    for (const std::string& group : merges) options.merge.push_back(tools::parse_tissue_list(group, tissues, "--merge"));
+    if (!keep_largest.empty()) options.keep_largest = tools::parse_tissue_list(keep_largest, tissues, "--keep-largest");
+    if (!fill_holes_in.empty())
+        options.fill_holes = true, options.fill_holes_tissues = tools::parse_tissue_list(fill_holes_in, tissues, "--fill-holes-in");
 }
 
 /// OUT.labels.json for OUT.nii.gz: the tissue names after relabelling, readable by --labels.
@@ -103,7 +99,9 @@ constexpr double bytes_per_resampled_voxel = 4;
 
 /// Refuses an image, or a resampling of it, that would need more memory than --max-memory allows: checked
 /// when the header is read, before the voxels are.
-tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::string& input, const image::PrepOptions& options)
+/// `cleans`: --keep-largest, --remove-islands or --fill-holes(-in) is given.
+tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::string& input, const image::PrepOptions& options,
+                                   bool cleans)
 {
     return [=](const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel) {
         const double voxels = static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
@@ -112,7 +110,6 @@ tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::s
         if (options.spacing_mm)
             for (int axis = 0; axis < 3; ++axis) scale *= spacing_mm[axis] / (*options.spacing_mm)[axis];
         if (!std::isfinite(scale) || !(scale > 0)) return;
-        const bool cleans = !options.keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes;
         const double in = static_cast<double>(file_bytes_per_voxel) +
                           (cleans && !options.spacing_mm ? bytes_per_cleaned_voxel : bytes_per_label);
         const double out = options.spacing_mm ? (cleans ? bytes_per_cleaned_voxel : bytes_per_resampled_voxel) : 0;
@@ -141,35 +138,39 @@ int main(int argc, char** argv)
         {"tm-prep",
          "Cleans a label image before meshing. Operations run in this fixed order, whatever the order of the "
          "flags: 1 --relabel, 2 --merge, 3 --spacing-mm (resample), 4 --keep-largest, 5 --remove-islands, "
-         "6 --fill-holes, 7 --crop-pad. Each logs what it changed; --json has the counts per label. Tissue "
-         "names (from --labels), renamed by --relabel and --merge, go to OUT.labels.json.",
+         "6 --fill-holes, 7 --crop-pad. Each logs what it changed; --json has the counts per label. Tissues are "
+         "label numbers or names (from the image or --labels, in any case). Tissue names, renamed by --relabel and "
+         "--merge, go to OUT.labels.json.",
          "Examples:\n  tm-prep -i head.nii.gz -o clean.nii.gz --relabel 6:0 --remove-islands 20 --crop-pad 2\n"
          "  tm-prep -i liver.inr.gz -o liver.nii.gz --merge 127,85 --spacing-mm 1 --fill-holes\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Input label image")->required()->type_name("IMAGE");
             app.add_option("-o,--output", output, "Output label image")->required()->type_name("IMAGE");
             app.add_option("--labels", names, "Tissue names for the input: JSON, FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")->type_name("FILE");
-            app.add_option("--relabel", relabel, "FROM:TO pairs, applied at once (5:4,6:0)")->type_name("MAP");
-            app.add_option("--merge", merges, "Merge labels into the first (4,5); repeatable")->type_name("LABELS");
+            app.add_option("--relabel", relabel, "FROM:TO pairs of tissues, applied at once (5:4,6:0; names or labels)")->type_name("MAP");
+            app.add_option("--merge", merges, "Merge tissues into the first (4,5 or names); repeatable")->type_name("LABELS");
             app.add_option("--spacing-mm", spacing, "Resample to X or X,Y,Z mm (majority of the overlap)")
                 ->type_name("MM");
             app.add_flag("--nearest", nearest, "Resample by nearest neighbour instead of majority");
-            app.add_option("--keep-largest", keep_largest, "Keep only the largest piece of these labels (1,2)")
+            app.add_option("--keep-largest", keep_largest, "Keep only the largest piece of these tissues (1,2 or names)")
                 ->type_name("LABELS");
             app.add_option("--remove-islands", options.remove_islands_voxels,
                            "Give pieces under N voxels to their surrounding tissue")->check(CLI::NonNegativeNumber)->type_name("N");
             app.add_flag("--fill-holes", options.fill_holes, "Fill background cavities enclosed in tissue");
-            app.add_option("--fill-holes-in", fill_holes_in, "Fill only cavities enclosed by these labels")
+            app.add_option("--fill-holes-in", fill_holes_in, "Fill only cavities enclosed by these tissues (labels or names)")
                 ->type_name("LABELS");
             crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")->check(CLI::NonNegativeNumber)
                 ->type_name("N");
             app.add_option("--background", options.background, "The label outside the tissues")->check(CLI::Range(0, 65535))->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
-            options = parse_options(relabel, merges, spacing, keep_largest, fill_holes_in, options);
+            parse_spacing(spacing, options);
             if (nearest) options.resample_method = image::ResampleMethod::nearest;
             if (crop_option->count() > 0) options.crop_pad_voxels = crop_pad;
-            LabelImage image = io::read_label_image(input, {.names_json = names, .before_voxels = memory_check(ctx.memory, input, options)});
+            const bool cleans = !keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes || !fill_holes_in.empty();
+            LabelImage image = io::read_label_image(input, {.names_json = names,
+                                                            .before_voxels = memory_check(ctx.memory, input, options, cleans)});
+            parse_tissue_options(relabel, merges, keep_largest, fill_holes_in, tools::tissue_table(image, input), options);
             const auto reports = image::prepare_image(image, options, ctx.progress);
             io::write_label_image(image, output);
             if (!image.names().empty()) {

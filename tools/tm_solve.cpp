@@ -4,16 +4,11 @@
 #include <cmath>
 #include <cstdint>
 #include <ctime>
-#include <map>
-#include <cstdio>
-#include <limits>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/tet_shape.h"
-#include "fem/compute_fields.h"
-#include "fem/estimate_error.h"
+#include "fem/analyse_solution.h"
 #include "fem/outer_boundary.h"
 #include "fem/solve_potential.h"
 #include "io/read_conductivity_table.h"
@@ -64,30 +59,14 @@ std::string sensor_csv(const TetMesh& mesh, const std::vector<io::SensorRow>& se
     return out.str();
 }
 
-/// Per-tissue tets, volume, volume-weighted mean and maximum |E| (V/m) and mean |J| (A/m^2).
-nlohmann::json field_statistics(const TetMesh& mesh, const fem::TetFields& fields)
+/// Per-tissue tets, volume, volume-weighted mean and maximum |E| (V/m) and mean |J| (A/m^2), for --json.
+nlohmann::json field_statistics(const TetMesh& mesh, const fem::SolutionAnalysis& analysis)
 {
-    struct Sums {
-        std::size_t tets = 0;
-        double volume_mm3 = 0, e_volume = 0, max_e = 0, j_volume = 0;
-    };
-    std::map<Label, Sums> by_label;
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
-        Sums& sums = by_label[mesh.tet_labels[t]];
-        const double volume = signed_volume(mesh, t), e = norm(fields.electric_v_per_m[t]);
-        ++sums.tets;
-        sums.volume_mm3 += volume;
-        sums.e_volume += volume * e;
-        sums.max_e = std::max(sums.max_e, e);
-        sums.j_volume += volume * norm(fields.current_a_per_m2[t]);
-    }
     nlohmann::json tissues = nlohmann::json::object();
-    for (const auto& [label, sums] : by_label) {
+    for (const auto& [label, t] : analysis.tissues) {
         const auto name = mesh.names.find(label);
-        tissues[std::to_string(label)] = {{"tets", sums.tets}, {"volume_mm3", sums.volume_mm3},
-                                          {"mean_E_V_per_m", sums.e_volume / sums.volume_mm3},
-                                          {"max_E_V_per_m", sums.max_e},
-                                          {"mean_J_A_per_m2", sums.j_volume / sums.volume_mm3},
+        tissues[std::to_string(label)] = {{"tets", t.tets}, {"volume_mm3", t.volume_mm3}, {"mean_E_V_per_m", t.mean_e_v_per_m},
+                                          {"max_E_V_per_m", t.max_e_v_per_m}, {"mean_J_A_per_m2", t.mean_j_a_per_m2},
                                           {"name", name == mesh.names.end() ? std::to_string(label) : name->second}};
     }
     return tissues;
@@ -107,6 +86,11 @@ public:
         last_cpu_ = cpu_now;
     }
     void set(const std::string& phase, double seconds) { phases_[phase] = seconds; }
+    void set(const std::string& phase, const fem::PartSeconds& part)
+    {
+        phases_[phase] = part.wall;
+        cpu_phases_[phase] = part.cpu;
+    }
     const nlohmann::json& phases() const { return phases_; }
     const nlohmann::json& cpu_phases() const { return cpu_phases_; }
 
@@ -115,17 +99,6 @@ private:
     std::clock_t last_cpu_ = std::clock();
     nlohmann::json phases_ = nlohmann::json::object(), cpu_phases_ = nlohmann::json::object();
 };
-
-/// Smallest dihedral angle of the mesh (deg): slivers slow CG down, so it goes next to the iterations.
-double min_dihedral_deg(const TetMesh& mesh)
-{
-    double smallest = 180;
-    const auto count = static_cast<std::int64_t>(mesh.tet_count());
-#pragma omp parallel for schedule(static) reduction(min : smallest)
-    for (std::int64_t t = 0; t < count; ++t)
-        smallest = std::min(smallest, tet_shape(mesh, static_cast<std::size_t>(t)).min_dihedral_deg);
-    return smallest;
-}
 
 /// The conductivities of the mesh's tissues from `table`, read from `path` (empty: the head defaults); errors
 /// about the table's contents name the file.
@@ -213,133 +186,162 @@ std::vector<double> potential_from_lead_field(const std::string& path, const Tet
     return fem::montage_potential(file.lead_field, currents);
 }
 
-} // namespace
-
-int main(int argc, char** argv)
-{
+/// tm-solve's command line.
+struct SolveFlags {
     std::string input, output, conductivity, sensors_path, sensor_output, montage, lead_field, solver = "amg",
         dipole_model = "venant";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     int processes = 0;
     bool error_indicator = false, vtu_ascii = false;
+
+    void add_to(CLI::App& app)
+    {
+        app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh), mm")->required()->check(CLI::ExistingFile);
+        app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
+        app.add_option("--conductivity", conductivity, "JSON {tissue name or label: S/m or 3x3 tensor}");
+        app.add_option("--dipole", dipoles, "X,Y,Z,PX,PY,PZ: position mm, moment A*m (repeatable)");
+        app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
+        app.add_option("--electrodes", montage, "Montage CSV: x,y,z,radius_mm,current_a[,name] per electrode (mm, A)")
+            ->type_name("FILE");
+        app.add_option("--leadfield", lead_field,
+                       "tDCS lead field of tm-leadfield (--tdcs-output): the --electrodes montage's field is summed from "
+                       "it without a solve (electrodes by name)")
+            ->type_name("FILE")->check(CLI::ExistingFile);
+        app.add_option("--sensors", sensors_path, "CSV with header x,y,z[,name] (mm)")->type_name("FILE");
+        app.add_option("--sensor-potentials", sensor_output,
+                       "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
+        app.add_option("--dipole-model", dipole_model,
+                       "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
+                       "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
+                       "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
+                       "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
+                       "load of the one tet that holds the dipole: several times less accurate, its error depends on "
+                       "that tet)")
+            ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
+        app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
+        app.add_option("--processes", processes,
+                       "MPI processes for the AMG-CG (mpiexec; hypre has no threads here): 0 = one per available "
+                       "core, 1 = none; fewer when each would get under 100 000 unknowns. The iteration count, and "
+                       "so the last digits, depend on it")
+            ->check(CLI::Range(0, 1024));
+        app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
+        app.add_flag("--error-indicator", error_indicator,
+                     "Also write the flux-jump error indicator per tet (error_indicator) and its total to --json");
+        app.add_flag("--vtu-ascii", vtu_ascii, "Write the .vtu as ASCII instead of zlib-compressed binary");
+    }
+};
+
+/// The potential: summed from --leadfield, or solved for the sources of the command line (the solver's phases
+/// into `clock`, its figures into `report`).
+std::vector<double> potential(const SolveFlags& flags, const TetMesh& mesh, const fem::Conductivities& sigma,
+                              const std::vector<io::ElectrodeRow>& montage_rows, tools::ToolContext& context,
+                              PhaseClock& clock, fem::PotentialReport& report)
+{
+    if (!flags.lead_field.empty()) {
+        if (flags.montage.empty() || !flags.dipoles.empty() || !flags.electrodes.empty())
+            throw InputError("--leadfield takes the montage from --electrodes FILE alone (no --dipole or --electrode)");
+        std::vector<double> phi = potential_from_lead_field(flags.lead_field, mesh, flags.montage, montage_rows);
+        clock.lap("solve");
+        context.summary["lead_field"] = flags.lead_field;
+        return phi;
+    }
+    fem::PotentialProblem problem = parse_problem(flags.dipoles, flags.electrodes, flags.montage, montage_rows);
+    problem.dipole_model = flags.dipole_model == "subtraction" ? fem::DipoleModel::subtraction
+                           : flags.dipole_model == "venant"    ? fem::DipoleModel::venant
+                                                               : fem::DipoleModel::partial_integration;
+    std::vector<double> phi = fem::solve_potential(
+        mesh, sigma, problem,
+        {.preconditioner = flags.solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
+         .relative_tolerance = flags.tolerance, .processes = flags.processes},
+        context.progress, &report);
+    clock.lap("solve");
+    record_solver_phases(report, clock);
+    return phi;
+}
+
+/// The solution .vtu: the potential per node, E, J, |E| (and the error indicator) per tet.
+void write_solution(const SolveFlags& flags, const TetMesh& mesh, const std::vector<double>& phi,
+                    const fem::SolutionAnalysis& analysis)
+{
+    std::vector<io::VtuArray> cell_arrays{io::make_vtu_vectors("E_V_per_m", analysis.fields.electric_v_per_m),
+                                          io::make_vtu_vectors("J_A_per_m2", analysis.fields.current_a_per_m2),
+                                          io::make_vtu_array("E_magnitude_V_per_m", analysis.e_magnitude_v_per_m)};
+    if (flags.error_indicator) cell_arrays.push_back(io::make_vtu_array("error_indicator", analysis.error_indicator));
+    io::write_vtu(mesh, flags.output, {io::make_vtu_array("potential_V", phi)}, cell_arrays,
+                  flags.vtu_ascii ? io::VtuEncoding::ascii : io::VtuEncoding::compressed);
+}
+
+/// The --json summary of a run.
+void summarize(const TetMesh& mesh, const fem::PotentialReport& report, const fem::SolutionAnalysis& analysis,
+               std::size_t sensors, bool error_indicator, const PhaseClock& clock, nlohmann::json& summary)
+{
+    if (error_indicator) summary["error_indicator_total"] = analysis.error_indicator_total;
+    summary.update({{"tissues", field_statistics(mesh, analysis)}, {"min_dihedral_deg", analysis.min_dihedral_deg},
+                    {"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
+                    {"preconditioner", report.solver.preconditioner}, {"processes", report.solver.processes},
+                    {"iterations", report.solver.iterations}, {"relative_residual", report.solver.relative_residual},
+                    {"solve_seconds", report.solver.seconds}, {"electrode_nodes", report.electrode_nodes},
+                    {"electrode_area_mm2", report.electrode_area_mm2}, {"sensors", sensors},
+                    {"phase_seconds", clock.phases()}, {"phase_cpu_seconds", clock.cpu_phases()}});
+}
+
+void run(const SolveFlags& flags, tools::ToolContext& context)
+{
+    if (flags.sensors_path.empty() != flags.sensor_output.empty())
+        throw InputError("--sensors and --sensor-potentials go together; give both or neither");
+    PhaseClock clock;
+    // The small files first: a mistake in them is reported before the mesh is read.
+    const fem::ConductivityTable table = flags.conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(flags.conductivity);
+    const auto montage_rows = flags.montage.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrodes(flags.montage);
+    const auto sensors = flags.sensors_path.empty() ? std::vector<io::SensorRow>{} : io::read_sensors(flags.sensors_path);
+    clock.lap("inputs");
+    const TetMesh mesh = io::read_tet_mesh(flags.input);
+    clock.lap("read");
+    check_memory(context, flags.input, mesh);
+    const fem::Conductivities sigma = resolve_from_file(mesh, table, flags.conductivity);
+    fem::PotentialReport report;
+    const std::vector<double> phi = potential(flags, mesh, sigma, montage_rows, context, clock, report);
+    const fem::SolutionAnalysis analysis = fem::analyse_solution(mesh, sigma, phi, {.error_indicator = flags.error_indicator});
+    clock.lap("statistics");  // restarts the clock; the parts' own times follow
+    clock.set("fields", analysis.fields_time);
+    if (flags.error_indicator) clock.set("error_indicator", analysis.error_indicator_time);
+    clock.set("statistics", analysis.statistics_time);
+    write_solution(flags, mesh, phi, analysis);
+    if (!flags.sensor_output.empty()) write_text_atomically(flags.sensor_output, sensor_csv(mesh, sensors, phi));
+    clock.lap("write");
+    context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
+                       report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
+    summarize(mesh, report, analysis, sensors.size(), flags.error_indicator, clock, context.summary);
+}
+
+constexpr const char* description =
+    "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
+    "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
+    "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
+    "potentials. Tissues missing from the conductivity file take documented head defaults by name.";
+
+constexpr const char* files_and_examples =
+    "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m; names "
+    "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV with "
+    "x,y,z,radius_mm,current_a (mm, mm, A), both optionally with a name column, columns in any order, '#' lines "
+    "comments; at most 100 000 sensors and 10 000 electrodes. --electrodes and --electrode add up; with no fixed "
+    "potential the currents must sum to zero. Before the solve, a mesh that would need more than --max-memory "
+    "(about 3 kB per node) is refused.\n"
+    "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
+    "      --sensors electrodes.csv --sensor-potentials eeg.csv\n"
+    "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3\n"
+    "  tm-solve -i head.msh -o tdcs.vtu --electrodes montage.csv      # 2 mA from C3 to Fp2; montage.csv:\n"
+    "      name,x,y,z,radius_mm,current_a\n"
+    "      C3,-52.1,-18.9,96.4,12.5,+0.002\n"
+    "      Fp2,27.3,88.1,29.0,12.5,-0.002";
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    SolveFlags flags;
     return tools::run_tool(
-        argc, argv,
-        {"tm-solve",
-         "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
-         "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
-         "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
-         "potentials. Tissues missing from the conductivity file take documented head defaults by name.",
-         "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m; names "
-         "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV with "
-         "x,y,z,radius_mm,current_a (mm, mm, A), both optionally with a name column, columns in any order, '#' lines "
-         "comments; at most 100 000 sensors and 10 000 electrodes. --electrodes and --electrode add up; with no fixed "
-         "potential the currents must sum to zero. Before the solve, a mesh that would need more than --max-memory "
-         "(about 3 kB per node) is refused.\n"
-         "Examples:\n  tm-solve -i head.msh -o eeg.vtu --conductivity cond.json --dipole 0,10,40,0,0,1e-8 \\\n"
-         "      --sensors electrodes.csv --sensor-potentials eeg.csv\n"
-         "  tm-solve -i head.msh -o tdcs.vtu --electrode 0,90,30,10,1e-3 --electrode 0,-90,30,10,-1e-3\n"
-         "  tm-solve -i head.msh -o tdcs.vtu --electrodes montage.csv      # 2 mA from C3 to Fp2; montage.csv:\n"
-         "      name,x,y,z,radius_mm,current_a\n"
-         "      C3,-52.1,-18.9,96.4,12.5,+0.002\n"
-         "      Fp2,27.3,88.1,29.0,12.5,-0.002"},
-        [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh), mm")->required()->check(CLI::ExistingFile);
-            app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
-            app.add_option("--conductivity", conductivity, "JSON {tissue name or label: S/m or 3x3 tensor}");
-            app.add_option("--dipole", dipoles, "X,Y,Z,PX,PY,PZ: position mm, moment A*m (repeatable)");
-            app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
-            app.add_option("--electrodes", montage, "Montage CSV: x,y,z,radius_mm,current_a[,name] per electrode (mm, A)")
-                ->type_name("FILE");
-            app.add_option("--leadfield", lead_field,
-                           "tDCS lead field of tm-leadfield (--tdcs-output): the --electrodes montage's field is summed from "
-                           "it without a solve (electrodes by name)")
-                ->type_name("FILE")->check(CLI::ExistingFile);
-            app.add_option("--sensors", sensors_path, "CSV with header x,y,z[,name] (mm)")->type_name("FILE");
-            app.add_option("--sensor-potentials", sensor_output,
-                           "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
-            app.add_option("--dipole-model", dipole_model,
-                           "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
-                           "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
-                           "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
-                           "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
-                           "load of the one tet that holds the dipole: several times less accurate, its error depends on "
-                           "that tet)")
-                ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
-            app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
-            app.add_option("--processes", processes,
-                           "MPI processes for the AMG-CG (mpiexec; hypre has no threads here): 0 = one per available "
-                           "core, 1 = none; fewer when each would get under 100 000 unknowns. The iteration count, and "
-                           "so the last digits, depend on it")
-                ->check(CLI::Range(0, 1024));
-            app.add_option("--tolerance", tolerance, "Relative residual to reach (unitless)")->check(CLI::PositiveNumber);
-            app.add_flag("--error-indicator", error_indicator,
-                         "Also write the flux-jump error indicator per tet (error_indicator) and its total to --json");
-            app.add_flag("--vtu-ascii", vtu_ascii, "Write the .vtu as ASCII instead of zlib-compressed binary");
-        },
-        [&](tools::ToolContext& context) {
-            if (sensors_path.empty() != sensor_output.empty())
-                throw InputError("--sensors and --sensor-potentials go together; give both or neither");
-            PhaseClock clock;
-            // The small files first: a mistake in them is reported before the mesh is read.
-            const fem::ConductivityTable table = conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(conductivity);
-            const std::vector<io::ElectrodeRow> montage_rows = montage.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrodes(montage);
-            const std::vector<io::SensorRow> sensors = sensors_path.empty() ? std::vector<io::SensorRow>{} : io::read_sensors(sensors_path);
-            clock.lap("inputs");
-            const TetMesh mesh = io::read_tet_mesh(input);
-            clock.lap("read");
-            check_memory(context, input, mesh);
-            const fem::Conductivities sigma = resolve_from_file(mesh, table, conductivity);
-            fem::PotentialReport report;
-            std::vector<double> phi;
-            if (!lead_field.empty()) {
-                if (montage.empty() || !dipoles.empty() || !electrodes.empty())
-                    throw InputError("--leadfield takes the montage from --electrodes FILE alone (no --dipole or --electrode)");
-                phi = potential_from_lead_field(lead_field, mesh, montage, montage_rows);
-                clock.lap("solve");
-                context.summary["lead_field"] = lead_field;
-            } else {
-                fem::PotentialProblem problem = parse_problem(dipoles, electrodes, montage, montage_rows);
-                problem.dipole_model = dipole_model == "subtraction" ? fem::DipoleModel::subtraction
-                                       : dipole_model == "venant"    ? fem::DipoleModel::venant
-                                                                     : fem::DipoleModel::partial_integration;
-                phi = fem::solve_potential(
-                    mesh, sigma, problem, {.preconditioner = solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
-                                           .relative_tolerance = tolerance, .processes = processes},
-                    context.progress, &report);
-                clock.lap("solve");
-                record_solver_phases(report, clock);
-            }
-            const fem::TetFields fields = fem::compute_fields(mesh, sigma, phi);
-            clock.lap("fields");
-            std::vector<io::VtuArray> cell_arrays{io::make_vtu_vectors("E_V_per_m", fields.electric_v_per_m),
-                                                  io::make_vtu_vectors("J_A_per_m2", fields.current_a_per_m2)};
-            std::vector<double> magnitude;
-            for (const Vec3& e : fields.electric_v_per_m) magnitude.push_back(norm(e));
-            cell_arrays.push_back(io::make_vtu_array("E_magnitude_V_per_m", magnitude));
-            if (error_indicator) {
-                const std::vector<double> indicator = fem::estimate_error(mesh, sigma, phi);
-                double indicator2 = 0;
-                for (double eta : indicator) indicator2 += eta * eta;
-                context.summary["error_indicator_total"] = std::sqrt(indicator2);
-                cell_arrays.push_back(io::make_vtu_array("error_indicator", indicator));
-                clock.lap("error_indicator");
-            }
-            context.summary["tissues"] = field_statistics(mesh, fields);
-            context.summary["min_dihedral_deg"] = min_dihedral_deg(mesh);
-            clock.lap("statistics");
-            io::write_vtu(mesh, output, {io::make_vtu_array("potential_V", phi)}, cell_arrays,
-                          vtu_ascii ? io::VtuEncoding::ascii : io::VtuEncoding::compressed);
-            if (!sensor_output.empty()) write_text_atomically(sensor_output, sensor_csv(mesh, sensors, phi));
-            clock.lap("write");
-            context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
-                               report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
-            context.summary.update({{"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
-                                    {"preconditioner", report.solver.preconditioner}, {"processes", report.solver.processes},
-                                    {"iterations", report.solver.iterations},
-                                    {"relative_residual", report.solver.relative_residual}, {"solve_seconds", report.solver.seconds},
-                                    {"electrode_nodes", report.electrode_nodes}, {"electrode_area_mm2", report.electrode_area_mm2},
-                                    {"sensors", sensors.size()}, {"phase_seconds", clock.phases()},
-                                    {"phase_cpu_seconds", clock.cpu_phases()}});
-        });
+        argc, argv, {"tm-solve", description, files_and_examples}, [&](CLI::App& app) { flags.add_to(app); },
+        [&](tools::ToolContext& context) { run(flags, context); });
 }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/tet_shape.h"
+#include "surface/extracted_tissue.h"
 #include "volume/check_mesh.h"
 #include "volume/rasterize.h"
 
@@ -39,57 +40,10 @@ LabelsByTet sort_by_owner(const std::vector<std::int32_t>& owner, const LabelIma
     return sorted;
 }
 
-/// With 3-4 tissues in a Kuhn tet, tm-extract's surface is a fan of triangles from the tet's centroid over
-/// the curves on its faces, so a point's tissue is that of the point where the ray from the centroid leaves
-/// the tet: the weights become that face point's barycentric weights (the corner with the smallest weight
-/// drops out). With 2 tissues the surface is the plane of summed weight 1/2, left as it is.
-void project_to_face_if_junction(const std::array<Label, 4>& label, std::array<double, 4>& weight)
-{
-    int distinct = 0;
-    for (int c = 0; c < 4; ++c) distinct += std::find(label.begin(), label.begin() + c, label[c]) == label.begin() + c;
-    const auto drop = static_cast<std::size_t>(std::min_element(weight.begin(), weight.end()) - weight.begin());
-    if (distinct < 3 || weight[drop] >= 0.25) return;  // two tissues, or the centroid itself
-    const double scale = 0.25 / (0.25 - weight[drop]);
-    for (double& w : weight) w = 0.25 + scale * (w - 0.25);
-    weight[drop] = 0;
-}
-
-/// The tissue at continuous voxel index `x` as tm-extract's surfaces see it: the voxel cube holding x is
-/// split into 6 Kuhn tets (corner 0 to corner (1,1,1)); in the one holding x, each corner's label gets the
-/// corner's barycentric weight and the largest sum wins (ties: the smaller label): exactly the side of
-/// extract_interfaces()' surfaces (midpoint planes for 2 tissues, centroid fans for 3-4, see above). Corners outside the image
-/// count as `background`, as extract_interfaces() pads the image.
-Label kuhn_label(const LabelImage& image, const Vec3& x, Label background)
-{
-    std::array<std::int64_t, 3> base;
-    Vec3 f;
-    for (int axis = 0; axis < 3; ++axis) base[axis] = static_cast<std::int64_t>(std::floor(x[axis])), f[axis] = x[axis] - std::floor(x[axis]);
-    std::array<int, 3> order{0, 1, 2};  // axes by decreasing fraction: the Kuhn tet f[a] >= f[b] >= f[c]
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return f[a] > f[b] || (f[a] == f[b] && a < b); });
-    std::array<double, 4> weight{1 - f[order[0]], f[order[0]] - f[order[1]], f[order[1]] - f[order[2]], f[order[2]]};
-    std::array<Label, 4> label;
-    Index3 corner{base[0], base[1], base[2]};
-    for (int c = 0; c < 4; ++c) {
-        if (c > 0) ++corner[order[c - 1]];
-        label[c] = image.contains(corner) ? image.at(static_cast<std::size_t>(corner[0]), static_cast<std::size_t>(corner[1]),
-                                                     static_cast<std::size_t>(corner[2]))
-                                          : background;
-    }
-    project_to_face_if_junction(label, weight);
-    Label best = label[0];
-    double best_weight = -1;
-    for (int c = 0; c < 4; ++c) {
-        double sum = 0;
-        for (int d = 0; d < 4; ++d) sum += label[d] == label[c] ? weight[d] : 0.0;
-        if (sum > best_weight || (sum == best_weight && label[c] < best)) best = label[c], best_weight = sum;
-    }
-    return best;
-}
-
-/// Tissues at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1) by kuhn_label();
-/// `index_points` are the mesh vertices in continuous voxel index coordinates (the map is affine).
-std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const std::vector<Vec3>& index_points, const LabelImage& image,
-                                           std::size_t t, Label background)
+/// Tissues at the centroid and near each vertex (barycentric 0.7 / 0.1 / 0.1 / 0.1) as the extracted surfaces
+/// put them; `index_points` are the mesh vertices in continuous voxel index coordinates (the map is affine).
+std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const std::vector<Vec3>& index_points,
+                                           const surface::ExtractedTissue& extracted, std::size_t t)
 {
     std::array<Vec3, 4> p;
     for (int c = 0; c < 4; ++c) p[c] = index_points[mesh.tets[t][static_cast<std::size_t>(c)]];
@@ -97,7 +51,7 @@ std::array<Label, sample_count> sample_tet(const TetMesh& mesh, const std::vecto
     for (int s = 0; s < sample_count; ++s) {
         Vec3 point{0, 0, 0};
         for (int c = 0; c < 4; ++c) point = point + (s == 0 ? 0.25 : (c == s - 1 ? 0.7 : 0.1)) * p[c];
-        samples[static_cast<std::size_t>(s)] = kuhn_label(image, point, background);
+        samples[static_cast<std::size_t>(s)] = extracted.at_index(point);
     }
     return samples;
 }
@@ -173,6 +127,7 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
     out.histogram.reserve(tets * 2);
     std::vector<Vec3> index_points(mesh.vertices.size());
     for (std::size_t v = 0; v < index_points.size(); ++v) index_points[v] = image.world_to_index(mesh.vertices[v]);
+    const surface::ExtractedTissue extracted(image, {.background = options.background, .priority = options.extract_priority});
     for (std::size_t t = 0; t < tets; ++t) {
         const std::size_t held = sorted.offsets[t + 1] - sorted.offsets[t];
         out.voxel_count[t] = static_cast<std::uint32_t>(held);
@@ -180,7 +135,7 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
         const Label* first = sorted.labels.data() + sorted.offsets[t];
         const Label* last = first + held;
         if (held == 0) {
-            samples = sample_tet(mesh, index_points, image, t, options.background);
+            samples = sample_tet(mesh, index_points, extracted, t);
             first = samples.data(), last = samples.data() + sample_count;
             out.sampled[t] = 1, ++out.sampled_tets;
         }

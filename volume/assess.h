@@ -18,6 +18,9 @@ struct AssessOptions {
     double error_weight = 1.0;         ///< quality key weight of the error volume, counted in voxels
     double shape_weight = 0.1;         ///< quality key weight of the shape term (radius-edge ratio, 0 if regular)
     Label background = 0;              ///< tissue outside the image, for sub-voxel samples near its border
+    /// The priority tm-extract was given (--priority), so that sub-voxel samples see the tissues its split
+    /// cubes put there (empty: the plain Kuhn rule, as extract_interfaces() without a priority)
+    std::map<Label, int> extract_priority;
 };
 
 /// One bin of a tet's tissue histogram.
@@ -76,11 +79,9 @@ struct Assessment {
 /// is among the tied ones (relabelling never changes a tet without reason), else to the smallest label.
 /// Sub-voxel sampling: a tet holding no centre is sampled at its centroid and at the 4 points with
 /// barycentric weight 0.7 on one vertex and 0.1 on the others. A sample's tissue is the one
-/// extract_interfaces() puts there: the voxel cube around the sample is split into its 6 Kuhn tets (corner 0
-/// to (1,1,1), as tm-extract does), the corners of the Kuhn tet holding the sample vote with their
-/// barycentric weights (with 3-4 tissues in it, those of the point where the ray from its centroid leaves
-/// it, as tm-extract fans its surface from the centroid), the largest sum wins (ties: smaller label);
-/// corners outside the image are `background`. (Why not the nearest voxel: it disagrees with the surfaces
+/// extract_interfaces() (with `background` and `extract_priority`) puts there, by surface::ExtractedTissue:
+/// the corners of the Kuhn tet (or of the priority rule's split-cube tet) holding the sample vote with their
+/// barycentric weights, the largest sum wins. (Why not the nearest voxel: it disagrees with the surfaces
 /// near their edges and corners; on the 2 mm spheres4 tm-tetra mesh it gave 255 k of 2.9 M tets another
 /// majority than their tissue, this rule none.) A sampled tet's error volume is (samples not of its tissue
 /// / 5) x its volume: an estimate, reported per tet and in sampled_error_volume_mm3, never in the totals.

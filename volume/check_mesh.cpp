@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/tet_adjacency.h"
 #include "core/tet_shape.h"
 #include "core/union_find.h"
 #include "volume/detail/face_map.h"
@@ -59,7 +60,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     report.nodes = mesh.vertices.size(), report.tets = mesh.tets.size(), report.faces = mesh.faces.size();
 
     std::vector<bool> used(mesh.vertices.size(), false);
-    const auto faces = detail::map_faces(mesh.tets);
+    const TetAdjacency adjacency(mesh.tets, mesh.vertices.size());
     double ratio_sum = 0;
     std::vector<float> smallest(mesh.tets.size());
     report.quality.min_dihedral_deg = 180;
@@ -105,16 +106,16 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         const Triangle& tri = mesh.faces[f];
         const detail::FaceKey key = face_key(tri[0], tri[1], tri[2]);
         marked[key] = f;
-        const auto found = faces.find(key);
+        const TetAdjacency::Face found = adjacency.find(tri[0], tri[1], tri[2]);
         const Vec3& a = mesh.vertices[tri[0]];
-        if (found == faces.end()) {
+        if (found.holders == 0) {
             ++report.missing_interface_faces;
             note(report, concat("interface face ", f, " near ", where(a), " is not a face of any tetrahedron"));
             continue;
         }
         const Vec3 normal = cross(mesh.vertices[tri[1]] - a, mesh.vertices[tri[2]] - a);
-        for (const std::int64_t t : found->second.tets) {
-            if (t < 0) continue;
+        for (const std::uint32_t t : found.tets) {
+            if (t == no_tet) continue;
             Vec3 centroid{0, 0, 0};
             for (const std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)]) centroid = centroid + 0.25 * mesh.vertices[v];
             const Label expected = dot(centroid - a, normal) > 0 ? mesh.face_sides[f].to : mesh.face_sides[f].from;
@@ -131,12 +132,13 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     // Conformity, tissue changes across unmarked faces, closed outer boundary, tissue components.
     UnionFind pieces(mesh.tets.size());
     std::unordered_map<std::uint64_t, int> boundary_edges;
-    for (const auto& [key, use] : faces) {
-        if (use.count > 2) {
+    for (const TetAdjacency::Face& face : adjacency.faces()) {
+        const detail::FaceKey key{face.vertices};
+        if (face.holders > 2) {
             ++report.nonconforming_faces;
-            note(report, concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", use.count, " tetrahedra"));
-        } else if (use.count == 2) {
-            const auto t0 = static_cast<std::size_t>(use.tets[0]), t1 = static_cast<std::size_t>(use.tets[1]);
+            note(report, concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", face.holders, " tetrahedra"));
+        } else if (face.holders == 2) {
+            const std::size_t t0 = face.tets[0], t1 = face.tets[1];
             if (!on_opposite_sides(mesh, key, t0, t1)) {
                 ++report.nonconforming_faces;
                 note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ", where(mesh.vertices[key.v[0]])));
@@ -150,7 +152,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         } else {
             // An outer-boundary face: count its directed edges (all faces are oriented alike, inward), so a
             // closed boundary matches every edge with its reverse.
-            const Tet& tet = mesh.tets[static_cast<std::size_t>(use.tets[0])];
+            const Tet& tet = mesh.tets[face.tets[0]];
             for (const auto& local : local_faces) {
                 if (face_key(tet[local[0]], tet[local[1]], tet[local[2]]) != key) continue;
                 for (int e = 0; e < 3; ++e) {

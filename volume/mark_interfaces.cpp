@@ -1,6 +1,7 @@
 #include "volume/mark_interfaces.h"
 
 #include "core/error.h"
+#include "core/tet_adjacency.h"
 #include "volume/detail/face_map.h"
 
 namespace tissuemesh::volume {
@@ -8,26 +9,27 @@ namespace tissuemesh::volume {
 void mark_interfaces(TetMesh& mesh, Label background)
 {
     validate_indices(mesh, "mesh");
-    const auto faces = detail::map_faces(mesh.tets);
+    const TetAdjacency adjacency(mesh.tets, mesh.vertices.size());
     std::vector<Triangle> marked;
     std::vector<LabelPair> sides;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
-        for (const auto& local : detail::local_faces) {
+        for (int k = 0; k < 4; ++k) {
+            const auto& local = detail::local_faces[k];
             // local_faces' right-hand normal points into a positive tet (opposite vertex i lies in front of
             // it, whatever face_map.h's comment says): swap two vertices for the outward face.
             const Triangle outward{tet[static_cast<std::size_t>(local[0])], tet[static_cast<std::size_t>(local[2])],
                                    tet[static_cast<std::size_t>(local[1])]};
-            const detail::FaceUse& use = faces.at(detail::face_key(outward[0], outward[1], outward[2]));
-            if (use.count > 2)
-                throw InputError(concat("mesh: a face of tetrahedron ", t, " is shared by ", use.count,
+            const std::uint32_t holders = adjacency.holders(t, k);
+            if (holders > 2)
+                throw InputError(concat("mesh: a face of tetrahedron ", t, " is shared by ", holders,
                                         " tetrahedra; the mesh is not conforming (run tm-check-mesh)"));
             const Label mine = mesh.tet_labels[t];
-            if (use.count == 1) {
+            if (holders == 1) {
                 marked.push_back(outward), sides.push_back({mine, background});
                 continue;
             }
-            const auto other = static_cast<std::size_t>(use.tets[0] == static_cast<std::int64_t>(t) ? use.tets[1] : use.tets[0]);
+            const std::size_t other = adjacency.across(t, k);
             const Label theirs = mesh.tet_labels[other];
             if (theirs == mine || other < t) continue;  // no interface, or emitted with the other tet
             const bool mine_is_from = theirs == background || (mine != background && mine > theirs);

@@ -7,10 +7,10 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/tet_adjacency.h"
 #include "core/tet_shape.h"
 #include "surface/check_complex.h"
 #include "volume/check_mesh.h"
-#include "volume/detail/face_map.h"
 #include "volume/detail/tetgen_adapter.h"
 
 namespace tissuemesh::volume {
@@ -115,20 +115,20 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
     std::vector<std::uint8_t> interface_mask(tet_count, 0);
     std::deque<int> queue;
     // TetGen's own face-to-tet list is not reliable with every switch combination: build it here.
-    const auto tets_of_face = detail::map_faces(out.tets);
+    const TetAdjacency adjacency(out.tets, out.points.size() / 3);
     for (std::size_t f = 0; f < out.faces.size(); ++f) {
         const int marker = out.face_markers[f];
         if (marker <= 0 || static_cast<std::size_t>(marker) > complex.triangles.size())
             throw AlgorithmError(concat("TetGen returned a boundary face without its input triangle (marker ", marker,
                                         "); please report this input"));
         const std::size_t source = static_cast<std::size_t>(marker - 1);
-        const auto found = tets_of_face.find(detail::face_key(static_cast<std::uint32_t>(out.faces[f][0]),
-                                                               static_cast<std::uint32_t>(out.faces[f][1]),
-                                                               static_cast<std::uint32_t>(out.faces[f][2])));
-        if (found == tets_of_face.end())
+        const TetAdjacency::Face found = adjacency.find(static_cast<std::uint32_t>(out.faces[f][0]),
+                                                        static_cast<std::uint32_t>(out.faces[f][1]),
+                                                        static_cast<std::uint32_t>(out.faces[f][2]));
+        if (found.holders == 0)
             throw AlgorithmError("TetGen returned an interface face that is no tetrahedron's face; please report this input");
-        for (const std::int64_t tet_index : found->second.tets) {
-            if (tet_index < 0) continue;
+        for (const std::uint32_t tet_index : found.tets) {
+            if (tet_index == no_tet) continue;
             const int t = static_cast<int>(tet_index);
             const int local = local_face(out.tets[t], out.faces[f]);
             interface_mask[t] |= static_cast<std::uint8_t>(1u << local);
@@ -148,12 +148,9 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
         queue.pop_front();
         for (int i = 0; i < 4; ++i) {
             if (interface_mask[t] >> i & 1u) continue;
-            const auto& tet = out.tets[t];
-            const auto& local = detail::local_faces[i];
-            const detail::FaceUse& use = tets_of_face.at(detail::face_key(static_cast<std::uint32_t>(tet[local[0]]),
-                static_cast<std::uint32_t>(tet[local[1]]), static_cast<std::uint32_t>(tet[local[2]])));
-            const int n = static_cast<int>(use.tets[0] == t ? use.tets[1] : use.tets[0]);
-            if (n < 0) continue;
+            const std::uint32_t across = adjacency.across(static_cast<std::size_t>(t), i);
+            if (across == no_tet) continue;
+            const int n = static_cast<int>(across);
             if (labels[n] == unlabelled) {
                 labels[n] = labels[t];
                 queue.push_back(n);

@@ -11,12 +11,9 @@ namespace {
 std::vector<Label> label_map(const LabelImage& image, const std::vector<Label>& tissues, Label background,
                              const char* what)
 {
-    std::vector<Label> map(std::size_t{1} << 16);
-    for (std::size_t l = 0; l < map.size(); ++l) map[l] = static_cast<Label>(l);
-    if (tissues.empty()) return map;
+    if (tissues.empty()) return kept_label_map(tissues, background);
     const std::map<Label, std::size_t> present = count_labels(image);
-    const std::set<Label> kept(tissues.begin(), tissues.end());
-    for (const Label tissue : kept) {
+    for (const Label tissue : std::set<Label>(tissues.begin(), tissues.end())) {
         if (tissue == background)
             throw InputError(concat(what, ": tissue ", tissue, " is also the background label; "
                                     "choose another background or drop it from the tissue list"));
@@ -24,12 +21,19 @@ std::vector<Label> label_map(const LabelImage& image, const std::vector<Label>& 
             throw InputError(concat(what, ": tissue ", tissue, " does not occur in the image; "
                                     "check the tissue list against tm-info"));
     }
-    for (std::size_t l = 0; l < map.size(); ++l)
-        if (!kept.contains(static_cast<Label>(l))) map[l] = background;
-    return map;
+    return kept_label_map(tissues, background);
 }
 
 } // namespace
+
+std::vector<Label> kept_label_map(const std::vector<Label>& tissues, Label background)
+{
+    std::vector<Label> map(std::size_t{1} << 16);
+    const std::set<Label> kept(tissues.begin(), tissues.end());
+    for (std::size_t l = 0; l < map.size(); ++l)
+        map[l] = tissues.empty() || kept.contains(static_cast<Label>(l)) ? static_cast<Label>(l) : background;
+    return map;
+}
 
 ExtractionLabels prepare_extraction(const LabelImage& image, const std::vector<Label>& tissues, Label background,
                                     const std::map<Label, int>& priority, std::size_t max_priority_side,

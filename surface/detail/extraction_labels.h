@@ -16,6 +16,10 @@ struct ExtractionLabels {
     std::set<Label> tissues;  ///< the labels left in the image other than the background
 };
 
+/// The label each image label becomes (65 536 entries): itself when `tissues` is empty or holds it, else
+/// `background`. Checks nothing (prepare_extraction() does).
+std::vector<Label> kept_label_map(const std::vector<Label>& tissues, Label background);
+
 /// Maps every label outside `tissues` (when not empty) to `background` and checks the options.
 /// `max_priority_side`: the largest image side the priority rule can key (0: no limit).
 /// @throws InputError when the image is empty, `background` is among `tissues`, a chosen tissue is absent,

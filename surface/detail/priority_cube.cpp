@@ -1,5 +1,6 @@
 #include "surface/detail/priority_cube.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace tissuemesh::surface::detail {
@@ -49,6 +50,27 @@ bool PriorityRule::main_diagonal_crosses(const std::array<Label, 8>& corners, La
             for (int bit = 1; bit < 8; bit <<= 1)
                 if ((reached >> c & 1) && corners[c ^ bit] != top) reached |= 1 << (c ^ bit);
     return !(reached >> 7 & 1);
+}
+
+CubeTets cube_tetrahedra(const CubePlan& plan)
+{
+    CubeTets out;
+    if (!plan.split) {
+        std::copy(kuhn_tets.begin(), kuhn_tets.end(), out.tets.begin());
+        out.count = kuhn_tets.size();
+        return out;
+    }
+    for (std::size_t f = 0; f < cube_faces.size(); ++f) {
+        const auto& c = cube_faces[f];
+        if (plan.anti[f]) {
+            out.tets[out.count++] = {c[1], c[3], c[0], 8};
+            out.tets[out.count++] = {c[1], c[3], c[2], 8};
+        } else {
+            out.tets[out.count++] = {c[0], c[2], c[1], 8};
+            out.tets[out.count++] = {c[0], c[2], c[3], 8};
+        }
+    }
+    return out;
 }
 
 CubePlan PriorityRule::plan(const std::array<Label, 8>& corners) const

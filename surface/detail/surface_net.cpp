@@ -16,33 +16,7 @@ using Half = std::array<std::int64_t, 3>;
 constexpr std::uint32_t no_surface = std::numeric_limits<std::uint32_t>::max();
 constexpr std::uint32_t fallback_flag = 0x80000000u;
 
-/// The 6 Kuhn tetrahedra of a cube as chains of corners (bit 0: +x, bit 1: +y, bit 2: +z).
-constexpr std::array<std::array<int, 4>, 6> kuhn_tets{{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
-}};
 constexpr int centre_vertex = 8;
-
-/// The tetrahedra of a cube (vertices 0-7 its corners, 8 its centre): Kuhn's 6, or 12 for a split cube
-/// (each face's two triangles on its chosen diagonal, coned to the centre). Returns how many.
-int cube_tets(const CubePlan& plan, std::array<std::array<int, 4>, 12>& tets)
-{
-    if (!plan.split) {
-        std::copy(kuhn_tets.begin(), kuhn_tets.end(), tets.begin());
-        return 6;
-    }
-    int n = 0;
-    for (std::size_t f = 0; f < cube_faces.size(); ++f) {
-        const auto& c = cube_faces[f];
-        if (plan.anti[f]) {
-            tets[n++] = {c[1], c[3], c[0], centre_vertex};
-            tets[n++] = {c[1], c[3], c[2], centre_vertex};
-        } else {
-            tets[n++] = {c[0], c[2], c[1], centre_vertex};
-            tets[n++] = {c[0], c[2], c[3], centre_vertex};
-        }
-    }
-    return n;
-}
 
 /// Corners joined by the cube's edges (bit masks).
 constexpr std::array<std::uint8_t, 8> edge_neighbours = [] {
@@ -205,15 +179,14 @@ private:
                         continue;
                     }
                     Fallback fallback{c, plan, static_cast<std::uint32_t>(net_.positions.size()), 0};
-                    std::array<std::array<int, 4>, 12> tets{};
-                    const int count = cube_tets(plan, tets);
-                    for (int t = 0; t < count; ++t) {
+                    const CubeTets tets = cube_tetrahedra(plan);
+                    for (std::size_t t = 0; t < tets.count; ++t) {
                         Vec3 sum{0, 0, 0};
                         bool mixed = false;
-                        for (const int v : tets[t]) {
+                        for (const int v : tets.tets[t]) {
                             const Half h = half_point(c, v);
                             sum = sum + Vec3{static_cast<double>(h[0]), static_cast<double>(h[1]), static_cast<double>(h[2])};
-                            mixed = mixed || label_of(labels, plan, v) != label_of(labels, plan, tets[t][0]);
+                            mixed = mixed || label_of(labels, plan, v) != label_of(labels, plan, tets.tets[t][0]);
                         }
                         if (!mixed) continue;
                         fallback.mixed = static_cast<std::uint16_t>(fallback.mixed | 1 << t);
@@ -242,15 +215,14 @@ private:
             return;
         }
         const Fallback& fallback = fallbacks_[state & ~fallback_flag];
-        std::array<std::array<int, 4>, 12> tets{};
-        const int count = cube_tets(fallback.plan, tets);
+        const CubeTets tets = cube_tetrahedra(fallback.plan);
         std::uint32_t vertex = fallback.first_vertex;
-        for (int t = 0; t < count; ++t) {
+        for (std::size_t t = 0; t < tets.count; ++t) {
             if (!(fallback.mixed >> t & 1)) continue;
             const std::uint32_t id = vertex++;
             bool has_a = false, has_b = false;
             Vec3 sum{0, 0, 0};
-            for (const int v : tets[t]) {
+            for (const int v : tets.tets[t]) {
                 const Half h = half_point(c, v);
                 has_a = has_a || h == a;
                 has_b = has_b || h == b;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/read_label_image.h"
 #include "tests/support/cli.h"
 
@@ -65,8 +66,7 @@ TEST(PrepCli, UnknownLabelInRelabelExitsTwoAndWritesNothing)
     const auto before = dir.files();
     const auto result = run_cli("tm-prep", {"-i", input, "-o", (dir / "out.nii.gz").string(), "--relabel", "9:1"});
     EXPECT_EQ(result.exit_code, 2);
-    EXPECT_EQ(result.err, "tm-prep: error: relabel 9:1: label 9 is not in the image (it has 0,1,2,3); check the "
-                          "map against tm-info\n");
+    EXPECT_EQ(result.err, concat("tm-prep: error: --relabel: ", input, " has no tissue 9; its tissues are 0, 1, 2, 3\n"));
     EXPECT_EQ(dir.files(), before);
 }
 
@@ -85,7 +85,39 @@ TEST(PrepCli, BadSpacingAndSyntaxExitTwoWithOneLine)
     EXPECT_NE(syntax.err.find("--relabel: '5-4' is not FROM:TO"), std::string::npos) << syntax.err;
     const auto range = run_cli("tm-prep", {"-i", input, "-o", out, "--keep-largest", "1,70000"});
     EXPECT_EQ(range.exit_code, 2);
-    EXPECT_NE(range.err.find("label 70000 is outside 0..65535"), std::string::npos) << range.err;
+    EXPECT_NE(range.err.find("--keep-largest: tissue 70000 is not a label number; labels are 0..65535"), std::string::npos)
+        << range.err;
+    EXPECT_EQ(dir.files(), before);
+}
+
+// Issue 32: tm-prep parsed its tissue arguments itself (numbers only, its own range check, no names).
+TEST(PrepCli, TmPrepParsesTissueArgumentsItselfNoMore)
+{
+    TempDir dir;
+    const std::string input = make_input(dir), labels = (dir / "in.labels.json").string();
+    const std::string out = (dir / "out.nii.gz").string();
+    const auto before = dir.files();
+    // Names in any case, for every tissue option; --relabel's TO may be a new label, named by later steps.
+    const auto named = run_cli("tm-prep", {"-i", input, "--labels", labels, "-o", out, "--merge", "Lower_Half,3",
+                                           "--relabel", "SHELL:7", "--keep-largest", "7", "--fill-holes-in", "lower_half", "-q"});
+    ASSERT_EQ(named.exit_code, 0) << named.err;
+    const auto after = count_labels(io::read_label_image(out));
+    EXPECT_FALSE(after.contains(1));
+    EXPECT_TRUE(after.contains(7));
+    EXPECT_FALSE(after.contains(3)) << "merged into lower_half (2)";
+    std::filesystem::remove(out), std::filesystem::remove(dir / "out.labels.json");
+    // An unknown name lists the known tissues; a number out of range says the range instead of wrapping.
+    const auto unknown = run_cli("tm-prep", {"-i", input, "--labels", labels, "-o", out, "--keep-largest", "liver"});
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("--keep-largest: unknown tissue \"liver\""), std::string::npos) << unknown.err;
+    EXPECT_NE(unknown.err.find("1 shell"), std::string::npos) << "the known tissues are listed: " << unknown.err;
+    const auto wrapped = run_cli("tm-prep", {"-i", input, "-o", out, "--merge", "2,65539"});
+    EXPECT_EQ(wrapped.exit_code, 2);
+    EXPECT_NE(wrapped.err.find("--merge: tissue 65539 is not a label number; labels are 0..65535"), std::string::npos)
+        << wrapped.err;
+    const auto to_range = run_cli("tm-prep", {"-i", input, "-o", out, "--relabel", "3:65536"});
+    EXPECT_EQ(to_range.exit_code, 2);
+    EXPECT_NE(to_range.err.find("tissue 65536 is not a label number"), std::string::npos) << to_range.err;
     EXPECT_EQ(dir.files(), before);
 }
 

@@ -1,11 +1,10 @@
-// Triangular faces of a tet mesh keyed by their vertex set, and the tets on each side.
+// Triangular faces keyed by their vertex set, for the maps of faces that change as a mesh is edited (the
+// face adjacency of a whole mesh is core/tet_adjacency.h), and the local faces turned inwards.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <unordered_map>
-#include <vector>
 
 #include "core/tet_shape.h"
 
@@ -33,33 +32,11 @@ inline FaceKey face_key(std::uint32_t a, std::uint32_t b, std::uint32_t c)
     return {v};
 }
 
-/// The tets using a face: the first two, and how many there are (more than two: non-conforming).
-struct FaceUse {
-    std::int64_t tets[2] = {-1, -1};
-    int count = 0;
-};
-
 /// Local faces of a tet, opposite vertex i, ordered so that for a positive tet the face normal (right-hand
 /// rule) points into the tet, towards vertex i: core's tet_faces, each face turned over.
 inline constexpr int local_faces[4][3] = {{tet_faces[0][0], tet_faces[0][2], tet_faces[0][1]},
                                           {tet_faces[1][0], tet_faces[1][2], tet_faces[1][1]},
                                           {tet_faces[2][0], tet_faces[2][2], tet_faces[2][1]},
                                           {tet_faces[3][0], tet_faces[3][2], tet_faces[3][1]}};
-
-/// Maps every face of `tets` (any 4-index type) to the tets that use it.
-template <typename TetList>
-std::unordered_map<FaceKey, FaceUse, FaceKeyHash> map_faces(const TetList& tets)
-{
-    std::unordered_map<FaceKey, FaceUse, FaceKeyHash> faces;
-    faces.reserve(2 * tets.size() + 16);
-    for (std::size_t t = 0; t < tets.size(); ++t)
-        for (const auto& local : local_faces) {
-            FaceUse& use = faces[face_key(static_cast<std::uint32_t>(tets[t][local[0]]), static_cast<std::uint32_t>(tets[t][local[1]]),
-                                          static_cast<std::uint32_t>(tets[t][local[2]]))];
-            if (use.count < 2) use.tets[use.count] = static_cast<std::int64_t>(t);
-            ++use.count;
-        }
-    return faces;
-}
 
 } // namespace tissuemesh::volume::detail
