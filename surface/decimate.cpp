@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
 #include <limits>
 
 #include "core/error.h"
@@ -88,14 +87,11 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
 {
     const auto began = std::chrono::steady_clock::now();
     std::vector<Piece> pieces(slabs.size());
-    std::exception_ptr failure;
-    std::size_t done = 0;
     // The first slabs take the progress bar to 0.8, the slabs over the seams to 0.9.
     const double progress_from = seeds ? 0.8 : 0, progress_span = seeds ? 0.1 : 0.8;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t k = 0; k < slabs.size(); ++k) {
-        try {
-            detail::SlabPiece slab = detail::slab_piece(complex, slabs[k]);
+    detail::edit_slabs(
+        complex, slabs, {},
+        [&](std::size_t k, detail::SlabPiece& slab) {
             Carried local = slab_carried(complex, carried, slab);
             const double cell_mm = 2 * detail::mean_edge_length(slab.complex);
             Decimator decimator(std::move(slab.complex), std::move(local), cell_mm, options, pieces[k].report,
@@ -106,14 +102,11 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
                     if (std::binary_search(seeds->begin(), seeds->end(), slab.from_vertex[v])) own_seeds.push_back(v);
             decimator.collapse_all({}, seeds ? &own_seeds : nullptr);
             decimator.hand_over(slab.from_vertex, pieces[k]);
-        } catch (...) {
-#pragma omp critical(decimate_failure)
-            if (!failure) failure = std::current_exception();
-        }
-#pragma omp critical(decimate_progress)
-        progress.update("decimate", progress_from + progress_span * static_cast<double>(++done) / static_cast<double>(slabs.size()));
-    }
-    if (failure) std::rethrow_exception(failure);
+        },
+        [&](std::size_t done) {
+            progress.update("decimate", progress_from + progress_span * static_cast<double>(done) /
+                                                            static_cast<double>(slabs.size()));
+        });
     std::size_t samples_before = 0, samples_after = 0;
     for (const std::vector<std::uint32_t>& samples : carried.samples) samples_before += samples.size();
     InterfaceComplex whole;

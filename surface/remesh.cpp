@@ -4,7 +4,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <optional>
 
@@ -60,12 +59,7 @@ public:
     Remesher(InterfaceComplex&& complex, const Reference& reference, const RemeshOptions& options, double cell_mm,
              RemeshReport& report, const std::optional<detail::EditFence>& fence = std::nullopt)
         : options_(options), report_(report),
-          editor_(std::move(complex),
-                  {.min_angle_deg = options.min_angle_deg,
-                   .max_tilt_deg = options.max_normal_change_deg,
-                   .min_gap_mm = options.min_gap_mm,
-                   .min_sector_deg = options.min_sector_deg},
-                  cell_mm),
+          editor_(std::move(complex), detail::limits_of(options), cell_mm),
           reference_(reference)
     {
         editor_.set_fence(fence);
@@ -258,14 +252,9 @@ private:
         for (const Edge& e : edges()) {
             const auto [v, w] = e;
             if (editor_.edge_multiplicity(v, w) != 2) continue;
-            std::vector<std::uint32_t> apexes;
-            for (const std::uint32_t t : editor_.star(v)) {
-                const Triangle& tri = editor_.triangle(t);
-                if (std::find(tri.begin(), tri.end(), w) == tri.end()) continue;
-                for (const std::uint32_t u : tri)
-                    if (u != v && u != w) apexes.push_back(u);
-            }
-            if (apexes.size() != 2) continue;
+            const std::optional<std::array<std::uint32_t, 2>> opposite = editor_.opposite_vertices(v, w);
+            if (!opposite) continue;
+            const std::array<std::uint32_t, 2>& apexes = *opposite;
             const int before = deviation(valence, v, 0) + deviation(valence, w, 0) + deviation(valence, apexes[0], 0) +
                                deviation(valence, apexes[1], 0);
             const int after = deviation(valence, v, -1) + deviation(valence, w, -1) + deviation(valence, apexes[0], 1) +
@@ -388,25 +377,15 @@ InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector
                               RemeshReport& report)
 {
     std::vector<detail::EditedSlab> edited(slabs.size());
+    for (std::size_t k = 0; k < slabs.size(); ++k) edited[k].slab = slabs[k];
     std::vector<RemeshReport> reports(slabs.size());
-    std::exception_ptr failure;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t k = 0; k < slabs.size(); ++k) {
-        edited[k].slab = slabs[k];
-        if (!run[k]) continue;
-        try {
-            detail::SlabPiece piece = detail::slab_piece(complex, slabs[k]);
-            Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k],
-                              slabs[k].fence(options.min_gap_mm));
-            remesher.run({});
-            edited[k].edited = remesher.editor().snapshot();
-            edited[k].from_vertex = std::move(piece.from_vertex);
-        } catch (...) {
-#pragma omp critical(remesh_failure)
-            if (!failure) failure = std::current_exception();
-        }
-    }
-    if (failure) std::rethrow_exception(failure);
+    detail::edit_slabs(complex, slabs, run, [&](std::size_t k, detail::SlabPiece& piece) {
+        Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k],
+                          slabs[k].fence(options.min_gap_mm));
+        remesher.run({});
+        edited[k].edited = remesher.editor().snapshot();
+        edited[k].from_vertex = std::move(piece.from_vertex);
+    });
     for (const RemeshReport& part : reports) {
         report.splits += part.splits;
         report.collapses += part.collapses;

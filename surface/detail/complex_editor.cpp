@@ -20,20 +20,15 @@ bool canonical(const LabelPair& side, Label background)
 } // namespace
 
 ComplexEditor::ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm)
-    : limits_(limits), min_angle_(limits.min_angle_deg), max_tilt_(limits.max_normal_change_deg), positions_(std::move(complex.vertices)), triangles_(std::move(complex.triangles)),
-      sides_(std::move(complex.sides)), alive_(triangles_.size(), 1), stars_(positions_.size()),
-      kinds_(positions_.size(), VertexKind::corner), alive_triangles_(triangles_.size())
+    : EditableComplex(std::move(complex)), limits_(limits), min_angle_(limits.min_angle_deg),
+      max_tilt_(limits.max_normal_change_deg)
 {
-    background_ = complex.background;
-    names_ = std::move(complex.names);
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
         if (!canonical(sides_[t], background_)) {
             std::swap(triangles_[t][1], triangles_[t][2]);
             std::swap(sides_[t].from, sides_[t].to);
         }
-        for (const std::uint32_t v : triangles_[t]) stars_[v].push_back(t);
-    }
-    for (std::uint32_t v = 0; v < positions_.size(); ++v) kinds_[v] = classify(v);
+    classify_all();
     rebuild_grid(cell_mm);
 }
 
@@ -65,20 +60,6 @@ void ComplexEditor::ensure_grid()
     grid_ready_ = true;
 }
 
-TriangleCorners ComplexEditor::corners(std::uint32_t t) const
-{
-    const Triangle& tri = triangles_[t];
-    return {positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]};
-}
-
-double ComplexEditor::mean_edge_length() const
-{
-    double sum = 0;
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) sum += distance(positions_[triangles_[t][0]], positions_[triangles_[t][1]]);
-    return alive_triangles_ == 0 ? 1.0 : sum / static_cast<double>(alive_triangles_);
-}
-
 void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
     batch_index_valid_ = false;
@@ -86,7 +67,7 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
         grid_.erase(t, bounding_box(corners(t)));
         for (const std::uint32_t v : triangles_[t]) std::erase(stars_[v], t);
         alive_[t] = 0;
-        --alive_triangles_;
+        --alive_count_;
     }
     for (const Change& change : changes) {
         const std::uint32_t t = change.slot;
@@ -99,7 +80,7 @@ void ComplexEditor::apply(const std::vector<Change>& changes, const std::vector<
                 sides_.resize(t + 1);
                 alive_.resize(t + 1, 0);
             }
-            ++alive_triangles_;
+            ++alive_count_;
         }
         triangles_[t] = change.triangle;
         alive_[t] = 1;
@@ -165,8 +146,9 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         return false;
     }
     ensure_grid();
-    thread_local std::vector<std::uint32_t> removed, excluded;  // scratch: collapses are tried millions of times
-    thread_local std::vector<Change> changes;
+    std::vector<std::uint32_t>& removed = collapse_removed_;
+    std::vector<std::uint32_t>& excluded = collapse_excluded_;
+    std::vector<Change>& changes = collapse_changes_;
     removed.clear();
     changes.clear();
     for (const std::uint32_t t : stars_[v]) {
@@ -178,7 +160,6 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
         std::replace(moved.begin(), moved.end(), v, w);
         changes.push_back({t, moved, corners(t)});
     }
-    if (!inside_fence(changes, removed)) return false;
     // Most refused collapses fold or squeeze a triangle (on raw terraces 15 for every one the link
     // condition refuses): those tests go first, the grid search last.
     for (const Change& change : changes)
@@ -195,12 +176,12 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
     apply(changes, removed);
     // Only w and the common neighbours of v and w (the third vertices of the triangles on vw) can change
     // kind: any other neighbour of v trades its edge to v for one to w with the same triangles on it.
-    thread_local std::vector<std::uint32_t> common;
+    std::vector<std::uint32_t>& common = collapse_common_;
     common.clear();
     for (const std::uint32_t t : removed)
         for (const std::uint32_t u : triangles_[t])
             if (u != v && u != w) common.push_back(u);
-    update_kinds(w, &common);
+    reclassify(w, &common);
     return true;
 }
 
@@ -244,7 +225,7 @@ std::optional<std::uint32_t> ComplexEditor::try_split(std::uint32_t v, std::uint
         sides_[t] = sides_[changes[i - 1].slot];
     }
     apply(changes, {});
-    update_kinds(m);
+    reclassify(m);
     return m;
 }
 
@@ -290,17 +271,6 @@ bool ComplexEditor::try_flip(std::uint32_t v, std::uint32_t w)
     apply(changes, {});
     for (const std::uint32_t u : {v, w, a, b}) kinds_[u] = classify(u);
     return true;
-}
-
-InterfaceComplex ComplexEditor::snapshot() const
-{
-    InterfaceComplex out;
-    out.background = background_;
-    out.names = names_;
-    out.vertices = positions_;
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) out.add_triangle(triangles_[t], sides_[t]);
-    return out;
 }
 
 InterfaceComplex ComplexEditor::result() const

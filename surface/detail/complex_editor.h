@@ -1,5 +1,6 @@
 // ComplexEditor: local edits of an interface complex (move, collapse, split, flip), each accepted only
-// when the complex stays valid. The shared engine of smooth(), decimate(), remesh() and repair().
+// when the complex stays valid. The engine of smooth(), repair() and snake() (decimate() and remesh() use
+// LocalEditor, local_editor.h; both edit an EditableComplex).
 //
 // Why our own structure and not OpenMesh's half-edges: an interface complex is not a 2-manifold. Along
 // junction curves three or more triangles share an edge, which a half-edge mesh cannot hold, and
@@ -26,8 +27,8 @@
 #include "core/interface_complex.h"
 #include "surface/detail/box_index.h"
 #include "surface/detail/edit_types.h"
+#include "surface/detail/editable_complex.h"
 #include "surface/detail/edge_fan.h"
-#include "surface/detail/slabs.h"
 #include "surface/detail/angle_limit.h"
 #include "surface/detail/triangle_grid.h"
 
@@ -47,46 +48,14 @@ struct EditLimits {
     bool tolerate_existing_intersections = false;
 };
 
-class ComplexEditor {
+class ComplexEditor : public EditableComplex {
 public:
     /// Takes the complex over. Patches are oriented canonically (the larger label is `from`, the
     /// background always `to`), which does not change what the triangles mean.
     /// `cell_mm`: grid cell size for neighbour searches (about twice the typical edge length).
     ComplexEditor(InterfaceComplex complex, const EditLimits& limits, double cell_mm);
 
-    // --- reading ---
-    std::size_t vertex_slots() const { return positions_.size(); }
-    std::size_t triangle_slots() const { return triangles_.size(); }
-    std::size_t triangle_count() const { return alive_triangles_; }
-    bool vertex_alive(std::uint32_t v) const { return !stars_[v].empty(); }
-    bool triangle_alive(std::uint32_t t) const { return alive_[t] != 0; }
-    const Vec3& position(std::uint32_t v) const { return positions_[v]; }
-    const std::vector<Vec3>& positions() const { return positions_; }
-    VertexKind kind(std::uint32_t v) const { return kinds_[v]; }
-    const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }
-    const LabelPair& side(std::uint32_t t) const { return sides_[t]; }
-    /// Alive triangles incident to v (unordered).
-    const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
-    /// Vertices sharing an edge with v, ascending.
-    std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
-    /// A vertex sharing an edge with v, and the number of alive triangles on that edge.
-    struct RingEntry {
-        std::uint32_t vertex;
-        std::uint32_t triangles;
-    };
-    /// The neighbours of v, in no particular order, each with its edge's multiplicity (into `out`, without
-    /// allocating once `out` has grown): for loops that ask for neighbours and multiplicities of many vertices.
-    void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
-    /// The vertices whose kind the last collapse or split changed (the kept or new vertex and its
-    /// neighbours are classified again).
-    const std::vector<std::uint32_t>& reclassified() const { return reclassified_; }
-    /// The neighbours of v across junction edges (two for a curve vertex).
-    std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
-    /// Number of alive triangles on edge vw (0: no such edge; 3 or more: a junction edge).
-    std::size_t edge_multiplicity(std::uint32_t v, std::uint32_t w) const;
-    TriangleCorners corners(std::uint32_t t) const;
-    /// Mean edge length over alive triangles (first edges), mm.
-    double mean_edge_length() const;
+    // --- reading: EditableComplex ---
     const EditLimits& limits() const { return limits_; }
     void set_limits(const EditLimits& limits)
     {
@@ -95,8 +64,6 @@ public:
         max_tilt_ = AngleLimit(limits.max_normal_change_deg);
     }
     const EditCounters& counters() const { return counters_; }
-    /// Confines the edits (not move_together()) to a fence; nullopt: anywhere.
-    void set_fence(const std::optional<EditFence>& fence) { fence_ = fence; }
 
     // --- editing: each returns whether the edit was made; a refused edit changes nothing ---
     /// Moves v to p (junction-curve and corner rules are the caller's business: see VertexKind).
@@ -124,8 +91,6 @@ public:
 
     /// The edited complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
-    /// The alive triangles over every vertex slot (dead vertices kept, new ones after the original ones).
-    InterfaceComplex snapshot() const;
 
 private:
     struct Change {
@@ -136,8 +101,6 @@ private:
     };
     LabelPair side_of(const Change& change) const;
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
-    /// Whether every triangle the edit changes or removes lies inside the fence, before and after.
-    bool inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
     bool shape_ok(const Change& change);
     bool clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded);
     /// Whether, around every junction edge of a changed triangle, the triangles still turn in the order
@@ -178,24 +141,11 @@ private:
     void ensure_grid();
     bool link_condition(std::uint32_t v, std::uint32_t w) const;
     void apply(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
-    /// Classifies v and `others` again (every neighbour of v when not given), recording changes in reclassified_.
-    void update_kinds(std::uint32_t v, const std::vector<std::uint32_t>* others = nullptr);
-    VertexKind classify(std::uint32_t v) const;
     std::uint32_t add_vertex(const Vec3& p);
 
-    Label background_ = 0;
-    TissueNames names_;
     EditLimits limits_;
     AngleLimit min_angle_;  ///< limits_.min_angle_deg
     AngleLimit max_tilt_;   ///< limits_.max_normal_change_deg
-    std::vector<Vec3> positions_;
-    std::vector<Triangle> triangles_;
-    std::vector<LabelPair> sides_;
-    std::vector<char> alive_;
-    std::vector<std::vector<std::uint32_t>> stars_;
-    std::vector<VertexKind> kinds_;
-    std::vector<std::uint32_t> reclassified_;  ///< see reclassified()
-    std::size_t alive_triangles_ = 0;
     TriangleGrid grid_;
     double grid_cell_mm_ = 1;   ///< cell size asked of the grid
     bool grid_ready_ = false;   ///< grid_ files every alive triangle under its current box
@@ -204,8 +154,18 @@ private:
     std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
     std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
     std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)
-    std::optional<EditFence> fence_;
     EditCounters counters_;
+    // Scratch kept between calls, so that an edit (collapses are tried millions of times) allocates nothing
+    // once the buffers have grown. fan_around() and judge_moved() keep theirs thread_local instead: they run
+    // in parallel within move_together().
+    std::vector<std::uint32_t> collapse_removed_, collapse_excluded_, collapse_common_;  ///< try_collapse()
+    std::vector<Change> collapse_changes_;                                               ///< try_collapse()
+    mutable std::vector<RingEntry> link_ring_v_, link_ring_w_;                           ///< link_condition()
+    mutable std::vector<std::uint32_t> link_apexes_;                                     ///< link_condition()
+    std::vector<TriangleCorners> clear_shapes_;                                          ///< clear_of_others()
+    std::vector<Box3> clear_boxes_;                                                      ///< clear_of_others()
+    std::vector<const TriangleCorners*> clear_before_;                                   ///< clear_of_others()
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> fan_edges_;                     ///< fans_in_order()
 };
 
 /// The tissues on either side of the triangles around vertex `v`, sorted, each once.

@@ -1,11 +1,8 @@
 // Decimator: the collapse loop of decimate() over one LocalEditor (the whole complex, or one slab of it
 // fenced off from the others), with what it carries along: per vertex a quadric, per triangle the input
-// vertices it answers for (the distance bound). Included by decimate.cpp only.
+// vertices it answers for (the distance bound). Used by decimate.cpp only; the loop is in decimator.cpp.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -33,29 +30,7 @@ struct Carried {
 
 /// The quadric of each vertex's triangles (area-weighted planes); each vertex its own sample, held by the
 /// first triangle around it.
-inline Carried initial_carried(const InterfaceComplex& complex)
-{
-    Carried carried{std::vector<Quadric>(complex.vertices.size()),
-                    std::vector<std::vector<std::uint32_t>>(complex.triangles.size())};
-    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-    std::vector<std::uint32_t> first(complex.vertices.size(), none);
-    for (std::uint32_t t = 0; t < complex.triangles.size(); ++t) {
-        const Triangle& tri = complex.triangles[t];
-        for (const std::uint32_t v : tri)
-            if (first[v] == none) first[v] = t;
-        const TriangleCorners c{complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]};
-        const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
-        const double area2 = norm(n);
-        if (area2 <= 0) continue;
-        const Vec3 u = (1.0 / area2) * n;  // the plane's sign does not matter to its quadric
-        Quadric plane(u[0], u[1], u[2], -dot(u, c[0]));
-        plane *= 0.5 * area2;  // area-weighted
-        for (const std::uint32_t v : tri) carried.quadrics[v] += plane;
-    }
-    for (std::uint32_t v = 0; v < complex.vertices.size(); ++v)
-        if (first[v] != none) carried.samples[first[v]].push_back(v);
-    return carried;
-}
+Carried initial_carried(const InterfaceComplex& complex);
 
 /// A slab's share of a decimation in pieces, numbered as the whole complex.
 struct Piece {
@@ -68,188 +43,45 @@ struct Piece {
 };
 
 /// Adds the editor's refusal counts to a report.
-inline void add_counters(DecimateReport& report, const EditCounters& counters)
-{
-    report.refused_topology += counters.topology;
-    report.refused_shape += counters.shape;
-    report.refused_fold += counters.normal;
-    report.refused_intersection += counters.intersection;
-    report.refused_gap += counters.gap;
-    report.refused_wedge += counters.wedge;
-}
+void add_counters(DecimateReport& report, const EditCounters& counters);
 
 class Decimator {
 public:
     /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in. `carried` is indexed like
-    /// `complex`. With `slab`, collapses change only triangles inside its fence (Slab::fence()).
+    /// `complex`. With `slab`, the editor is fenced in (Slab::fence()) and a collapse is tried only when the
+    /// triangles around both its ends lie inside the fence (those around the kept end take samples over).
     Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
-              DecimateReport& report, std::optional<Slab> slab = std::nullopt)
-        : options_(options), report_(report),
-          editor_(std::move(complex),
-                  {.min_angle_deg = options.min_angle_deg,
-                   .max_tilt_deg = options.max_normal_change_deg,
-                   .min_gap_mm = options.min_gap_mm,
-                   .min_sector_deg = options.min_sector_deg},
-                  cell_mm),
-          quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab),
-          fence_(slab ? std::optional(slab->fence(options.min_gap_mm)) : std::nullopt)
-    {
-    }
+              DecimateReport& report, std::optional<Slab> slab = std::nullopt);
 
     /// Collapses cheapest first, starting from every vertex or, when given, from `seeds` only (the others
     /// are tried when a collapse changes their neighbourhood).
-    void collapse_all(const Progress& progress, const std::vector<std::uint32_t>* seeds = nullptr)
-    {
-        if (seeds) {
-            for (const std::uint32_t v : *seeds) enqueue(v);
-        } else {
-            for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) enqueue(v);
-        }
-        const std::size_t start = editor_.triangle_count();
-        std::size_t next_rebuild = start / 2;
-        while (!queue_.empty()) {
-            if (options_.target_triangles > 0 && editor_.triangle_count() <= options_.target_triangles) break;
-            const VertexQueue::Entry c = queue_.top();
-            queue_.pop();
-            if (!editor_.vertex_alive(c.v)) continue;
-            const std::optional<std::uint32_t> w = collapse_cheapest(c.v);
-            if (!w) continue;
-            ++report_.collapses;
-            enqueue(*w);
-            editor_.ring(*w, around_);
-            for (const LocalEditor::RingEntry& e : around_) requeue_neighbour(e.vertex, c.v, *w, e.triangles);
-            if (editor_.triangle_count() < next_rebuild) {
-                editor_.rebuild_grid(2 * editor_.mean_edge_length());
-                next_rebuild = editor_.triangle_count() / 2;
-                progress.update("decimate", 1.0 - static_cast<double>(editor_.triangle_count()) / static_cast<double>(start));
-            }
-        }
-    }
+    void collapse_all(const Progress& progress, const std::vector<std::uint32_t>* seeds = nullptr);
 
-    void split_long_edges()
-    {
-        std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> edges;
-        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
-            if (!editor_.triangle_alive(t)) continue;
-            const Triangle& tri = editor_.triangle(t);
-            for (int k = 0; k < 3; ++k) {
-                const std::uint32_t a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
-                const double length = distance(editor_.position(a), editor_.position(b));
-                if (length > 4.0 / 3.0 * target_edge(a, b)) edges.push_back({-length, {a, b}});
-            }
-        }
-        std::sort(edges.begin(), edges.end());
-        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-        for (const auto& [length, edge] : edges) {
-            const auto [a, b] = edge;
-            if (editor_.edge_multiplicity(a, b) == 0) continue;
-            const std::optional<std::uint32_t> m =
-                editor_.try_split(a, b, 0.5 * (editor_.position(a) + editor_.position(b)));
-            if (!m) continue;
-            ++report_.splits;
-            redistribute_samples(*m);
-        }
-    }
+    void split_long_edges();
 
     InterfaceComplex result() const { return editor_.result(); }
 
     /// A fenced decimator's share of the whole (numbered through `from_vertex`: per own vertex, its index
     /// in the whole), into `piece`.
-    void hand_over(const std::vector<std::uint32_t>& from_vertex, Piece& piece) const
-    {
-        const Slab& slab = *slab_;
-        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
-            if (!editor_.triangle_alive(t)) continue;
-            const TriangleCorners c = editor_.corners(t);
-            if (!slab.owns(std::min({c[0][slab.axis], c[1][slab.axis], c[2][slab.axis]}))) continue;
-            Triangle tri = editor_.triangle(t);
-            for (std::uint32_t& v : tri) v = from_vertex[v];
-            piece.triangles.push_back(tri);
-            piece.sides.push_back(editor_.side(t));
-            std::vector<std::uint32_t>& samples = piece.samples.emplace_back();
-            for (const std::uint32_t s : samples_[t]) samples.push_back(from_vertex[s]);
-        }
-        for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v)
-            if (editor_.vertex_alive(v) && slab.owns(editor_.position(v)[slab.axis]))
-                piece.quadrics.emplace_back(from_vertex[v], quadrics_[v]);
-        for (const std::uint32_t v : fenced_)
-            if (editor_.vertex_alive(v)) piece.fenced.push_back(from_vertex[v]);
-        add_counters(piece.report, editor_.counters());
-    }
+    void hand_over(const std::vector<std::uint32_t>& from_vertex, Piece& piece) const;
     const LocalEditor& editor() const { return editor_; }
 
 private:
     /// Size mode: the target edge length for edge ab, the smallest over the tissue pairs around it.
-    double target_edge(std::uint32_t a, std::uint32_t b) const
-    {
-        double target = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
-        if (options_.target_edge_mm_by_pair.empty()) return target;
-        double by_pair = std::numeric_limits<double>::max();
-        for (const std::uint32_t t : editor_.star(a)) {
-            const Triangle& tri = editor_.triangle(t);
-            if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
-            const LabelPair& side = editor_.side(t);
-            for (const auto& key : {std::pair{side.from, side.to}, std::pair{side.to, side.from}})
-                if (const auto it = options_.target_edge_mm_by_pair.find(key); it != options_.target_edge_mm_by_pair.end())
-                    by_pair = std::min(by_pair, it->second);
-        }
-        return by_pair < std::numeric_limits<double>::max() ? by_pair : target;
-    }
+    double target_edge(std::uint32_t a, std::uint32_t b) const;
 
     /// The cost of collapsing v into w.
-    std::optional<double> cost(std::uint32_t v, std::uint32_t w) const
-    {
-        const Vec3& p = editor_.position(w);
-        if (options_.mode == DecimateMode::size) {
-            const double length = distance(editor_.position(v), p), target = target_edge(v, w);
-            if (length >= 0.8 * target) return std::nullopt;
-            return length / target;
-        }
-        Quadric q = quadrics_[v];
-        q += quadrics_[w];
-        return q(OpenMesh::Vec3d(p[0], p[1], p[2]));
-    }
+    std::optional<double> cost(std::uint32_t v, std::uint32_t w) const;
 
     /// Allowed targets of v (curve neighbours for curve vertices), cheapest first.
-    std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const
-    {
-        std::vector<std::pair<double, std::uint32_t>> targets;
-        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
-        std::sort(targets.begin(), targets.end());
-        return targets;
-    }
+    std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const;
 
     /// Calls visit(cost, w) for every allowed target w of v (curve neighbours for curve vertices).
-    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const
-    {
-        if (!editor_.vertex_alive(v) || editor_.kind(v) == VertexKind::corner) return;
-        const bool curve = editor_.kind(v) == VertexKind::curve;
-        editor_.ring(v, ring_);
-        for (const LocalEditor::RingEntry& e : ring_) {
-            if (curve && e.triangles < 3) continue;
-            if (const std::optional<double> c = cost(v, e.vertex)) visit(*c, e.vertex);
-        }
-    }
+    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const;
 
     /// Queues v with its cheapest collapse that keeps edges within the bound (ties: the lowest target);
     /// cheaper ones that would not are counted as refused by the length and never tried.
-    void enqueue(std::uint32_t v)
-    {
-        std::vector<std::pair<double, std::uint32_t>>& targets = enqueue_scratch_;
-        targets.clear();
-        for_each_target(v, [&](double c, std::uint32_t w) { targets.emplace_back(c, w); });
-        std::sort(targets.begin(), targets.end());
-        const bool bounded = options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0;
-        for (const auto& [c, w] : targets) {
-            if (bounded && !short_enough(v, w)) {  // ring_ still holds v's ring
-                ++report_.refused_by_length;
-                continue;
-            }
-            queue_.set({c, v, w});
-            return;
-        }
-        queue_.erase(v);
-    }
+    void enqueue(std::uint32_t v);
 
     /// Queues u, a neighbour of w after the collapse of v into w (`multiplicity`: triangles on edge uw), as
     /// enqueue(u) would. The collapse changed, of u's collapses, only the one into w (w's quadric grew, and
@@ -257,174 +89,37 @@ private:
     /// positions they read are unchanged). So unless u's entry went to v or w, or u changed kind, or u was not
     /// queued, the new entry is the cheaper of the old one and the collapse into w: the same entry at a
     /// fraction of the cost (a ring and a quadric per neighbour, seven neighbours per collapse).
-    void requeue_neighbour(std::uint32_t u, std::uint32_t v, std::uint32_t w, std::uint32_t multiplicity)
-    {
-        const VertexQueue::Entry* old = queue_.find(u);
-        const std::vector<std::uint32_t>& changed = editor_.reclassified();
-        if (old == nullptr || old->w == v || old->w == w || std::find(changed.begin(), changed.end(), u) != changed.end()) {
-            enqueue(u);
-            return;
-        }
-        const VertexKind kind = editor_.kind(u);
-        if (kind == VertexKind::corner || (kind == VertexKind::curve && multiplicity < 3)) return;
-        const std::optional<double> c = cost(u, w);
-        if (!c || !(std::pair{*c, w} < std::pair{old->cost, old->w})) return;
-        if (options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0 && !keeps_edges_short(u, w)) return;
-        queue_.set({*c, u, w});
-    }
+    void requeue_neighbour(std::uint32_t u, std::uint32_t v, std::uint32_t w, std::uint32_t multiplicity);
 
     /// Tries v's collapses cheapest first; returns the target it collapsed into.
-    std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v)
-    {
-        for (const auto& [c, w] : targets_of(v))
-            if (collapse(v, w)) return w;
-        return std::nullopt;
-    }
+    std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v);
 
     /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
     /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
     /// (the answer is the same, most closest-point computations are saved).
     bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
-                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
-    {
-        std::vector<std::pair<Vec3, double>>& spheres = spheres_;
-        spheres.clear();
-        for (const TriangleCorners& c : shapes) {
-            const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
-            spheres.emplace_back(centre, std::max({distance(c[0], centre), distance(c[1], centre), distance(c[2], centre)}));
-        }
-        for (const std::uint32_t t : sources)
-            for (const std::uint32_t s : samples_[t]) {
-                const Vec3& p = editor_.position(s);
-                std::size_t nearest = 0;
-                double best = std::numeric_limits<double>::max();
-                for (std::size_t i = 0; i < shapes.size(); ++i) {
-                    if (distance(p, spheres[i].first) - spheres[i].second >= best) continue;
-                    const double d = distance(p, closest_point_on_triangle(p, shapes[i]));
-                    if (d < best) best = d, nearest = i;
-                }
-                if (best > options_.max_distance_mm) return false;
-                worst = std::max(worst, best);
-                assignment.emplace_back(nearest, s);
-            }
-        return true;
-    }
+                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const;
 
     /// Collapses v into w if the editor and the distance bound allow it. The bound is asked (through the
     /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
-    bool collapse(std::uint32_t v, std::uint32_t w)
-    {
-        if (fence_ && !inside_fence(v, w)) {
-            fenced_.push_back(v);
-            return false;
-        }
-        if (options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0 && !keeps_edges_short(v, w)) {
-            ++report_.refused_by_length;
-            return false;
-        }
-        // Scratch kept between calls: collapses are tried millions of times.
-        std::vector<std::uint32_t>& targets = targets_;
-        std::vector<std::uint32_t>& sources = sources_;
-        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
-        std::vector<TriangleCorners>& shapes = shapes_;
-        targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
-        double worst = 0;
-        bool too_far = false;
-        const auto within_bound = [&] {
-            for (const std::uint32_t t : editor_.star(v)) {
-                sources.push_back(t);
-                const Triangle& tri = editor_.triangle(t);
-                if (std::find(tri.begin(), tri.end(), w) != tri.end()) continue;
-                TriangleCorners c = editor_.corners(t);
-                for (int k = 0; k < 3; ++k)
-                    if (tri[k] == v) c[k] = editor_.position(w);
-                targets.push_back(t);
-                shapes.push_back(c);
-            }
-            for (const std::uint32_t t : editor_.star(w)) {
-                const Triangle& tri = editor_.triangle(t);
-                if (std::find(tri.begin(), tri.end(), v) != tri.end()) continue;
-                targets.push_back(t);
-                shapes.push_back(editor_.corners(t));
-            }
-            // Every input vertex the changed triangles answer for must stay within the bound.
-            too_far = !assign_samples(sources, shapes, assignment, worst);
-            return !too_far;
-        };
-        if (!editor_.try_collapse(v, w, within_bound)) {
-            ++(too_far ? report_.refused_by_distance : report_.refused_by_checks);
-            return false;
-        }
-        for (const std::uint32_t t : sources) samples_[t].clear();
-        for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
-        quadrics_[w] += quadrics_[v];
-        report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
-        return true;
-    }
+    bool collapse(std::uint32_t v, std::uint32_t w);
 
     /// Whether the collapse of v into w leaves every new edge at w (from a neighbour of v that is none of w)
     /// no longer than max_edge_mm, or no longer than the edge to v it replaces.
-    bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
-    {
-        editor_.ring(v, ring_);
-        return short_enough(v, w);
-    }
+    bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const;
 
     /// keeps_edges_short() with the ring of v already in ring_.
-    bool short_enough(std::uint32_t v, std::uint32_t w) const
-    {
-        const Vec3& p = editor_.position(w);
-        for (const LocalEditor::RingEntry& e : ring_) {
-            const Vec3& q = editor_.position(e.vertex);
-            const double length = distance(p, q);
-            if (e.vertex != w && length > options_.max_edge_mm && length > distance(editor_.position(v), q) &&
-                editor_.edge_multiplicity(w, e.vertex) == 0)
-                return false;
-        }
-        return true;
-    }
-
-    /// Whether every triangle the collapse of v into w changes or reassigns samples to lies inside the fence.
-    bool inside_fence(std::uint32_t v, std::uint32_t w) const
-    {
-        for (const std::uint32_t u : {v, w})
-            for (const std::uint32_t t : editor_.star(u)) {
-                const Triangle& tri = editor_.triangle(t);
-                if (!fence_->holds(editor_.position(tri[0]), editor_.position(tri[1]), editor_.position(tri[2]))) return false;
-            }
-        return true;
-    }
+    bool short_enough(std::uint32_t v, std::uint32_t w) const;
 
     /// After a split at m, each sample of the split triangles goes to the nearer half.
-    void redistribute_samples(std::uint32_t m)
-    {
-        if (samples_.size() < editor_.triangle_slots()) samples_.resize(editor_.triangle_slots());
-        if (quadrics_.size() < editor_.vertex_slots()) quadrics_.resize(editor_.vertex_slots());
-        std::vector<std::uint32_t> pool;
-        const std::vector<std::uint32_t>& star = editor_.star(m);
-        for (const std::uint32_t t : star) {
-            pool.insert(pool.end(), samples_[t].begin(), samples_[t].end());
-            samples_[t].clear();
-        }
-        for (const std::uint32_t s : pool) {
-            const Vec3& p = editor_.position(s);
-            std::uint32_t nearest = star.front();
-            double best = std::numeric_limits<double>::max();
-            for (const std::uint32_t t : star) {
-                const double d = distance(p, closest_point_on_triangle(p, editor_.corners(t)));
-                if (d < best) best = d, nearest = t;
-            }
-            samples_[nearest].push_back(s);
-        }
-    }
+    void redistribute_samples(std::uint32_t m);
 
     const DecimateOptions& options_;
     DecimateReport& report_;
     LocalEditor editor_;
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
-    std::optional<Slab> slab_;        ///< the slab this decimator works on, if any
-    std::optional<EditFence> fence_;  ///< its fence
+    std::optional<Slab> slab_;  ///< the slab this decimator works on, if any (its fence is the editor's)
     std::vector<std::uint32_t> fenced_;  ///< vertices whose collapse the fence refused (repeats possible)
     VertexQueue queue_;  ///< per vertex its cheapest collapse
     mutable std::vector<LocalEditor::RingEntry> ring_;  ///< scratch of for_each_target()

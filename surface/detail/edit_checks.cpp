@@ -42,8 +42,8 @@ bool ComplexEditor::meet(const Triangle& a, const TriangleCorners& pa, const Tri
 bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const std::vector<std::uint32_t>& excluded)
 {
     const double gap = limits_.min_gap_mm;
-    thread_local std::vector<TriangleCorners> shapes;  // scratch: an edit changes a few triangles
-    thread_local std::vector<Box3> boxes;
+    std::vector<TriangleCorners>& shapes = clear_shapes_;
+    std::vector<Box3>& boxes = clear_boxes_;
     shapes.clear();
     boxes.clear();
     Box3 all{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
@@ -64,7 +64,7 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         return true;
     };
     // A change that only moves vertices has its old self to compare with; new triangles do not.
-    thread_local std::vector<const TriangleCorners*> before;
+    std::vector<const TriangleCorners*>& before = clear_before_;
     before.assign(changes.size(), nullptr);
     for (std::size_t i = 0; i < changes.size(); ++i)
         if (changes[i].slot < triangles_.size() && alive_[changes[i].slot] &&
@@ -144,23 +144,6 @@ LabelPair ComplexEditor::side_of(const Change& change) const
     return change.slot < sides_.size() ? sides_[change.slot] : change.side;
 }
 
-bool ComplexEditor::inside_fence(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
-{
-    if (!fence_) return true;
-    bool ok = true;
-    for (const Change& change : changes) {
-        const Triangle& t = change.triangle;
-        ok = ok && fence_->holds(change.before[0], change.before[1], change.before[2]) &&
-             fence_->holds(positions_[t[0]], positions_[t[1]], positions_[t[2]]);
-    }
-    for (const std::uint32_t t : removed) {
-        const Triangle& tri = triangles_[t];
-        ok = ok && fence_->holds(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]);
-    }
-    if (!ok) ++counters_.fence;
-    return ok;
-}
-
 FanOrder ComplexEditor::fan_around(std::uint32_t p, std::uint32_t q, const std::vector<Change>* changes,
                                    const std::vector<std::uint32_t>* excluded, std::vector<std::uint32_t>* members) const
 {
@@ -185,7 +168,7 @@ bool ComplexEditor::fans_in_order(const std::vector<Change>& changes, const std:
     // states on the way (measured: with a budget of "no more than before" per edit, a bulge through the thin
     // phantom's shell was left crossing), and its final check_complex() refuses any tangle left.
     if (limits_.tolerate_existing_intersections) return true;
-    thread_local std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;  // each once
+    std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges = fan_edges_;
     edges.clear();
     for (const Change& change : changes)
         for (int k = 0; k < 3; ++k) {
@@ -204,7 +187,6 @@ bool ComplexEditor::fans_in_order(const std::vector<Change>& changes, const std:
 
 bool ComplexEditor::acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed)
 {
-    if (!inside_fence(changes, removed)) return false;
     for (const Change& change : changes)
         if (!shape_ok(change)) return false;
     std::vector<std::uint32_t> excluded = removed;

@@ -16,18 +16,11 @@ namespace tissuemesh::surface::detail {
 constexpr double pi = 3.14159265358979323846;
 
 LocalEditor::LocalEditor(InterfaceComplex complex, const LocalLimits& limits, double cell_mm)
-    : background_(complex.background), names_(std::move(complex.names)), positions_(std::move(complex.vertices)),
-      triangles_(std::move(complex.triangles)), sides_(std::move(complex.sides)), cell_mm_(cell_mm)
+    : EditableComplex(std::move(complex)), cell_mm_(cell_mm)
 {
     set_limits(limits);
     if (!(cell_mm > 0)) cell_mm = 1;
-    alive_.assign(triangles_.size(), 1);
-    alive_count_ = triangles_.size();
-    stars_.resize(positions_.size());
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        for (const std::uint32_t v : triangles_[t]) stars_[v].push_back(t);
-    roles_.resize(positions_.size());
-    for (std::uint32_t v = 0; v < positions_.size(); ++v) roles_[v] = classify(v);
+    classify_all();
     filed_.resize(triangles_.size());
     stamp_.assign(triangles_.size(), 0);
     rebuild_grid(cell_mm);
@@ -38,75 +31,6 @@ void LocalEditor::set_limits(const LocalLimits& limits)
     limits_ = limits;
     cos_min_angle_ = std::cos(limits.min_angle_deg * pi / 180);
     cos_max_tilt_ = std::cos(limits.max_tilt_deg * pi / 180);
-}
-
-void LocalEditor::ring(std::uint32_t v, std::vector<RingEntry>& out) const
-{
-    out.clear();
-    for (const std::uint32_t t : stars_[v])
-        for (const std::uint32_t w : triangles_[t]) {
-            if (w == v) continue;
-            auto it = std::find_if(out.begin(), out.end(), [&](const RingEntry& n) { return n.vertex == w; });
-            if (it == out.end()) out.push_back({w, 1});
-            else ++it->triangles;
-        }
-}
-
-std::uint32_t LocalEditor::edge_multiplicity(std::uint32_t v, std::uint32_t w) const
-{
-    std::uint32_t count = 0;
-    for (const std::uint32_t t : stars_[v]) count += has(triangles_[t], w);
-    return count;
-}
-
-VertexKind LocalEditor::classify(std::uint32_t v) const
-{
-    const auto& star = stars_[v];
-    if (star.empty()) return VertexKind::corner;
-    thread_local std::vector<RingEntry> around;
-    ring(v, around);
-    std::size_t junction = 0;
-    for (const RingEntry& n : around) {
-        if (n.triangles >= 3) ++junction;
-        else if (n.triangles != 2) return VertexKind::corner;
-    }
-    if (junction == 2) return VertexKind::curve;
-    if (junction != 0) return VertexKind::corner;
-    for (const std::uint32_t t : star)
-        if (!(sides_[t] == sides_[star.front()])) return VertexKind::corner;
-    // A single fan: as many distinct neighbours as triangles (two fans touching at v would share none).
-    return around.size() == star.size() ? VertexKind::patch : VertexKind::corner;
-}
-
-void LocalEditor::reclassify(std::uint32_t v, const std::vector<std::uint32_t>& others)
-{
-    reclassified_.clear();
-    const auto update = [&](std::uint32_t u) {
-        const VertexKind kind = classify(u);
-        if (kind != roles_[u]) reclassified_.push_back(u);
-        roles_[u] = kind;
-    };
-    update(v);
-    for (const std::uint32_t u : others) update(u);
-}
-
-void LocalEditor::reclassify_around(std::uint32_t v)
-{
-    thread_local std::vector<RingEntry> around;
-    thread_local std::vector<std::uint32_t> others;
-    ring(v, around);
-    others.clear();
-    for (const RingEntry& n : around) others.push_back(n.vertex);
-    reclassify(v, others);
-}
-
-double LocalEditor::mean_edge_length() const
-{
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) sum += distance(positions_[triangles_[t][0]], positions_[triangles_[t][1]]), ++count;
-    return count ? sum / static_cast<double>(count) : 1.0;
 }
 
 void LocalEditor::rebuild_grid(double cell_mm)
@@ -164,28 +88,6 @@ bool LocalEditor::inside_fence(const std::vector<std::uint32_t>& triangles) cons
         if (!fence_->holds(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]])) return false;
     }
     return true;
-}
-
-std::vector<std::uint32_t> LocalEditor::curve_neighbours(std::uint32_t v) const
-{
-    thread_local std::vector<RingEntry> around;
-    ring(v, around);
-    std::vector<std::uint32_t> out;
-    for (const RingEntry& e : around)
-        if (e.triangles >= 3) out.push_back(e.vertex);
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
-std::vector<std::uint32_t> LocalEditor::neighbours(std::uint32_t v) const
-{
-    std::vector<std::uint32_t> out;
-    for (const std::uint32_t t : stars_[v])
-        for (const std::uint32_t w : triangles_[t])
-            if (w != v) out.push_back(w);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
 }
 
 LocalEditor::Box LocalEditor::box_of(const Triangle& t) const
@@ -302,12 +204,7 @@ void LocalEditor::undo()
     stamp_.resize(triangles_before_edit_);
     positions_.resize(vertices_before_edit_);
     stars_.resize(vertices_before_edit_);
-    roles_.resize(vertices_before_edit_);
-}
-
-TriangleCorners LocalEditor::corners(const Triangle& t) const
-{
-    return {positions_[t[0]], positions_[t[1]], positions_[t[2]]};
+    kinds_.resize(vertices_before_edit_);
 }
 
 bool LocalEditor::same_sheet_direction(std::uint32_t t, std::uint32_t u) const
@@ -345,7 +242,7 @@ bool LocalEditor::gap_ok(std::uint32_t t, const std::vector<Prior>& before, std:
 
 bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
 {
-    thread_local std::vector<FanBlade> blades;
+    std::vector<FanBlade>& blades = blades_;
     for (const std::uint32_t t : changed)
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
@@ -394,8 +291,9 @@ void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
     constexpr std::size_t limit = 24;
     out.clear();
     if (vertex_stamp_.size() < positions_.size()) vertex_stamp_.resize(positions_.size(), 0);
-    thread_local std::vector<std::uint32_t> vertices, triangles;
-    thread_local std::vector<Label> seen;
+    std::vector<std::uint32_t>& vertices = piece_vertices_;
+    std::vector<std::uint32_t>& triangles = piece_triangles_;
+    std::vector<Label>& seen = piece_tissues_;
     seen.clear();
     for (const std::uint32_t first : stars_[v])
         for (const Label tissue : {sides_[first].from, sides_[first].to}) {
@@ -471,7 +369,7 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     // Triangles sharing no vertex with a changed one: from the grid (one query over the box of all the
     // changed triangles), each judged against every changed triangle whose box it comes within the gap of.
     const double gap = limits_.min_gap_mm;
-    thread_local std::vector<Box> boxes;
+    std::vector<Box>& boxes = boxes_;
     boxes.clear();
     Box all{{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()},
             {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()}};
@@ -505,7 +403,7 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     });
     if (offender) return false;
     // Triangles sharing a vertex with a changed one: the stars of their vertices.
-    thread_local std::vector<std::uint32_t> vertices;
+    std::vector<std::uint32_t>& vertices = star_vertices_;
     vertices.clear();
     for (const std::uint32_t t : changed)
         for (const std::uint32_t v : triangles_[t]) vertices.push_back(v);

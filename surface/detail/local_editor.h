@@ -24,7 +24,9 @@
 #include <vector>
 
 #include "core/interface_complex.h"
+#include "surface/detail/edge_fan.h"
 #include "surface/detail/edit_types.h"
+#include "surface/detail/editable_complex.h"
 #include "surface/detail/slabs.h"
 
 namespace tissuemesh::surface::detail {
@@ -44,6 +46,15 @@ struct LocalLimits {
     double min_sector_deg = 0;
 };
 
+/// The limits a step's options ask of the editor (DecimateOptions and RemeshOptions name them alike).
+template <class StepOptions>
+LocalLimits limits_of(const StepOptions& options)
+{
+    return {.min_angle_deg = options.min_angle_deg,
+            .max_tilt_deg = options.max_normal_change_deg,
+            .min_gap_mm = options.min_gap_mm,
+            .min_sector_deg = options.min_sector_deg};
+}
 
 /// A small closed piece of one tissue (LocalEditor::small_pieces).
 struct SmallPiece {
@@ -52,29 +63,12 @@ struct SmallPiece {
     double area = 0;
 };
 
-class LocalEditor {
+class LocalEditor : public EditableComplex {
 public:
     /// Takes the complex over; `cell_mm` is the neighbour grid's cell (about twice the longest edge expected).
     /// @pre `complex` passes check_complex()
     LocalEditor(InterfaceComplex complex, const LocalLimits& limits, double cell_mm);
 
-    std::size_t vertex_slots() const { return positions_.size(); }
-    std::size_t triangle_count() const { return alive_count_; }
-    bool vertex_alive(std::uint32_t v) const { return !stars_[v].empty(); }
-    bool triangle_alive(std::uint32_t t) const { return alive_[t] != 0; }
-    const Vec3& position(std::uint32_t v) const { return positions_[v]; }
-    const std::vector<Vec3>& positions() const { return positions_; }
-    const Triangle& triangle(std::uint32_t t) const { return triangles_[t]; }
-    const LabelPair& side(std::uint32_t t) const { return sides_[t]; }
-    const std::vector<std::uint32_t>& star(std::uint32_t v) const { return stars_[v]; }
-    VertexKind kind(std::uint32_t v) const { return roles_[v]; }
-    std::size_t triangle_slots() const { return triangles_.size(); }
-    /// The vertices whose kind the last collapse or split may have changed (the kept or new vertex and its
-    /// neighbours), classified again.
-    const std::vector<std::uint32_t>& reclassified() const { return reclassified_; }
-    std::array<Vec3, 3> corners(std::uint32_t t) const { return corners(triangles_[t]); }
-    /// Mean edge length over alive triangles (first edges), mm.
-    double mean_edge_length() const;
     /// Files every alive triangle again in a grid of `cell_mm` (after triangles grew or shrank a lot).
     void rebuild_grid(double cell_mm);
     const LocalLimits& limits() const { return limits_; }
@@ -82,20 +76,8 @@ public:
     const EditCounters& counters() const { return counters_; }
     /// Confines the edits to a fence (every triangle an edit removes or makes lies inside); nullopt: anywhere.
     void set_fence(const std::optional<EditFence>& fence) { fence_ = fence; }
-
-    /// A neighbour of v and the number of triangles on their edge (3 or more: a junction edge).
-    struct RingEntry {
-        std::uint32_t vertex;
-        std::uint32_t triangles;
-    };
-    /// The neighbours of v, in no particular order (into `out`).
-    void ring(std::uint32_t v, std::vector<RingEntry>& out) const;
-    /// The neighbours of v across junction edges (two for a curve vertex), ascending.
-    std::vector<std::uint32_t> curve_neighbours(std::uint32_t v) const;
-    /// The neighbours of v, ascending.
-    std::vector<std::uint32_t> neighbours(std::uint32_t v) const;
-    /// Number of triangles on edge vw (0: no edge).
-    std::uint32_t edge_multiplicity(std::uint32_t v, std::uint32_t w) const;
+    /// Whether every one of `triangles` lies inside the fence (true without a fence).
+    bool inside_fence(const std::vector<std::uint32_t>& triangles) const;
 
     /// Collapses edge vw into w (v disappears, w stays where it is). `veto`, when given, is asked after the
     /// cheap checks and before the costly ones; false refuses (counted by the caller).
@@ -107,8 +89,6 @@ public:
     /// Moves v to p (the caller keeps curve vertices on their curves and corners in place).
     bool try_move(std::uint32_t v, const Vec3& p);
 
-    /// The alive triangles over every vertex slot (dead vertices kept, new ones after the original ones).
-    InterfaceComplex snapshot() const;
     /// The complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
 
@@ -121,12 +101,7 @@ private:
     using CellRange = std::array<std::uint16_t, 6>;
     using Prior = std::pair<std::uint32_t, std::array<Vec3, 3>>;  ///< a changed triangle and its corners before
 
-    VertexKind classify(std::uint32_t v) const;
-    void reclassify_around(std::uint32_t v);
-    /// Classifies v and `others` again (recording changes in reclassified_).
-    void reclassify(std::uint32_t v, const std::vector<std::uint32_t>& others);
     bool shape_ok(const Triangle& now, const Triangle& before, bool check_tilt);
-    bool inside_fence(const std::vector<std::uint32_t>& triangles) const;
     /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).
@@ -148,7 +123,6 @@ private:
     /// sliver, each new triangle within the tilt limit of the one it replaces and nothing crossing; TetGen
     /// then has only flat tets to fill it with.
     void small_pieces(std::uint32_t v, std::vector<SmallPiece>& out);
-    std::array<Vec3, 3> corners(const Triangle& t) const;
     /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the
     /// gap rule leaves alone (a sheet folding back towards itself faces the other way where it nears).
     bool same_sheet_direction(std::uint32_t t, std::uint32_t u) const;
@@ -180,16 +154,6 @@ private:
 
     LocalLimits limits_;
     double cos_min_angle_ = 1, cos_max_tilt_ = 0;
-    Label background_ = 0;
-    TissueNames names_;
-    std::vector<Vec3> positions_;
-    std::vector<Triangle> triangles_;
-    std::vector<LabelPair> sides_;
-    std::vector<char> alive_;
-    std::vector<std::vector<std::uint32_t>> stars_;
-    std::vector<VertexKind> roles_;
-    std::vector<std::uint32_t> reclassified_;
-    std::size_t alive_count_ = 0;
     // The neighbour grid: each alive triangle is listed in every cell its box overlaps.
     Vec3 grid_origin_{0, 0, 0};
     double cell_mm_ = 1;
@@ -214,6 +178,21 @@ private:
     std::vector<std::uint32_t> vertex_stamp_;  ///< per vertex: the query that last met it (small_pieces)
     std::optional<EditFence> fence_;
     EditCounters counters_;
+    // Scratch kept between calls, so that an edit (tried millions of times) allocates nothing once the
+    // buffers have grown. The edits (try_*) never call one another and share edit_; the checks they call keep
+    // their own. One editor is used by one thread at a time (slabs have an editor each).
+    struct EditScratch {
+        std::vector<RingEntry> around_v, around_w;
+        std::vector<std::uint32_t> common, changed, dying, parents;
+        std::vector<std::pair<Label, int>> uses;
+        std::vector<Prior> prior;
+        std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
+    } edit_;
+    std::vector<FanBlade> blades_;                                 ///< fans_ok()
+    std::vector<std::uint32_t> piece_vertices_, piece_triangles_;  ///< small_pieces()
+    std::vector<Label> piece_tissues_;                             ///< small_pieces()
+    std::vector<Box> boxes_;                                       ///< surroundings_ok()
+    std::vector<std::uint32_t> star_vertices_;                     ///< surroundings_ok()
 };
 
 } // namespace tissuemesh::surface::detail

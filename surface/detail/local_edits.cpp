@@ -49,16 +49,17 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     const std::uint32_t on_edge = edge_multiplicity(v, w);
     if (on_edge == 0) return false;
     // Junction rules: corners stay; a curve vertex goes only along its curve.
-    if (roles_[v] == VertexKind::corner || (roles_[v] == VertexKind::curve && on_edge < 3)) {
+    if (kinds_[v] == VertexKind::corner || (kinds_[v] == VertexKind::curve && on_edge < 3)) {
         ++counters_.topology;
         return false;
     }
     // Link condition: every common neighbour is the apex of a triangle on vw, and no two common neighbours
     // x, y have both vxy and wxy (the collapse would make them one).
-    thread_local std::vector<RingEntry> around_v, around_w;
+    std::vector<RingEntry>& around_v = edit_.around_v;
+    std::vector<RingEntry>& around_w = edit_.around_w;
     ring(v, around_v);
     ring(w, around_w);
-    thread_local std::vector<std::uint32_t> common;
+    std::vector<std::uint32_t>& common = edit_.common;
     common.clear();
     for (const RingEntry& n : around_v)
         if (n.vertex != w && std::any_of(around_w.begin(), around_w.end(), [&](const RingEntry& m) { return m.vertex == n.vertex; }))
@@ -74,7 +75,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     // The edges vx and wx of a common neighbour x become one: no tissue may have more than two triangles on
     // it (two junction edges fused, or a thin layer pinched along an edge, would make its surface touch itself).
     for (const std::uint32_t x : common) {
-        thread_local std::vector<std::pair<Label, int>> uses;
+        std::vector<std::pair<Label, int>>& uses = edit_.uses;
         uses.clear();
         for (const std::uint32_t a : {v, w})
             for (const std::uint32_t t : stars_[a]) {
@@ -97,7 +98,8 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
                 return false;
             }
     // The new triangles: the star of v with w for v; those on vw die.
-    thread_local std::vector<std::uint32_t> changed, dying;
+    std::vector<std::uint32_t>& changed = edit_.changed;
+    std::vector<std::uint32_t>& dying = edit_.dying;
     changed.clear();
     dying.clear();
     for (const std::uint32_t t : stars_[v]) (has(triangles_[t], w) ? dying : changed).push_back(t);
@@ -120,10 +122,12 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     }
     if (veto && !veto()) return false;
     // Apply, judge, and undo when refused.
-    thread_local std::vector<Prior> prior;
+    std::vector<Prior>& prior = edit_.prior;
     prior.clear();
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
-    thread_local std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
+    std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
+    std::vector<SmallPiece>& pieces_at_w = edit_.pieces_at_w;
+    std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
     small_pieces(v, pieces_before);
     small_pieces(w, pieces_at_w);  // w's own pieces count too: the collapse may thin a piece at w alone
     for (const SmallPiece& p : pieces_at_w)
@@ -165,8 +169,8 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         file(t);
     }
     alive_count_ -= dying.size();
-    reclassify(w, common);
-    roles_[v] = VertexKind::corner;
+    reclassify(w, &common);
+    kinds_[v] = VertexKind::corner;
     ++counters_.accepted;
     return true;
 }
@@ -174,7 +178,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
 std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32_t w, const Vec3& p)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return std::nullopt;
-    thread_local std::vector<std::uint32_t> parents;
+    std::vector<std::uint32_t>& parents = edit_.parents;
     parents.clear();
     for (const std::uint32_t t : stars_[v])
         if (has(triangles_[t], w)) parents.push_back(t);
@@ -186,15 +190,15 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
     const auto u = static_cast<std::uint32_t>(positions_.size());
     positions_.push_back(p);
     stars_.emplace_back();
-    roles_.push_back(parents.size() >= 3 ? VertexKind::curve : VertexKind::patch);
+    kinds_.push_back(parents.size() >= 3 ? VertexKind::curve : VertexKind::patch);
     reclassified_.clear();
     save_star(w);
     for (const std::uint32_t t : parents)
         for (const std::uint32_t x : triangles_[t])
             if (x != v && x != w) save_star(x);
-    thread_local std::vector<std::uint32_t> changed;
+    std::vector<std::uint32_t>& changed = edit_.changed;
     changed.clear();
-    thread_local std::vector<Prior> before;
+    std::vector<Prior>& before = edit_.prior;
     before.clear();
     bool shape = true;
     for (const std::uint32_t t : parents) {
@@ -229,7 +233,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
         file(t);
     }
     alive_count_ += parents.size();
-    reclassify_around(u);
+    reclassify(u);
     ++counters_.accepted;
     return u;
 }
@@ -294,7 +298,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
             }
         }
     }
-    thread_local std::vector<std::uint32_t> changed;
+    std::vector<std::uint32_t>& changed = edit_.changed;
     changed.assign({first, second});
     if (!inside_fence(changed)) {
         ++counters_.fence;
@@ -303,7 +307,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
     const double sectors_before = smallest_sector_deg(changed);
     begin_edit();
     for (const std::uint32_t x : {v, w, a, b}) save_star(x);
-    thread_local std::vector<Prior> prior;
+    std::vector<Prior>& prior = edit_.prior;
     prior.assign({{first, corners(triangles_[first])}, {second, corners(triangles_[second])}});
     save(first);
     save(second);
@@ -321,7 +325,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
         unfile(t);
         file(t);
     }
-    for (const std::uint32_t x : {v, w, a, b}) roles_[x] = classify(x);
+    for (const std::uint32_t x : {v, w, a, b}) kinds_[x] = classify(x);
     ++counters_.accepted;
     return true;
 }
@@ -334,7 +338,7 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         return false;
     }
     begin_edit();
-    thread_local std::vector<Prior> before;
+    std::vector<Prior>& before = edit_.prior;
     before.clear();
     for (const std::uint32_t t : stars_[v]) before.emplace_back(t, corners(triangles_[t]));
     const double sectors_before = smallest_sector_deg(stars_[v]);
@@ -370,7 +374,8 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         positions_[v] = old;
         return false;
     }
-    thread_local std::vector<SmallPiece> pieces_before, pieces_after;
+    std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
+    std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
     small_pieces(v, pieces_after);
     positions_[v] = old;
     small_pieces(v, pieces_before);
@@ -385,17 +390,6 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
     }
     ++counters_.accepted;
     return true;
-}
-
-InterfaceComplex LocalEditor::snapshot() const
-{
-    InterfaceComplex out;
-    out.names = names_;
-    out.background = background_;
-    out.vertices = positions_;
-    for (std::uint32_t t = 0; t < triangles_.size(); ++t)
-        if (alive_[t]) out.add_triangle(triangles_[t], sides_[t]);
-    return out;
 }
 
 InterfaceComplex LocalEditor::result() const

@@ -1,6 +1,7 @@
 #include "surface/detail/slabs.h"
 
 #include <algorithm>
+#include <exception>
 #include <limits>
 
 namespace tissuemesh::surface::detail {
@@ -78,6 +79,30 @@ SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab)
         piece.from_triangle.push_back(t);
     }
     return piece;
+}
+
+void edit_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs, const std::vector<char>& run,
+                const std::function<void(std::size_t, SlabPiece&)>& edit,
+                const std::function<void(std::size_t)>& finished)
+{
+    std::exception_ptr failure;
+    std::size_t done = 0;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < slabs.size(); ++k) {
+        if (!run.empty() && !run[k]) continue;
+        try {
+            SlabPiece piece = slab_piece(complex, slabs[k]);
+            edit(k, piece);
+        } catch (...) {
+#pragma omp critical(slab_failure)
+            if (!failure) failure = std::current_exception();
+        }
+        if (finished) {
+#pragma omp critical(slab_finished)
+            finished(++done);
+        }
+    }
+    if (failure) std::rethrow_exception(failure);
 }
 
 InterfaceComplex merge_slabs(const InterfaceComplex& whole, const std::vector<EditedSlab>& slabs)

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -61,6 +62,14 @@ struct SlabPiece {
     std::vector<std::uint32_t> from_triangle; ///< per piece triangle: its index in the whole complex
 };
 SlabPiece slab_piece(const InterfaceComplex& complex, const Slab& slab);
+
+/// The one driver of edits in slabs (decimate(), remesh()): calls edit(k, piece) on the piece of every slab
+/// k marked in `run` (every slab when `run` is empty), side by side in parallel, each piece on its own, so the
+/// result does not depend on the thread count; then, one at a time, finished(n) with the number n of slabs
+/// done so far (for progress). The first exception an edit throws is thrown again once all have finished.
+void edit_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs, const std::vector<char>& run,
+                const std::function<void(std::size_t, SlabPiece&)>& edit,
+                const std::function<void(std::size_t)>& finished = {});
 
 /// A slab after editing its piece: the edited complex over the piece's vertices (in the piece's order, new
 /// ones after), or nullopt when the slab was left as it was.

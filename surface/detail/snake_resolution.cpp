@@ -1,7 +1,9 @@
 #include "surface/detail/snake_resolution.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -30,22 +32,6 @@ bool edge_alive(const ComplexEditor& editor, const Edge& e)
 {
     return editor.vertex_alive(e.first) && editor.vertex_alive(e.second) &&
            editor.edge_multiplicity(e.first, e.second) > 0;
-}
-
-/// The vertices opposite edge vw in its two triangles, when exactly two triangles of one patch share it.
-bool opposite_vertices(const ComplexEditor& editor, std::uint32_t v, std::uint32_t w, std::uint32_t& a, std::uint32_t& b)
-{
-    std::vector<std::uint32_t> found;
-    for (const std::uint32_t t : editor.star(v)) {
-        const Triangle& tri = editor.triangle(t);
-        if (std::find(tri.begin(), tri.end(), w) == tri.end()) continue;
-        for (const std::uint32_t u : tri)
-            if (u != v && u != w) found.push_back(u);
-    }
-    if (found.size() != 2) return false;
-    a = found[0];
-    b = found[1];
-    return true;
 }
 
 int valence(const ComplexEditor& editor, std::uint32_t v) { return static_cast<int>(editor.neighbours(v).size()); }
@@ -82,8 +68,10 @@ ResolutionCounts adapt_resolution(ComplexEditor& editor, const std::function<dou
     }
 
     for (const Edge& e : alive_edges(editor)) {
-        std::uint32_t a = 0, b = 0;
-        if (!edge_alive(editor, e) || !opposite_vertices(editor, e.first, e.second, a, b)) continue;
+        if (!edge_alive(editor, e)) continue;
+        const std::optional<std::array<std::uint32_t, 2>> opposite = editor.opposite_vertices(e.first, e.second);
+        if (!opposite) continue;
+        const auto [a, b] = *opposite;
         if (editor.edge_multiplicity(a, b) > 0) continue;
         const int v = valence(editor, e.first), w = valence(editor, e.second);
         const int va = valence(editor, a), vb = valence(editor, b);

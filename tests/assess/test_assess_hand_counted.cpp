@@ -7,28 +7,18 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "tests/support/programs.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
 
 namespace tissuemesh::volume {
 namespace {
 
-void orient_positively(TetMesh& mesh)
-{
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (signed_volume(mesh, t) < 0) std::swap(mesh.tets[t][2], mesh.tets[t][3]);
-}
-
 /// The corner tet of edge 4 voxels on a grid of `spacing` mm: (0,0,0), 4 along x, y and z.
 TetMesh corner_tet(double spacing, Label tissue)
 {
-    TetMesh mesh;
     const double s = 4 * spacing;
-    mesh.vertices = {{0, 0, 0}, {s, 0, 0}, {0, s, 0}, {0, 0, s}};
-    mesh.tets = {{0, 1, 2, 3}};
-    mesh.tet_labels = {tissue};
-    orient_positively(mesh);
-    return mesh;
+    return testing::single_tet({{{0, 0, 0}, {s, 0, 0}, {0, s, 0}, {0, 0, s}}}, tissue);
 }
 
 /// An image of 6^3 voxels of `spacing` mm: tissue 2 on the plane i == 0, tissue 1 elsewhere.
@@ -80,30 +70,14 @@ TEST(AssessHandCounted, PriorityWeightsFlipAFiftyFiftyTet)
     EXPECT_EQ(assess_elements(corner_tet(spacing, 2), image, {.priority = {{2, 0.9}}}).majority[0], 1);
 }
 
-/// The cube [0, s]^3 split into the 6 Kuhn tets around the diagonal: tet `order` holds the points with
-/// x[order[0]] >= x[order[1]] >= x[order[2]].
-TetMesh kuhn_cube(double s, std::vector<std::array<int, 3>>& orders)
-{
-    TetMesh mesh;
-    for (int c = 0; c < 8; ++c) mesh.vertices.push_back({s * (c & 1), s * (c >> 1 & 1), s * (c >> 2 & 1)});
-    orders = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (const auto& order : orders) {
-        const std::uint32_t a = 1u << order[0], b = a | 1u << order[1];
-        mesh.tets.push_back({0, a, b, 7});
-        mesh.tet_labels.push_back(1);
-    }
-    orient_positively(mesh);
-    return mesh;
-}
-
 TEST(AssessHandCounted, KuhnCubeCountsPerTetAndPerTissue)
 {
     // Cube of 2 mm on 0.5 mm voxels: centres at index 0..3 along each axis are inside (faces at index 0
     // kept, at index 4 dropped): 64. Tet (a, b, c) holds x_a >= x_b >= x_c; a tie x_a == x_b stays in it
     // when a < b (the +(1, e, e^2) move grows lower axes more), so a pair with a > b is strict. With s
     // strict pairs the count is the number of such triples in 0..3: C(6 - s, 3) = 20, 10 or 4.
-    std::vector<std::array<int, 3>> orders;
-    const TetMesh cube = kuhn_cube(2.0, orders);
+    const TetMesh cube = testing::kuhn_cube(2.0);
+    const auto& orders = testing::kuhn_axis_orders;
     LabelImage image({7, 7, 7}, {0.5, 0.5, 0.5});
     for (std::size_t k = 0; k < 4; ++k)
         for (std::size_t j = 0; j < 4; ++j)
@@ -139,11 +113,8 @@ TEST(AssessHandCounted, TetSmallerThanAVoxelIsSampled)
 {
     // A 0.3 mm tet near voxel (10, 10, 10) on a 1 mm grid holds no centre; all five samples round to that
     // voxel, which is the only one of tissue 3.
-    TetMesh mesh;
-    mesh.vertices = {{10.1, 10.1, 10.1}, {10.4, 10.1, 10.1}, {10.1, 10.4, 10.1}, {10.1, 10.1, 10.4}};
-    mesh.tets = {{0, 1, 2, 3}};
-    mesh.tet_labels = {1};
-    orient_positively(mesh);
+    const TetMesh mesh =
+        testing::single_tet({{{10.1, 10.1, 10.1}, {10.4, 10.1, 10.1}, {10.1, 10.4, 10.1}, {10.1, 10.1, 10.4}}});
     LabelImage image({20, 20, 20}, {1, 1, 1}, {0, 0, 0}, identity_matrix(), 1);
     image.at(10, 10, 10) = 3;
     const Assessment a = assess_elements(mesh, image);
@@ -177,7 +148,7 @@ TEST(AssessHandCounted, RegularTetShapeAndQualityKeyOrder)
     mesh.vertices = {{0, 0, 0}, {2, 2, 0}, {2, 0, 2}, {0, 2, 2}, {5, 0, 0}, {9, 0, 0}, {5, 4, 0}, {7, 2, 0.3}};
     mesh.tets = {{0, 1, 2, 3}, {4, 5, 6, 7}};
     mesh.tet_labels = {1, 1};
-    orient_positively(mesh);
+    testing::orient_positively(mesh);
     LabelImage image({12, 6, 6}, {1, 1, 1}, {0, 0, 0}, identity_matrix(), 1);
     const Assessment clean = assess_elements(mesh, image);
     EXPECT_NEAR(clean.aspect_ratio[0], 1.0, 1e-12);

@@ -5,8 +5,7 @@
 #include <set>
 #include <tuple>
 
-#include "image/phantom.h"
-#include "surface/extract_interfaces.h"
+#include "tests/support/programs.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
 #include "volume/mark_interfaces.h"
@@ -16,22 +15,10 @@
 namespace tissuemesh::volume {
 namespace {
 
-struct Meshed {
-    LabelImage image;
-    TetMesh mesh;
-};
+using Meshed = testing::MeshedPhantom;
 
 /// The junction phantom (2 mm voxels) through extract_interfaces and tetrahedralize, made once.
-const Meshed& junction()
-{
-    static const Meshed meshed = [] {
-        Meshed m;
-        m.image = image::make_phantom("junction", {.voxel_mm = 2}).image;
-        m.mesh = tetrahedralize(surface::extract_interfaces(m.image));
-        return m;
-    }();
-    return meshed;
-}
+const Meshed& junction() { return testing::meshed_phantom("junction", 2); }
 
 /// Marked faces as a set of (rotation with the smallest vertex first: keeps the orientation, from, to).
 std::set<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, Label, Label>> oriented_faces(const TetMesh& mesh)

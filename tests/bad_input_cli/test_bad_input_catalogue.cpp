@@ -56,6 +56,22 @@ TEST_P(BadInput, ExitsWithTheCodeAndOneLineAndLeavesNothing)
     }
 }
 
+/// tm-solve on ok.msh with `args` added (a dipole, or electrodes, plus the file under test).
+BadCase solve_case(std::string name, std::vector<std::string> args, std::vector<std::string> message)
+{
+    std::vector<std::string> all{"-i", "@ok.msh", "-o", "@out.vtu"};
+    all.insert(all.end(), args.begin(), args.end());
+    return {std::move(name), "tm-solve", all, 2, std::move(message)};
+}
+
+const std::vector<std::string> dipole{"--dipole", "5,5,5,0,0,1e-8"};
+
+std::vector<std::string> with_dipole(std::vector<std::string> args)
+{
+    args.insert(args.begin(), dipole.begin(), dipole.end());
+    return args;
+}
+
 // Images: readers of every format, and tissue contents that a step cannot use.
 const std::vector<BadCase> image_cases{
     {"NiftiComplexVoxels", "tm-extract", {"-i", "@complex.nii", "-o", "@out.ply"}, 2, {"complex.nii", "datatype"}},
@@ -128,70 +144,37 @@ const std::vector<BadCase> mesh_cases{
     {"VtuTruncated", "tm-solve", {"-i", "@truncated.vtu", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2, {"truncated.vtu", "truncated"}},
     {"VtuFieldViewWithoutTheArray", "tm-render", {"--view", "field", "-i", "@ok.vtu", "-o", "@out.png"}, 2,
      {"ok.vtu", "no point or cell array \"potential_V\"", "tm-solve"}},
-    {"ConductivityUnknownName", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-unknown.json"}, 2,
-     {"liver"}},
-    {"ConductivityUnknownLabel", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-label.json"}, 2,
-     {"7"}},
-    {"ConductivityNegative", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-negative.json"}, 2,
-     {"cond-negative.json", "positive"}},
-    {"ConductivityNotANumber", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-text.json"}, 2,
-     {"cond-text.json"}},
-    {"ConductivityBrokenJson", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-broken.json"}, 2,
-     {"cond-broken.json"}},
-    {"ConductivityTensorOfThree", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--conductivity", "@cond-tensor.json"}, 2,
-     {"cond-tensor.json"}},
-    {"ElectrodeOffTheScalp", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--electrode", "100,100,100,2,1e-3", "--electrode", "0,0,0,2,-1e-3"}, 2,
-     {"100"}},
-    {"ElectrodeNegativeRadius", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--electrode", "0,0,0,-2,1e-3", "--electrode", "20,0,0,2,-1e-3"}, 2,
-     {"-2"}},
-    {"DipoleNotFinite", "tm-solve", {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,nan,0,0,1e-8"}, 2, {"nan"}},
-    {"NoSource", "tm-solve", {"-i", "@ok.msh", "-o", "@out.vtu"}, 2, {"no source"}},
-    {"SensorsWrongHeader", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--sensors", "@sensors-header.csv",
-      "--sensor-potentials", "@out.csv"},
-     2, {"sensors-header.csv"}},
-    {"SensorsNotANumber", "tm-solve",
-     {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8", "--sensors", "@sensors-number.csv",
-      "--sensor-potentials", "@out.csv"},
-     2, {"sensors-number.csv"}},
+    solve_case("ConductivityUnknownName", with_dipole({"--conductivity", "@cond-unknown.json"}), {"liver"}),
+    solve_case("ConductivityUnknownLabel", with_dipole({"--conductivity", "@cond-label.json"}), {"7"}),
+    solve_case("ConductivityNegative", with_dipole({"--conductivity", "@cond-negative.json"}),
+               {"cond-negative.json", "positive"}),
+    solve_case("ConductivityNotANumber", with_dipole({"--conductivity", "@cond-text.json"}), {"cond-text.json"}),
+    solve_case("ConductivityBrokenJson", with_dipole({"--conductivity", "@cond-broken.json"}), {"cond-broken.json"}),
+    solve_case("ConductivityTensorOfThree", with_dipole({"--conductivity", "@cond-tensor.json"}), {"cond-tensor.json"}),
+    solve_case("ElectrodeOffTheScalp", {"--electrode", "100,100,100,2,1e-3", "--electrode", "0,0,0,2,-1e-3"}, {"100"}),
+    solve_case("ElectrodeNegativeRadius", {"--electrode", "0,0,0,-2,1e-3", "--electrode", "20,0,0,2,-1e-3"}, {"-2"}),
+    solve_case("DipoleNotFinite", {"--dipole", "5,5,nan,0,0,1e-8"}, {"nan"}),
+    solve_case("NoSource", {}, {"no source"}),
+    solve_case("SensorsWrongHeader", with_dipole({"--sensors", "@sensors-header.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-header.csv"}),
+    solve_case("SensorsNotANumber", with_dipole({"--sensors", "@sensors-number.csv", "--sensor-potentials", "@out.csv"}),
+               {"sensors-number.csv"}),
     {"RefineUnknownPlacement", "tm-refine", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@out.msh", "--placement", "random"},
      2, {"random"}},
     {"AssessOutputInMissingFolder", "tm-assess", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@missing/out.vtu"}, 2,
      {"missing"}},
 };
 
-/// tm-solve on ok.msh with `args` added (a dipole, or electrodes, plus the file under test).
-BadCase solve_case(std::string name, std::vector<std::string> args, std::vector<std::string> message)
-{
-    std::vector<std::string> all{"-i", "@ok.msh", "-o", "@out.vtu"};
-    all.insert(all.end(), args.begin(), args.end());
-    return {std::move(name), "tm-solve", all, 2, std::move(message)};
-}
-
-const std::vector<std::string> dipole{"--dipole", "5,5,5,0,0,1e-8"};
-
-std::vector<std::string> with_dipole(std::vector<std::string> args)
-{
-    args.insert(args.begin(), dipole.begin(), dipole.end());
-    return args;
-}
-
 // tm-solve's own files: conductivity tables, electrode montages (--electrodes) and sensors.
 const std::vector<BadCase> solver_file_cases{
-    solve_case("ConductivityEmptyFile", with_dipole({"--conductivity", "@cond-empty.json"}), {"cond-empty.json: the file is empty"}),
+    solve_case("ConductivityEmptyFile", with_dipole({"--conductivity", "@cond-empty.json"}),
+               {"cond-empty.json: the file is empty"}),
     solve_case("ConductivityTissueTwice", with_dipole({"--conductivity", "@cond-twice.json"}),
                {"cond-twice.json: \"brain\" and \"BRAIN\" name the same tissue"}),
     solve_case("ConductivityNameAndLabelOfOneTissue", with_dipole({"--conductivity", "@cond-name-and-label.json"}),
                {"cond-name-and-label.json", "'1' and 'brain' both name tissue 1 (brain)"}),
-    solve_case("ConductivityNestedTooDeep", with_dipole({"--conductivity", "@cond-deep.json"}), {"cond-deep.json line 1: nested 4 deep"}),
+    solve_case("ConductivityNestedTooDeep", with_dipole({"--conductivity", "@cond-deep.json"}),
+               {"cond-deep.json line 1: nested 4 deep"}),
     solve_case("ConductivityNumberOverflows", with_dipole({"--conductivity", "@cond-overflow.json"}),
                {"cond-overflow.json: not valid JSON", "1e999"}),
     solve_case("MontageEmptyFile", {"--electrodes", "@montage-empty.csv"}, {"montage-empty.csv: the file is empty"}),

@@ -135,11 +135,7 @@ bool run_gmsh(const std::vector<std::string>& args, const fs::path& working_dir)
     return succeeded(run_program("gmsh", args, working_dir), "gmsh");
 }
 
-const TetMesh& client_sample()
-{
-    static const TetMesh mesh = nested_cubes_mesh();
-    return mesh;
-}
+const TetMesh& client_sample() { return nested_cubes_mesh(); }
 
 std::map<Label, std::size_t> tets_per_label(const TetMesh& mesh)
 {

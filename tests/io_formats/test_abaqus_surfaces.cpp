@@ -15,11 +15,7 @@
 namespace tissuemesh::io {
 namespace {
 
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
+using testing::nested_cubes_mesh;
 
 std::string slurp(const std::filesystem::path& path)
 {
@@ -30,10 +26,10 @@ std::string slurp(const std::filesystem::path& path)
 TEST(AbaqusSurfaces, OneElementFaceSurfacePerTissuePairWithS1ToS4Sets)
 {
     testing::TempDir dir;
-    write_tet_mesh(sample(), dir / "a.inp");
+    write_tet_mesh(nested_cubes_mesh(), dir / "a.inp");
     const std::string text = slurp(dir / "a.inp");
     std::map<std::pair<Label, Label>, std::size_t> pairs;
-    for (const LabelPair& p : sample().face_sides) ++pairs[{p.from, p.to}];
+    for (const LabelPair& p : nested_cubes_mesh().face_sides) ++pairs[{p.from, p.to}];
     ASSERT_GE(pairs.size(), 2u) << "the inner cube's interface and the outer boundary";
     for (const auto& [pair, count] : pairs) {
         const std::string name = concat("IF_", pair.first, "_", pair.second);
@@ -59,10 +55,10 @@ TEST(AbaqusSurfaces, OneElementFaceSurfacePerTissuePairWithS1ToS4Sets)
 TEST(AbaqusSurfaces, FacesReadBackWithTheirPairsAndOrientationAndTheTissuesStay)
 {
     testing::TempDir dir;
-    write_tet_mesh(sample(), dir / "a.inp");
+    write_tet_mesh(nested_cubes_mesh(), dir / "a.inp");
     const TetMesh back = read_tet_mesh(dir / "a.inp");
-    EXPECT_EQ(testing::face_set(back), testing::face_set(sample())) << "same vertices in the same rotation: same orientation";
-    EXPECT_EQ(testing::tet_set(back), testing::tet_set(sample())) << "the face sets did not relabel any tet";
+    EXPECT_EQ(testing::face_set(back), testing::face_set(nested_cubes_mesh())) << "same vertices in the same rotation: same orientation";
+    EXPECT_EQ(testing::tet_set(back), testing::tet_set(nested_cubes_mesh())) << "the face sets did not relabel any tet";
 }
 
 TEST(AbaqusSurfaces, ForeignSurfacesAreFacesOutOfTheirElements)

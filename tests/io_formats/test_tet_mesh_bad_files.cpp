@@ -12,6 +12,7 @@
 namespace tissuemesh::io {
 namespace {
 
+using testing::nested_cubes_mesh;
 using testing::expect_error;
 
 std::string slurp(const std::filesystem::path& path)
@@ -25,12 +26,6 @@ void put(const std::filesystem::path& path, const std::string& bytes)
     std::ofstream(path, std::ios::binary) << bytes;
 }
 
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
-
 TEST(TetMeshBadFiles, TruncatedFilesOfEveryVariantAreRefused)
 {
     testing::TempDir dir;
@@ -38,7 +33,7 @@ TEST(TetMeshBadFiles, TruncatedFilesOfEveryVariantAreRefused)
         {"a.msh", {}}, {"b.msh", {MshVersion::v2_2, true}}, {"c.msh", {MshVersion::v4_1, false}},
         {"d.msh", {MshVersion::v4_1, true}}, {"e.mesh", {}}, {"f.node", {}}};
     for (const auto& [name, options] : variants) {
-        write_tet_mesh(sample(), dir / name, options);
+        write_tet_mesh(nested_cubes_mesh(), dir / name, options);
         const std::string bytes = slurp(dir / (name == "f.node" ? "f.ele" : name));
         for (const double fraction : {0.1, 0.5, 0.9}) {
             SCOPED_TRACE(name + " cut at " + std::to_string(fraction));
@@ -113,8 +108,8 @@ TEST(TetMeshBadFiles, UnsupportedVariantsAndUnknownFilesSayWhatToDo)
     expect_error<IoError>([&] { read_tet_mesh(dir / "d.mesh"); }, {"d.mesh", "SolAtVertices\" is not supported"});
     expect_error<IoError>([&] { read_tet_mesh(dir / "missing.msh"); }, {"missing.msh"});
     expect_error<IoError>([&] { read_tet_mesh(dir / "e.vtu"); }, {"e.vtu"});  // missing
-    expect_error<IoError>([&] { write_tet_mesh(sample(), dir / "f.xyz"); }, {"f.xyz", "unknown mesh format", ".inp"});
-    expect_error<IoError>([&] { write_tet_mesh(sample(), dir / "no" / "g.msh"); }, {"g.msh"});
+    expect_error<IoError>([&] { write_tet_mesh(nested_cubes_mesh(), dir / "f.xyz"); }, {"f.xyz", "unknown mesh format", ".inp"});
+    expect_error<IoError>([&] { write_tet_mesh(nested_cubes_mesh(), dir / "no" / "g.msh"); }, {"g.msh"});
     EXPECT_EQ(dir.files(), (std::vector<std::string>{"a.msh", "b.msh", "c.msh", "d.mesh"})) << "nothing half-written";
 }
 
@@ -133,7 +128,7 @@ TEST(TetMeshBadFiles, CorruptedBytesGiveAnErrorOrAValidMeshNeverACrash)
     std::uint32_t state = 12345;  // a fixed LCG: the same corruptions on every run
     auto next = [&] { return state = state * 1664525u + 1013904223u; };
     for (const auto& [name, options] : variants) {
-        write_tet_mesh(sample(), dir / name, options);
+        write_tet_mesh(nested_cubes_mesh(), dir / name, options);
         const std::string bytes = slurp(dir / name);
         int refused = 0;
         for (int trial = 0; trial < 100; ++trial) {

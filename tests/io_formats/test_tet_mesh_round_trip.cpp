@@ -11,14 +11,9 @@
 namespace tissuemesh::io {
 namespace {
 
+using testing::nested_cubes_mesh;
 using testing::face_set;
 using testing::tet_set;
-
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
 
 struct Variant {
     std::string file;
@@ -40,12 +35,12 @@ std::vector<Variant> variants()
 
 TEST(TetMeshRoundTrip, TheSampleHasBothTissuesAndTheirExactVolumes)
 {
-    const auto volumes = testing::tissue_volumes(sample());
+    const auto volumes = testing::tissue_volumes(nested_cubes_mesh());
     ASSERT_EQ(volumes.size(), 2u);
     EXPECT_NEAR(volumes.at(1), 56.0, 1e-9);
     EXPECT_NEAR(volumes.at(2), 8.0, 1e-9);
-    EXPECT_GT(sample().tets.size(), 100u);
-    EXPECT_EQ(sample().names.at(2), "inner");
+    EXPECT_GT(nested_cubes_mesh().tets.size(), 100u);
+    EXPECT_EQ(nested_cubes_mesh().names.at(2), "inner");
 }
 
 TEST(TetMeshRoundTrip, EveryFormatAndEncodingReadsBackTheSameMesh)
@@ -53,17 +48,17 @@ TEST(TetMeshRoundTrip, EveryFormatAndEncodingReadsBackTheSameMesh)
     testing::TempDir dir;
     for (const Variant& variant : variants()) {
         SCOPED_TRACE(variant.file + (variant.options.binary ? " binary" : ""));
-        write_tet_mesh(sample(), dir / variant.file, variant.options);
+        write_tet_mesh(nested_cubes_mesh(), dir / variant.file, variant.options);
         const TetMesh back = read_tet_mesh(dir / variant.file);
-        EXPECT_EQ(back.vertices, sample().vertices) << "17 significant digits or raw doubles: exact";
-        EXPECT_EQ(tet_set(back), tet_set(sample()));
+        EXPECT_EQ(back.vertices, nested_cubes_mesh().vertices) << "17 significant digits or raw doubles: exact";
+        EXPECT_EQ(tet_set(back), tet_set(nested_cubes_mesh()));
         if (variant.faces) {
-            EXPECT_EQ(face_set(back), face_set(sample()));
+            EXPECT_EQ(face_set(back), face_set(nested_cubes_mesh()));
         } else {
             EXPECT_TRUE(back.faces.empty());
         }
         if (variant.names) {
-            EXPECT_EQ(back.names, sample().names);
+            EXPECT_EQ(back.names, nested_cubes_mesh().names);
         }
         const auto volumes = testing::tissue_volumes(back);
         EXPECT_NEAR(volumes.at(1), 56.0, 1e-9);
@@ -74,11 +69,11 @@ TEST(TetMeshRoundTrip, EveryFormatAndEncodingReadsBackTheSameMesh)
 TEST(TetMeshRoundTrip, MshTwoTwoKeepsElementOrderAndTheDefaultIsAsciiTwoTwo)
 {
     testing::TempDir dir;
-    write_tet_mesh(sample(), dir / "a.msh");
+    write_tet_mesh(nested_cubes_mesh(), dir / "a.msh");
     const TetMesh back = read_tet_mesh(dir / "a.msh");
-    EXPECT_EQ(back.tets, sample().tets);
-    EXPECT_EQ(back.tet_labels, sample().tet_labels);
-    EXPECT_EQ(back.faces, sample().faces);
+    EXPECT_EQ(back.tets, nested_cubes_mesh().tets);
+    EXPECT_EQ(back.tet_labels, nested_cubes_mesh().tet_labels);
+    EXPECT_EQ(back.faces, nested_cubes_mesh().faces);
     const std::string head = testing::run_program("head", {"-c", "32", (dir / "a.msh").string()}).out;
     EXPECT_EQ(head.rfind("$MeshFormat\n2.2 0 8\n", 0), 0u) << head;
 }
@@ -86,19 +81,19 @@ TEST(TetMeshRoundTrip, MshTwoTwoKeepsElementOrderAndTheDefaultIsAsciiTwoTwo)
 TEST(TetMeshRoundTrip, TetgenWritesThreeFilesAndReadsFromEither)
 {
     testing::TempDir dir;
-    write_tet_mesh(sample(), dir / "m.ele");
+    write_tet_mesh(nested_cubes_mesh(), dir / "m.ele");
     EXPECT_EQ(dir.files(), (std::vector<std::string>{"m.ele", "m.face", "m.node"}));
-    EXPECT_EQ(tet_set(read_tet_mesh(dir / "m.node")), tet_set(sample()));
+    EXPECT_EQ(tet_set(read_tet_mesh(dir / "m.node")), tet_set(nested_cubes_mesh()));
     std::filesystem::remove(dir / "m.face");
     const TetMesh no_faces = read_tet_mesh(dir / "m.ele");
-    EXPECT_EQ(tet_set(no_faces), tet_set(sample()));
+    EXPECT_EQ(tet_set(no_faces), tet_set(nested_cubes_mesh()));
     EXPECT_TRUE(no_faces.faces.empty());
 }
 
 TEST(TetMeshRoundTrip, ReadersOrientTetsPositively)
 {
     testing::TempDir dir;
-    TetMesh flipped = sample();
+    TetMesh flipped = nested_cubes_mesh();
     for (Tet& tet : flipped.tets) std::swap(tet[0], tet[1]);
     for (const char* name : {"a.msh", "b.mesh", "c.node", "d.inp"}) {
         write_tet_mesh(flipped, dir / name, {MshVersion::v4_1, true});

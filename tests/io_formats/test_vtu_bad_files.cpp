@@ -14,13 +14,8 @@
 namespace tissuemesh::io {
 namespace {
 
+using testing::nested_cubes_mesh;
 using testing::expect_error;
-
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
 
 void put(const std::filesystem::path& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
@@ -46,13 +41,13 @@ TEST(VtuBadFiles, TruncatedFilesOfEveryEncodingAreRefused)
 {
     testing::TempDir dir;
     std::vector<std::pair<std::string, std::string>> files;
-    write_vtu(sample(), dir / "ours.vtu", {}, {}, VtuEncoding::compressed);
+    write_vtu(nested_cubes_mesh(), dir / "ours.vtu", {}, {}, VtuEncoding::compressed);
     for (const char* format : {"binary", "appended"})
         for (const bool compressed : {false, true})
             files.push_back({concat(format, compressed ? "-zlib" : "", ".vtu"),
-                             testing::VtuVariantWriter({format, false, compressed, true, true}).file(sample())});
-    files.push_back({"base64.vtu", testing::VtuVariantWriter({"appended", true, true, false, false}).file(sample())});
-    files.push_back({"ascii.vtu", testing::VtuVariantWriter({"ascii", false, false, false, true}).file(sample())});
+                             testing::VtuVariantWriter({format, false, compressed, true, true}).file(nested_cubes_mesh())});
+    files.push_back({"base64.vtu", testing::VtuVariantWriter({"appended", true, true, false, false}).file(nested_cubes_mesh())});
+    files.push_back({"ascii.vtu", testing::VtuVariantWriter({"ascii", false, false, false, true}).file(nested_cubes_mesh())});
     std::ifstream ours(dir / "ours.vtu", std::ios::binary);
     files.push_back({"ours.vtu", std::string(std::istreambuf_iterator<char>(ours), {})});
     for (const auto& [name, bytes] : files)
@@ -75,7 +70,7 @@ TEST(VtuBadFiles, SizesBeyondTheDataAreRefusedBeforeAllocating)
     put(dir / "a.vtu", tiny("10", "0 1 2 3", "400000000000"));
     expect_error<IoError>([&] { read_vtu(dir / "a.vtu"); }, {"a.vtu", "holds 12 values where 1200000000000 are needed"});
     // A zlib header claiming 2^40 bytes in one block made of 16 compressed bytes.
-    std::string claim = testing::VtuVariantWriter({"appended", false, true, true, true, 1 << 20}).file(sample());
+    std::string claim = testing::VtuVariantWriter({"appended", false, true, true, true, 1 << 20}).file(nested_cubes_mesh());
     const std::size_t mark = claim.find('_', claim.find("<AppendedData")) + 1;
     const std::uint64_t huge = std::uint64_t{1} << 40;
     claim.replace(mark + 8, 8, reinterpret_cast<const char*>(&huge), 8);

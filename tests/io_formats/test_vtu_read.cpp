@@ -13,13 +13,8 @@
 namespace tissuemesh::io {
 namespace {
 
+using testing::nested_cubes_mesh;
 using testing::tet_set;
-
-const TetMesh& sample()
-{
-    static const TetMesh mesh = testing::nested_cubes_mesh();
-    return mesh;
-}
 
 std::vector<double> node_values(const TetMesh& mesh)
 {
@@ -33,20 +28,20 @@ TEST(VtuRead, OurFilesReadBackWithEveryArrayInBothEncodings)
     testing::TempDir dir;
     std::vector<Vec3> field;
     std::vector<double> index;
-    for (std::size_t t = 0; t < sample().tets.size(); ++t) field.push_back({1.0 * static_cast<double>(t), -0.5, 1e-7}), index.push_back(static_cast<double>(t));
+    for (std::size_t t = 0; t < nested_cubes_mesh().tets.size(); ++t) field.push_back({1.0 * static_cast<double>(t), -0.5, 1e-7}), index.push_back(static_cast<double>(t));
     for (const VtuEncoding encoding : {VtuEncoding::compressed, VtuEncoding::ascii}) {
         SCOPED_TRACE(encoding == VtuEncoding::ascii ? "ascii" : "compressed");
-        write_vtu(sample(), dir / "a.vtu", {make_vtu_array("potential_V", node_values(sample()))},
+        write_vtu(nested_cubes_mesh(), dir / "a.vtu", {make_vtu_array("potential_V", node_values(nested_cubes_mesh()))},
                   {make_vtu_vectors("E_V_per_m", field), make_vtu_array("index", index, true)}, encoding);
         const VtuContent back = read_vtu(dir / "a.vtu");
-        EXPECT_EQ(back.mesh.vertices, sample().vertices) << "raw doubles or 17 significant digits: exact";
-        EXPECT_EQ(tet_set(back.mesh), tet_set(sample()));
-        EXPECT_EQ(back.mesh.tets, sample().tets) << "positively oriented tets keep their vertex order";
+        EXPECT_EQ(back.mesh.vertices, nested_cubes_mesh().vertices) << "raw doubles or 17 significant digits: exact";
+        EXPECT_EQ(tet_set(back.mesh), tet_set(nested_cubes_mesh()));
+        EXPECT_EQ(back.mesh.tets, nested_cubes_mesh().tets) << "positively oriented tets keep their vertex order";
         EXPECT_EQ(back.label_array, "tissue");
         ASSERT_EQ(back.point_arrays.size(), 1u);
         ASSERT_EQ(back.cell_arrays.size(), 2u) << "the label array is the mesh's labels, not an extra array";
         ASSERT_NE(back.point_array("potential_V"), nullptr);
-        EXPECT_EQ(back.point_array("potential_V")->values, node_values(sample()));
+        EXPECT_EQ(back.point_array("potential_V")->values, node_values(nested_cubes_mesh()));
         const VtuArray* e = back.cell_array("E_V_per_m");
         ASSERT_NE(e, nullptr);
         EXPECT_EQ(e->components, 3);
@@ -76,18 +71,18 @@ TEST(VtuRead, EveryEncodingHeaderAndNumberTypeReads)
                         SCOPED_TRACE(concat(format, base64 ? " base64" : "", compressed ? " zlib" : "", header64 ? " UInt64" : " UInt32",
                                             wide ? " 64-bit" : " 32-bit"));
                         const auto file = dir / concat("v", n++, ".vtu");
-                        std::ofstream(file, std::ios::binary) << testing::VtuVariantWriter(variant).file(sample());
+                        std::ofstream(file, std::ios::binary) << testing::VtuVariantWriter(variant).file(nested_cubes_mesh());
                         const VtuContent back = read_vtu(file);
-                        EXPECT_EQ(tet_set(back.mesh), tet_set(sample()));
-                        ASSERT_EQ(back.mesh.vertices.size(), sample().vertices.size());
+                        EXPECT_EQ(tet_set(back.mesh), tet_set(nested_cubes_mesh()));
+                        ASSERT_EQ(back.mesh.vertices.size(), nested_cubes_mesh().vertices.size());
                         // Float64 binary is exact; Float32 keeps 7 digits, the ASCII of this writer 10 (coordinates within 0..4 mm).
                         const double tolerance = wide && format != "ascii" ? 0.0 : 1e-6;
-                        for (std::size_t p = 0; p < sample().vertices.size(); ++p)
-                            for (int c = 0; c < 3; ++c) ASSERT_NEAR(back.mesh.vertices[p][c], sample().vertices[p][c], tolerance);
+                        for (std::size_t p = 0; p < nested_cubes_mesh().vertices.size(); ++p)
+                            for (int c = 0; c < 3; ++c) ASSERT_NEAR(back.mesh.vertices[p][c], nested_cubes_mesh().vertices[p][c], tolerance);
                         const VtuArray* phi = back.point_array("phi");
                         ASSERT_NE(phi, nullptr);
-                        for (std::size_t p = 0; p < sample().vertices.size(); ++p)
-                            ASSERT_NEAR(phi->values[p], sample().vertices[p][0] + 2 * sample().vertices[p][1], 3 * tolerance);
+                        for (std::size_t p = 0; p < nested_cubes_mesh().vertices.size(); ++p)
+                            ASSERT_NEAR(phi->values[p], nested_cubes_mesh().vertices[p][0] + 2 * nested_cubes_mesh().vertices[p][1], 3 * tolerance);
                     }
     EXPECT_EQ(n, 26);
 }

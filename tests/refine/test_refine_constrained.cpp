@@ -3,10 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "image/phantom.h"
 #include "surface/detail/triangle_distance.h"
 #include "tests/support/programs.h"
-#include "surface/extract_interfaces.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
 #include "volume/refine.h"
@@ -15,22 +13,10 @@
 namespace tissuemesh::volume {
 namespace {
 
-struct Meshed {
-    LabelImage image;
-    TetMesh mesh;
-};
+using Meshed = testing::MeshedPhantom;
 
 /// The junction phantom (three tissues meeting along a circle) at 4 mm through tm-extract's and tm-tetra's steps.
-const Meshed& junction()
-{
-    static const Meshed meshed = [] {
-        Meshed m;
-        m.image = image::make_phantom("junction", {.voxel_mm = 4}).image;
-        m.mesh = tetrahedralize(surface::extract_interfaces(m.image));
-        return m;
-    }();
-    return meshed;
-}
+const Meshed& junction() { return testing::meshed_phantom("junction", 4); }
 
 using testing::tissue_volumes;
 

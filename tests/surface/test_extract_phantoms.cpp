@@ -86,21 +86,35 @@ TEST_P(ExtractPhantom, FitUnderRankedPrioritiesAt2mm)
     expect_fit_under_priority(phantom.image, priority, concat(GetParam(), " ranked"));
 }
 
+/// The thin phantom's one-voxel shell (tissue 1) with a priority for it, at 1 and 2 mm: valid, the shell one
+/// piece between two closed surfaces, the ball inside one piece. Surface nets also give the shell a positive
+/// thickness everywhere: its two surfaces share no vertex (its cubes never merge the inside and outside
+/// sheets) and enclose a positive volume.
+void expect_thin_shell_in_one_piece(Method method)
+{
+    const std::map<Label, int> priority{{1, 1}};
+    for (const double voxel_mm : {1.0, 2.0}) {
+        const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
+        const InterfaceComplex complex = extract(phantom.image, {.priority = priority}, method);
+        const surface::CheckReport report = surface::check_complex(complex);
+        ASSERT_TRUE(report.ok()) << voxel_mm << " mm";
+        if (method == Method::marching_cubes) {
+            EXPECT_EQ(testing::priority_components(phantom.image, 1, 0, false, priority), 1u) << voxel_mm << " mm";
+        }
+        EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
+        EXPECT_EQ(report.tissues.at(2).components, 1u) << voxel_mm << " mm";
+        if (method == Method::surface_nets) {
+            EXPECT_GT(report.tissues.at(1).volume_mm3, 0) << voxel_mm << " mm";
+        }
+    }
+}
+
 // Under the plain 14-neighbourhood a one-voxel shell breaks into pieces where it touches itself only
 // diagonally (7 pieces at 1 mm) and the ball inside leaks through the gaps at 2 mm; a priority for the
 // shell keeps it one piece between two closed surfaces.
 TEST(ExtractPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
 {
-    const std::map<Label, int> priority{{1, 1}};
-    for (const double voxel_mm : {1.0, 2.0}) {
-        const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
-        const InterfaceComplex complex = surface::extract_interfaces(phantom.image, {.priority = priority});
-        const surface::CheckReport report = surface::check_complex(complex);
-        ASSERT_TRUE(report.ok()) << voxel_mm << " mm";
-        EXPECT_EQ(testing::priority_components(phantom.image, 1, 0, false, priority), 1u) << voxel_mm << " mm";
-        EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
-        EXPECT_EQ(report.tissues.at(2).components, 1u) << voxel_mm << " mm";
-    }
+    expect_thin_shell_in_one_piece(Method::marching_cubes);
 }
 
 TEST(ExtractSample, LongLiverIsFitForTetrahedralization)
@@ -129,18 +143,7 @@ INSTANTIATE_TEST_SUITE_P(AllPhantoms, NetsPhantom, ::testing::Values("spheres4",
 
 TEST(NetsPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
 {
-    const std::map<Label, int> priority{{1, 1}};
-    for (const double voxel_mm : {1.0, 2.0}) {
-        const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = voxel_mm});
-        const InterfaceComplex complex = surface::extract_surface_nets(phantom.image, {.priority = priority});
-        const surface::CheckReport report = surface::check_complex(complex);
-        ASSERT_TRUE(report.ok()) << voxel_mm << " mm";
-        EXPECT_EQ(report.tissues.at(1).components, 2u) << voxel_mm << " mm";
-        EXPECT_EQ(report.tissues.at(2).components, 1u) << voxel_mm << " mm";
-        // Positive thickness everywhere: the shell's two surfaces share no vertex (its cubes never merge
-        // the inside and outside sheets) and encloses a positive volume.
-        EXPECT_GT(report.tissues.at(1).volume_mm3, 0) << voxel_mm << " mm";
-    }
+    expect_thin_shell_in_one_piece(Method::surface_nets);
 }
 
 TEST(NetsSample, LongLiverTorsoAndHeadAreFitForTetrahedralization)

@@ -17,16 +17,28 @@ using testing::TempDir;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+/// A box of tissue `inside` against `outside` (testing::add_box).
+struct Box {
+    Vec3 low, high;
+    Label inside, outside;
+};
+
+/// Writes the boxes, tissues named `names`, to `path` (a .ply) and returns the path as a program argument.
+std::string write_boxes(const std::filesystem::path& path, const std::vector<Box>& boxes, const TissueNames& names)
+{
+    InterfaceComplex complex;
+    for (const Box& box : boxes) add_box(complex, box.low, box.high, box.inside, box.outside);
+    complex.names = names;
+    io::write_surface(complex, path);
+    return path.string();
+}
+
 TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
 {
     TempDir dir;
-    InterfaceComplex complex;
-    add_box(complex, {0, 0, 0}, {3, 3, 3}, 1, 0);
-    add_box(complex, {1, 1, 1}, {2, 2, 2}, 2, 1);
-    complex.names = {{0, "air"}, {1, "skull"}, {2, "brain"}};
-    io::write_surface(complex, dir / "head.ply");
-
-    const auto result = run_cli("tm-check-surface", {(dir / "head.ply").string(), "--json", (dir / "c.json").string()});
+    const std::string head = write_boxes(dir / "head.ply", {{{0, 0, 0}, {3, 3, 3}, 1, 0}, {{1, 1, 1}, {2, 2, 2}, 2, 1}},
+                                         {{0, "air"}, {1, "skull"}, {2, "brain"}});
+    const auto result = run_cli("tm-check-surface", {head, "--json", (dir / "c.json").string()});
     EXPECT_EQ(result.exit_code, 0) << result.out << result.err;
     EXPECT_TRUE(contains(result.out, "fit for tetrahedralization")) << result.out;
     EXPECT_FALSE(contains(result.out, "NOT fit")) << result.out;
@@ -48,14 +60,11 @@ TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
 TEST(CheckSurfaceCli, IntersectingBoxesExitOneNamingTissuesAndPlace)
 {
     TempDir dir;
-    InterfaceComplex complex;
-    add_box(complex, {0, 0, 0}, {2, 2, 2}, 1, 0);
-    add_box(complex, {1, 1, 1}, {3, 3, 3}, 2, 0);
-    complex.names = {{0, "air"}, {1, "scalp"}, {2, "skull"}};
-    io::write_surface(complex, dir / "crossing.ply");
-
-    const auto result = run_cli("tm-check-surface", {"-i", (dir / "crossing.ply").string(), "--max-report", "3",
-                                                     "--json", (dir / "c.json").string()});
+    const std::string crossing =
+        write_boxes(dir / "crossing.ply", {{{0, 0, 0}, {2, 2, 2}, 1, 0}, {{1, 1, 1}, {3, 3, 3}, 2, 0}},
+                    {{0, "air"}, {1, "scalp"}, {2, "skull"}});
+    const auto result =
+        run_cli("tm-check-surface", {"-i", crossing, "--max-report", "3", "--json", (dir / "c.json").string()});
     EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
     EXPECT_TRUE(contains(result.out, "NOT fit for tetrahedralization")) << result.out;
     // The one-line error names the kind, the tissues, a location, and what to do next.

@@ -44,6 +44,31 @@ double report_stage(const std::string& stage, const image::Phantom& phantom, con
     return worst;
 }
 
+/// The chain's last two steps on `complex` (checked as `before`): decimation with `options`, remeshing to
+/// 3 mm; then the issue's figures: valid, every tissue in as many pieces, at least ten times fewer triangles
+/// than `cubes` (marching cubes' count), every vertex within half a voxel of the exact spheres and on average
+/// within `mean_voxels`, every enclosed volume within 0.5%.
+void decimate_remesh_and_check(const image::Phantom& phantom, InterfaceComplex& complex,
+                               const surface::CheckReport& before, const surface::DecimateOptions& options,
+                               std::size_t cubes, double mean_voxels)
+{
+    auto start = std::chrono::steady_clock::now();
+    surface::decimate(complex, options);
+    report_stage("decimated", phantom, complex, seconds_since(start));
+    start = std::chrono::steady_clock::now();
+    surface::remesh(complex, {.target_edge_mm = 3.0});
+    const double volume_error = report_stage("remeshed", phantom, complex, seconds_since(start));
+    const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
+    const surface::CheckReport after = surface::check_complex(complex);
+    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
+    for (const auto& [tissue, facts] : before.tissues)
+        EXPECT_EQ(after.tissues.at(tissue).components, facts.components) << "tissue " << tissue;
+    EXPECT_GE(cubes, 10 * complex.triangle_count());
+    EXPECT_LE(figures.max_voxels, 0.5);
+    EXPECT_LT(figures.mean_voxels, mean_voxels);
+    EXPECT_LT(volume_error, 0.005);
+}
+
 /// The chain; `max_edge_mm`: the decimation's edge bound (0: none).
 void run_chain(double max_edge_mm)
 {
@@ -58,24 +83,10 @@ void run_chain(double max_edge_mm)
     start = std::chrono::steady_clock::now();
     surface::smooth(complex, phantom.image, {.fit_passes = 3});  // Taubin alone ends 0.54 voxel off
     report_stage("smoothed", phantom, complex, seconds_since(start));
-    start = std::chrono::steady_clock::now();
     // A quarter voxel from the smoothed surface: that surface is within 0.34 voxel of the exact spheres, and
     // the remeshed vertices land on the decimated one (with 0.5 mm the chain ended 0.54 voxel off).
-    surface::decimate(complex, {.max_distance_mm = 0.1, .max_edge_mm = max_edge_mm});
-    report_stage("decimated", phantom, complex, seconds_since(start));
-    start = std::chrono::steady_clock::now();
-    surface::remesh(complex, {.target_edge_mm = 3.0});
-    const double volume_error = report_stage("remeshed", phantom, complex, seconds_since(start));
-
-    const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
-    const surface::CheckReport after = surface::check_complex(complex);
-    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
-    for (const auto& [tissue, facts] : before.tissues)
-        EXPECT_EQ(after.tissues.at(tissue).components, facts.components) << "tissue " << tissue;
-    EXPECT_GE(extracted, 10 * complex.triangle_count());
-    EXPECT_LE(figures.max_voxels, 0.5);
-    EXPECT_LT(figures.mean_voxels, 0.2);
-    EXPECT_LT(volume_error, 0.005);
+    decimate_remesh_and_check(phantom, complex, before, {.max_distance_mm = 0.1, .max_edge_mm = max_edge_mm},
+                              extracted, 0.2);
 }
 
 TEST(SurfaceChain, LongSpheres4At1mmMeetsTheIssueFigures) { run_chain(0); }
@@ -94,21 +105,7 @@ TEST(SurfaceChain, LongSpheres4At1mmBySurfaceNetsMeetsTheIssueFigures)
     report_stage("surface nets", phantom, complex, seconds_since(start));
     const surface::CheckReport before = surface::check_complex(complex);
     ASSERT_TRUE(before.ok()) << (before.first_error() ? before.first_error()->description : "");
-    start = std::chrono::steady_clock::now();
-    surface::decimate(complex, {.max_distance_mm = 0.5, .max_edge_mm = 4.0});
-    report_stage("decimated", phantom, complex, seconds_since(start));
-    start = std::chrono::steady_clock::now();
-    surface::remesh(complex, {.target_edge_mm = 3.0});
-    const double volume_error = report_stage("remeshed", phantom, complex, seconds_since(start));
-    const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
-    const surface::CheckReport after = surface::check_complex(complex);
-    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
-    for (const auto& [tissue, facts] : before.tissues)
-        EXPECT_EQ(after.tissues.at(tissue).components, facts.components) << "tissue " << tissue;
-    EXPECT_GE(cubes, 10 * complex.triangle_count());
-    EXPECT_LE(figures.max_voxels, 0.5);
-    EXPECT_LE(figures.mean_voxels, 0.1);
-    EXPECT_LT(volume_error, 0.005);
+    decimate_remesh_and_check(phantom, complex, before, {.max_distance_mm = 0.5, .max_edge_mm = 4.0}, cubes, 0.1);
 }
 
 } // namespace

@@ -2,32 +2,12 @@
 #include <array>
 #include <gtest/gtest.h>
 
+#include "tests/support/programs.h"
 #include "volume/check_mesh.h"
 #include "volume/rasterize.h"
 
 namespace tissuemesh::volume {
 namespace {
-
-void orient_positively(TetMesh& mesh)
-{
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (signed_volume(mesh, t) < 0) std::swap(mesh.tets[t][2], mesh.tets[t][3]);
-}
-
-/// The cube [0, s]^3 split into the 6 tets around its main diagonal, all of tissue 1.
-TetMesh kuhn_cube(double s)
-{
-    TetMesh mesh;
-    for (int c = 0; c < 8; ++c) mesh.vertices.push_back({s * (c & 1), s * (c >> 1 & 1), s * (c >> 2 & 1)});
-    const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (const auto& order : axes) {
-        const std::uint32_t a = 1u << order[0], b = a | 1u << order[1];
-        mesh.tets.push_back({0, a, b, 7});
-        mesh.tet_labels.push_back(1);
-    }
-    orient_positively(mesh);
-    return mesh;
-}
 
 std::size_t claimed(const std::vector<std::int32_t>& owner)
 {
@@ -39,11 +19,7 @@ TEST(Rasterize, SingleTetHoldsHandCountedCentres)
     // Tet (0,0,0) (4,0,0) (0,4,0) (0,0,4) on a unit grid: the tie rule moves a centre by +(1, e, e^2), so
     // centres on the three axis planes count and those on the slanted face x + y + z = 4 do not: the
     // non-negative integer points with x + y + z <= 3, C(6, 3) = 20 of them.
-    TetMesh mesh;
-    mesh.vertices = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}};
-    mesh.tets = {{0, 1, 2, 3}};
-    mesh.tet_labels = {1};
-    orient_positively(mesh);
+    const TetMesh mesh = testing::single_tet({{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}}});
     const LabelImage image({6, 6, 6}, {1, 1, 1});
     EXPECT_EQ(claimed(rasterize_tets(mesh, image)), 20u);
 }
@@ -53,7 +29,7 @@ TEST(Rasterize, CubeOfSixTetsClaimsEveryCentreExactlyOnce)
     // 5^3 centres lie in the closed cube [0,4]^3; the rule keeps the faces x, y, z = 0 and drops x, y, z = 4,
     // so 4^3 = 64 are inside, each claimed by exactly one of the six tets although most lie on shared
     // faces, edges or the diagonal.
-    const TetMesh cube = kuhn_cube(4);
+    const TetMesh cube = testing::kuhn_cube(4);
     const LabelImage image({7, 7, 7}, {1, 1, 1});
     std::size_t total = 0;
     for (std::size_t t = 0; t < cube.tets.size(); ++t) {
@@ -70,7 +46,7 @@ TEST(Rasterize, HonoursSpacingOriginAndDirection)
 {
     // The same cube seen through an image with 2 mm voxels, shifted origin and permuted axes: still the
     // same number of centres (the cube is 8 mm, grid 2 mm: 4^3 = 64 half-open cells).
-    const TetMesh cube = kuhn_cube(8);
+    const TetMesh cube = testing::kuhn_cube(8);
     const Mat3 direction{0, 1, 0, 0, 0, 1, 1, 0, 0};
     const LabelImage image({7, 7, 7}, {2, 2, 2}, {-2, -2, -2}, direction);
     const std::size_t count = claimed(rasterize_tets(cube, image));
@@ -79,7 +55,7 @@ TEST(Rasterize, HonoursSpacingOriginAndDirection)
 
 TEST(CheckMesh, CubeIsConformingWithExactVolumeAndDice)
 {
-    const TetMesh cube = kuhn_cube(4);
+    const TetMesh cube = testing::kuhn_cube(4);
     LabelImage image({6, 6, 6}, {1, 1, 1});
     for (std::size_t k = 0; k < 4; ++k)
         for (std::size_t j = 0; j < 4; ++j)
@@ -96,7 +72,7 @@ TEST(CheckMesh, CubeIsConformingWithExactVolumeAndDice)
 
 TEST(CheckMesh, FindsInvertedMissingAndUnmarkedFaces)
 {
-    TetMesh cube = kuhn_cube(4);
+    TetMesh cube = testing::kuhn_cube(4);
     std::swap(cube.tets[0][0], cube.tets[0][1]);
     EXPECT_EQ(check_mesh(cube).inverted_tets, 1u);
 
@@ -109,18 +85,18 @@ TEST(CheckMesh, FindsInvertedMissingAndUnmarkedFaces)
     EXPECT_EQ(flat_report.flat_tets, 1u);
     EXPECT_EQ(flat_report.inverted_tets, 0u);
     EXPECT_FALSE(flat_report.ok());
-    EXPECT_EQ(check_mesh(kuhn_cube(4)).flat_tets, 0u);
+    EXPECT_EQ(check_mesh(testing::kuhn_cube(4)).flat_tets, 0u);
 
-    TetMesh doubled = kuhn_cube(4);
+    TetMesh doubled = testing::kuhn_cube(4);
     doubled.tets.push_back(doubled.tets[0]);
     doubled.tet_labels.push_back(1);
     EXPECT_EQ(check_mesh(doubled).nonconforming_faces, 4u) << "each face of the repeated tet has 3 users";
 
-    TetMesh loose = kuhn_cube(4);
+    TetMesh loose = testing::kuhn_cube(4);
     loose.vertices.push_back({9, 9, 9});
     EXPECT_EQ(check_mesh(loose).unused_nodes, 1u);
 
-    TetMesh two_tissues = kuhn_cube(4);
+    TetMesh two_tissues = testing::kuhn_cube(4);
     two_tissues.tet_labels[0] = 2;
     const MeshCheckReport report = check_mesh(two_tissues);
     EXPECT_GT(report.unmarked_interfaces, 0u);
