@@ -76,8 +76,7 @@ std::string read_file_bytes(const fs::path& path)
 void require_readable_file(const fs::path& path)
 {
     std::error_code ec;
-    if (!fs::exists(path, ec))
-        throw IoError(concat(path.string(), ": no such file; check the path"));
+    if (!fs::exists(path, ec)) throw IoError(concat(path.string(), ": no such file; check the path"));
     if (fs::is_directory(path, ec))
         throw IoError(concat(path.string(), ": is a directory, not a file; give the file inside it"));
     std::ifstream in(path, std::ios::binary);

@@ -14,7 +14,8 @@ void validate_indices(const InterfaceComplex& complex, const std::string& what)
     for (std::size_t v = 0; v < complex.vertices.size(); ++v)
         for (const double c : complex.vertices[v])
             if (!std::isfinite(c))
-                throw InputError(concat(what, ": vertex ", v, " has a non-finite coordinate; the surface "
+                throw InputError(concat(what, ": vertex ", v,
+                                        " has a non-finite coordinate; the surface "
                                         "file is corrupt"));
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
         const Triangle& tri = complex.triangles[t];

@@ -29,11 +29,11 @@ struct LabelPair {
 ///    three or more tissues meet, and share those curves' vertices exactly;
 ///  - no two triangles intersect except at shared vertices and edges.
 struct InterfaceComplex {
-    std::vector<Vec3> vertices;         ///< #V positions, mm
-    std::vector<Triangle> triangles;    ///< #T vertex indices
-    std::vector<LabelPair> sides;       ///< #T tissue pairs, one per triangle
-    TissueNames names;                  ///< tissue names by label, carried from the image
-    Label background = 0;               ///< the label standing for everything outside the image
+    std::vector<Vec3> vertices;      ///< #V positions, mm
+    std::vector<Triangle> triangles; ///< #T vertex indices
+    std::vector<LabelPair> sides;    ///< #T tissue pairs, one per triangle
+    TissueNames names;               ///< tissue names by label, carried from the image
+    Label background = 0;            ///< the label standing for everything outside the image
 
     std::size_t vertex_count() const { return vertices.size(); }
     std::size_t triangle_count() const { return triangles.size(); }

@@ -12,10 +12,10 @@ namespace tissuemesh {
 /// The next part of a complex: vertices numbered on from those of earlier pieces, and triangles whose
 /// indices refer to vertices of this piece or of earlier ones.
 struct InterfacePiece {
-    std::size_t first_vertex = 0;          ///< global index of vertices[0] (the count of earlier vertices)
-    std::span<const Vec3> vertices;        ///< new vertices, mm
-    std::span<const Triangle> triangles;   ///< new triangles (global vertex indices)
-    std::span<const LabelPair> sides;      ///< one pair per triangle
+    std::size_t first_vertex = 0;        ///< global index of vertices[0] (the count of earlier vertices)
+    std::span<const Vec3> vertices;      ///< new vertices, mm
+    std::span<const Triangle> triangles; ///< new triangles (global vertex indices)
+    std::span<const LabelPair> sides;    ///< one pair per triangle
 };
 
 /// Receives a complex in order: start() once, then add() for each piece. The concatenation of the pieces

@@ -8,16 +8,15 @@
 
 namespace tissuemesh {
 
-void validate_geometry(const std::string& what, const Dims& dims, const Vec3& spacing_mm,
-                       const Mat3& direction)
+void validate_geometry(const std::string& what, const Dims& dims, const Vec3& spacing_mm, const Mat3& direction)
 {
     std::size_t count = 1;
     for (int axis = 0; axis < 3; ++axis) {
         if (dims[axis] == 0)
-            throw InputError(concat(what, ": dimension ", axis, " is 0; an image needs at least one voxel "
+            throw InputError(concat(what, ": dimension ", axis,
+                                    " is 0; an image needs at least one voxel "
                                     "along every axis"));
-        if (count > std::numeric_limits<std::size_t>::max() / dims[axis] ||
-            dims[axis] > (std::size_t{1} << 31))
+        if (count > std::numeric_limits<std::size_t>::max() / dims[axis] || dims[axis] > (std::size_t{1} << 31))
             throw InputError(concat(what, ": dimensions ", dims[0], " x ", dims[1], " x ", dims[2],
                                     " overflow the voxel count; the header is corrupt"));
         count *= dims[axis];
@@ -34,14 +33,14 @@ void validate_geometry(const std::string& what, const Dims& dims, const Vec3& sp
             for (int r = 0; r < 3; ++r) d += direction[3 * r + a] * direction[3 * r + b];
             const double expected = a == b ? 1.0 : 0.0;
             if (!std::isfinite(d) || std::abs(d - expected) > 1e-4)
-                throw InputError(concat(what, ": the direction matrix is not orthonormal (columns ", a,
-                                        " and ", b, "); the orientation in the header is corrupt"));
+                throw InputError(concat(what, ": the direction matrix is not orthonormal (columns ", a, " and ", b,
+                                        "); the orientation in the header is corrupt"));
         }
     }
 }
 
-LabelImage::LabelImage(const Dims& dims, const Vec3& spacing_mm, const Vec3& origin_mm,
-                       const Mat3& direction, Label fill)
+LabelImage::LabelImage(const Dims& dims, const Vec3& spacing_mm, const Vec3& origin_mm, const Mat3& direction,
+                       Label fill)
     : dims_(dims), spacing_mm_(spacing_mm), origin_mm_(origin_mm), direction_(direction)
 {
     validate_geometry("label image", dims, spacing_mm, direction);
@@ -63,8 +62,7 @@ Vec3 LabelImage::world_to_index(const Vec3& world_mm) const
 
 std::array<Vec3, 2> LabelImage::world_bounds_mm() const
 {
-    Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
-            std::numeric_limits<double>::max()};
+    Vec3 lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
     Vec3 hi{-lo[0], -lo[1], -lo[2]};
     for (int corner = 0; corner < 8; ++corner) {
         Vec3 index;

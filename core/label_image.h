@@ -13,7 +13,7 @@
 namespace tissuemesh {
 
 using Label = std::uint16_t;
-using Dims = std::array<std::size_t, 3>;  ///< voxels along i, j, k (i varies fastest in memory)
+using Dims = std::array<std::size_t, 3>; ///< voxels along i, j, k (i varies fastest in memory)
 using Index3 = std::array<std::int64_t, 3>;
 
 /// Tissue names by label ("scalp", "skull", ...). Labels without a name print as their number.
@@ -48,10 +48,8 @@ public:
     }
     bool contains(const Index3& index) const
     {
-        return index[0] >= 0 && index[1] >= 0 && index[2] >= 0 &&
-               static_cast<std::size_t>(index[0]) < dims_[0] &&
-               static_cast<std::size_t>(index[1]) < dims_[1] &&
-               static_cast<std::size_t>(index[2]) < dims_[2];
+        return index[0] >= 0 && index[1] >= 0 && index[2] >= 0 && static_cast<std::size_t>(index[0]) < dims_[0] &&
+               static_cast<std::size_t>(index[1]) < dims_[1] && static_cast<std::size_t>(index[2]) < dims_[2];
     }
     Label at(std::size_t i, std::size_t j, std::size_t k) const { return labels_[linear_index(i, j, k)]; }
     Label& at(std::size_t i, std::size_t j, std::size_t k) { return labels_[linear_index(i, j, k)]; }
@@ -59,7 +57,8 @@ public:
     Label at_or(const Index3& index, Label outside) const
     {
         if (!contains(index)) return outside;
-        return at(static_cast<std::size_t>(index[0]), static_cast<std::size_t>(index[1]), static_cast<std::size_t>(index[2]));
+        return at(static_cast<std::size_t>(index[0]), static_cast<std::size_t>(index[1]),
+                  static_cast<std::size_t>(index[2]));
     }
 
     const std::vector<Label>& labels() const { return labels_; }
@@ -89,8 +88,7 @@ private:
 /// Checks spacing, dims and direction as the LabelImage constructor does; `what` names the source
 /// (a file name) in the message.
 /// @throws InputError naming `what`, the faulty value and the fix.
-void validate_geometry(const std::string& what, const Dims& dims, const Vec3& spacing_mm,
-                       const Mat3& direction);
+void validate_geometry(const std::string& what, const Dims& dims, const Vec3& spacing_mm, const Mat3& direction);
 
 /// Labels present in the image, ascending, with their voxel counts.
 std::map<Label, std::size_t> count_labels(const LabelImage& image);

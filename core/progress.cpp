@@ -4,8 +4,7 @@
 
 namespace tissuemesh {
 
-ProgressTicker::ProgressTicker(const Progress& progress, std::string stage, std::size_t total,
-                               std::size_t updates)
+ProgressTicker::ProgressTicker(const Progress& progress, std::string stage, std::size_t total, std::size_t updates)
     : progress_(progress), stage_(std::move(stage)), total_(total),
       interval_(std::max<std::size_t>(1, total / std::max<std::size_t>(1, updates)))
 {

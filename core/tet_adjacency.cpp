@@ -57,7 +57,9 @@ void TetAdjacency::build(const TetList& tets, std::size_t vertex_count)
         const auto begin = entries_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<std::size_t>(v)]);
         const auto end = entries_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<std::size_t>(v) + 1]);
         std::sort(begin, end, [](const Entry& a, const Entry& b) {
-            return a.middle != b.middle ? a.middle < b.middle : a.largest != b.largest ? a.largest < b.largest : a.slot < b.slot;
+            return a.middle != b.middle     ? a.middle < b.middle
+                   : a.largest != b.largest ? a.largest < b.largest
+                                            : a.slot < b.slot;
         });
         for (auto run = begin; run != end;) {
             auto run_end = run + 1;
@@ -77,7 +79,8 @@ TetAdjacency::Face TetAdjacency::face_at(std::uint32_t v, std::size_t first) con
 {
     const Entry& head = entries_[first];
     Face face{{v, head.middle, head.largest}, 0, {no_tet, no_tet}};
-    for (std::size_t e = first; e < start_[v + 1] && entries_[e].middle == head.middle && entries_[e].largest == head.largest; ++e) {
+    for (std::size_t e = first;
+         e < start_[v + 1] && entries_[e].middle == head.middle && entries_[e].largest == head.largest; ++e) {
         if (face.holders < 2) face.tets[face.holders] = entries_[e].slot / 4;
         ++face.holders;
     }

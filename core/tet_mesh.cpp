@@ -16,18 +16,18 @@ double signed_volume(const TetMesh& mesh, std::size_t t)
 void validate_indices(const TetMesh& mesh, const std::string& what)
 {
     if (mesh.tets.empty())
-        throw InputError(concat(what, ": holds no tetrahedra (", mesh.faces.size(), " triangles, ", mesh.vertices.size(),
-                                " nodes); give a volume mesh, e.g. from tm-tetra"));
+        throw InputError(concat(what, ": holds no tetrahedra (", mesh.faces.size(), " triangles, ",
+                                mesh.vertices.size(), " nodes); give a volume mesh, e.g. from tm-tetra"));
     if (mesh.tet_labels.size() != mesh.tets.size())
         throw InputError(concat(what, ": ", mesh.tets.size(), " tetrahedra but ", mesh.tet_labels.size(),
                                 " tissue labels; every tetrahedron needs a tissue"));
     if (mesh.face_sides.size() != mesh.faces.size())
-        throw InputError(concat(what, ": ", mesh.faces.size(), " faces but ", mesh.face_sides.size(),
-                                " label pairs"));
+        throw InputError(concat(what, ": ", mesh.faces.size(), " faces but ", mesh.face_sides.size(), " label pairs"));
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
         for (const double c : mesh.vertices[v])
             if (!std::isfinite(c))
-                throw InputError(concat(what, ": node ", v, " has a non-finite coordinate; the mesh file is "
+                throw InputError(concat(what, ": node ", v,
+                                        " has a non-finite coordinate; the mesh file is "
                                         "corrupt"));
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         for (const std::uint32_t v : mesh.tets[t])

@@ -19,12 +19,12 @@ using Tet = std::array<std::uint32_t, 4>;
 /// interfaces or on the outer boundary (#faces == #face_sides; orientation as in LabelPair: the normal
 /// points from `from` into `to`). Tets are positively oriented: det[v1-v0, v2-v0, v3-v0] > 0.
 struct TetMesh {
-    std::vector<Vec3> vertices;         ///< #V positions, mm
-    std::vector<Tet> tets;              ///< #T vertex indices
-    std::vector<Label> tet_labels;      ///< #T tissue of each tet
-    std::vector<Triangle> faces;        ///< #F interface and boundary faces
-    std::vector<LabelPair> face_sides;  ///< #F tissues on both sides of each face
-    TissueNames names;                  ///< tissue names by label
+    std::vector<Vec3> vertices;        ///< #V positions, mm
+    std::vector<Tet> tets;             ///< #T vertex indices
+    std::vector<Label> tet_labels;     ///< #T tissue of each tet
+    std::vector<Triangle> faces;       ///< #F interface and boundary faces
+    std::vector<LabelPair> face_sides; ///< #F tissues on both sides of each face
+    TissueNames names;                 ///< tissue names by label
 
     std::size_t vertex_count() const { return vertices.size(); }
     std::size_t tet_count() const { return tets.size(); }

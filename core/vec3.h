@@ -7,7 +7,7 @@
 namespace tissuemesh {
 
 using Vec3 = std::array<double, 3>;
-using Mat3 = std::array<double, 9>;  ///< row-major: m[3 * row + column]
+using Mat3 = std::array<double, 9>; ///< row-major: m[3 * row + column]
 
 inline constexpr Mat3 identity_matrix() { return {1, 0, 0, 0, 1, 0, 0, 0, 1}; }
 
@@ -31,8 +31,7 @@ inline Vec3 multiply(const Mat3& m, const Vec3& v)
 inline Mat3 transpose(const Mat3& m) { return {m[0], m[3], m[6], m[1], m[4], m[7], m[2], m[5], m[8]}; }
 inline double determinant(const Mat3& m)
 {
-    return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) +
-           m[2] * (m[3] * m[7] - m[4] * m[6]);
+    return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
 }
 
 } // namespace tissuemesh

@@ -14,16 +14,16 @@ namespace tissuemesh::fem {
 
 /// Options for analyse_solution().
 struct AnalysisOptions {
-    bool error_indicator = false;  ///< also compute estimate_error()'s flux-jump indicator per tet
+    bool error_indicator = false; ///< also compute estimate_error()'s flux-jump indicator per tet
 };
 
 /// The fields of one tissue, weighted by tet volume.
 struct TissueFieldStatistics {
     std::size_t tets = 0;
     double volume_mm3 = 0;
-    double mean_e_v_per_m = 0;    ///< volume-weighted mean |E|
-    double max_e_v_per_m = 0;     ///< largest |E| of a tet
-    double mean_j_a_per_m2 = 0;   ///< volume-weighted mean |J|
+    double mean_e_v_per_m = 0;  ///< volume-weighted mean |E|
+    double max_e_v_per_m = 0;   ///< largest |E| of a tet
+    double mean_j_a_per_m2 = 0; ///< volume-weighted mean |J|
 };
 
 /// Time a part of analyse_solution() took: wall seconds, and CPU seconds of the process (all threads).
@@ -33,13 +33,13 @@ struct PartSeconds {
 
 /// What analyse_solution() found. Per-tet arrays have #T entries, indexed like mesh.tets.
 struct SolutionAnalysis {
-    TetFields fields;                               ///< E and J per tet (compute_fields)
-    std::vector<double> e_magnitude_v_per_m;        ///< |E| per tet
-    std::vector<double> error_indicator;            ///< eta per tet; empty unless asked for
-    double error_indicator_total = 0;               ///< sqrt(sum eta^2); 0 unless asked for
-    std::map<Label, TissueFieldStatistics> tissues; ///< every tissue of the mesh
-    double min_dihedral_deg = 180;                  ///< smallest dihedral angle (slivers slow CG down)
-    PartSeconds fields_time, error_indicator_time, statistics_time;  ///< what each part took
+    TetFields fields;                                               ///< E and J per tet (compute_fields)
+    std::vector<double> e_magnitude_v_per_m;                        ///< |E| per tet
+    std::vector<double> error_indicator;                            ///< eta per tet; empty unless asked for
+    double error_indicator_total = 0;                               ///< sqrt(sum eta^2); 0 unless asked for
+    std::map<Label, TissueFieldStatistics> tissues;                 ///< every tissue of the mesh
+    double min_dihedral_deg = 180;                                  ///< smallest dihedral angle (slivers slow CG down)
+    PartSeconds fields_time, error_indicator_time, statistics_time; ///< what each part took
 };
 
 /// The fields of nodal potentials `potential_v` (#V, V) and what tm-solve reports about them. Runs on every

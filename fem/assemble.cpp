@@ -85,7 +85,7 @@ std::vector<ElementMatrix> element_matrices(const TetMesh& mesh, const Conductiv
 struct RowScratch {
     explicit RowScratch(std::size_t nodes) : slot(nodes, -1) {}
     std::vector<int> slot;
-    std::vector<std::pair<int, double>> entries;  ///< (column, value) of the current row
+    std::vector<std::pair<int, double>> entries; ///< (column, value) of the current row
 };
 
 // Row `node` of K into `scratch.entries`, sorted by column: the sum of its tets' element rows, in

@@ -12,8 +12,8 @@ TetFields compute_fields(const TetMesh& mesh, const Conductivities& conductiviti
                          const std::vector<double>& potential_v)
 {
     if (potential_v.size() != mesh.vertex_count())
-        throw InputError(concat("potential has ", potential_v.size(), " values but the mesh has ",
-                                mesh.vertex_count(), " nodes; give one per node"));
+        throw InputError(concat("potential has ", potential_v.size(), " values but the mesh has ", mesh.vertex_count(),
+                                " nodes; give one per node"));
     TetFields fields;
     fields.electric_v_per_m.resize(mesh.tet_count());
     fields.current_a_per_m2.resize(mesh.tet_count());

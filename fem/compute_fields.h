@@ -10,9 +10,9 @@ namespace tissuemesh::fem {
 
 /// Constant fields of each tet (#T each), world axes.
 struct TetFields {
-    std::vector<Vec3> electric_v_per_m;      ///< E = -grad(phi), V/m
-    std::vector<Vec3> current_a_per_m2;      ///< J = sigma E, A/m^2 (ohmic current; dipoles' primary
-                                             ///< current is not included)
+    std::vector<Vec3> electric_v_per_m; ///< E = -grad(phi), V/m
+    std::vector<Vec3> current_a_per_m2; ///< J = sigma E, A/m^2 (ohmic current; dipoles' primary
+                                        ///< current is not included)
 };
 
 /// E and J from nodal potentials `potential_v` (#V, V).

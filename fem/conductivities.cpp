@@ -44,7 +44,8 @@ std::string known_tissues(const TetMesh& mesh, const std::set<Label>& present)
 void check_tensor(const Mat3& m, const std::string& key)
 {
     for (double value : m)
-        if (!std::isfinite(value)) throw InputError(concat("conductivity of '", key, "' is not finite; give S/m values"));
+        if (!std::isfinite(value))
+            throw InputError(concat("conductivity of '", key, "' is not finite; give S/m values"));
     const double scale = std::max({std::abs(m[0]), std::abs(m[4]), std::abs(m[8]), 1e-300});
     const bool symmetric = std::abs(m[1] - m[3]) <= 1e-12 * scale && std::abs(m[2] - m[6]) <= 1e-12 * scale &&
                            std::abs(m[5] - m[7]) <= 1e-12 * scale;
@@ -80,29 +81,30 @@ bool glob_match(const std::string& pattern, const std::string& text)
 void apply_patterns(const TetMesh& mesh, const ConductivityTable& table, const std::set<Label>& present,
                     Conductivities& result)
 {
-    std::map<Label, std::pair<std::string, std::size_t>> chosen;  // pattern and its specificity
+    std::map<Label, std::pair<std::string, std::size_t>> chosen; // pattern and its specificity
     for (const auto& [key, tensor] : table) {
         if (key.find('*') == std::string::npos) continue;
         check_tensor(tensor, key);
         const std::size_t specificity = key.size() - static_cast<std::size_t>(std::count(key.begin(), key.end(), '*'));
         bool used = false;
         for (const Label label : present) {
-            if (result.by_label.count(label) && !chosen.count(label)) continue;  // a plain key named it
+            if (result.by_label.count(label) && !chosen.count(label)) continue; // a plain key named it
             if (!glob_match(lower(key), lower(name_of(mesh, label)))) continue;
             used = true;
             const auto found = chosen.find(label);
             if (found != chosen.end() && found->second.second > specificity) continue;
             if (found != chosen.end() && found->second.second == specificity && table.at(found->second.first) != tensor)
-                throw InputError(concat("conductivity table: '", found->second.first, "' and '", key, "' both match tissue ",
-                                        label, " (", name_of(mesh, label), ") with different values; name it alone"));
+                throw InputError(concat("conductivity table: '", found->second.first, "' and '", key,
+                                        "' both match tissue ", label, " (", name_of(mesh, label),
+                                        ") with different values; name it alone"));
             if (found == chosen.end() || found->second.second < specificity) {
                 chosen[label] = {key, specificity};
                 result.by_label[label] = tensor;
             }
         }
         if (!used)
-            throw InputError(concat("conductivity table: the pattern '", key, "' matches no tissue of the mesh (tissues: ",
-                                    known_tissues(mesh, present), ")"));
+            throw InputError(concat("conductivity table: the pattern '", key,
+                                    "' matches no tissue of the mesh (tissues: ", known_tissues(mesh, present), ")"));
     }
 }
 
@@ -113,8 +115,8 @@ Mat3 isotropic(double sigma) { return {sigma, 0, 0, 0, sigma, 0, 0, 0, sigma}; }
 const std::map<std::string, double>& default_head_conductivities()
 {
     static const std::map<std::string, double> table = {
-        {"scalp", 0.43}, {"skin", 0.43},  {"skull", 0.01}, {"bone", 0.01}, {"csf", 1.79},  {"grey", 0.33},
-        {"gray", 0.33},  {"gm", 0.33},    {"white", 0.14}, {"wm", 0.14},   {"brain", 0.33}};
+        {"scalp", 0.43}, {"skin", 0.43}, {"skull", 0.01}, {"bone", 0.01}, {"csf", 1.79},  {"grey", 0.33},
+        {"gray", 0.33},  {"gm", 0.33},   {"white", 0.14}, {"wm", 0.14},   {"brain", 0.33}};
     return table;
 }
 
@@ -122,9 +124,9 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
 {
     const std::set<Label> present(mesh.tet_labels.begin(), mesh.tet_labels.end());
     Conductivities result;
-    std::map<Label, std::string> key_of;  // a tissue named twice ("brain" and "4") would keep one value silently
+    std::map<Label, std::string> key_of; // a tissue named twice ("brain" and "4") would keep one value silently
     for (const auto& [key, tensor] : table) {
-        if (key.find('*') != std::string::npos) continue;  // patterns: below
+        if (key.find('*') != std::string::npos) continue; // patterns: below
         check_tensor(tensor, key);
         std::optional<Label> label = parse_label(key);
         if (!label)
@@ -134,8 +136,8 @@ Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTab
             throw InputError(concat("conductivity table: '", key, "' is no tissue of the mesh (tissues: ",
                                     known_tissues(mesh, present), "); use a label number or one of these names"));
         if (const auto [first, inserted] = key_of.emplace(*label, key); !inserted)
-            throw InputError(concat("conductivity table: '", first->second, "' and '", key, "' both name tissue ", *label,
-                                    " (", name_of(mesh, *label), "); give it once"));
+            throw InputError(concat("conductivity table: '", first->second, "' and '", key, "' both name tissue ",
+                                    *label, " (", name_of(mesh, *label), "); give it once"));
         result.by_label[*label] = tensor;
     }
     apply_patterns(mesh, table, present, result);
@@ -155,7 +157,8 @@ const Mat3& Conductivities::of(Label tissue, std::size_t tet) const
 {
     const auto found = by_label.find(tissue);
     if (found == by_label.end())
-        throw InputError(concat("tissue ", tissue, " (tet ", tet, ") has no conductivity; add it to the conductivity table"));
+        throw InputError(
+            concat("tissue ", tissue, " (tet ", tet, ") has no conductivity; add it to the conductivity table"));
     return found->second;
 }
 

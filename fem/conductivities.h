@@ -30,18 +30,18 @@ using ConductivityTable = std::map<std::string, Mat3>;
 /// Default isotropic conductivities (S/m) by tissue name, for common head tissues. Values commonly used
 /// in EEG/tDCS forward modelling: scalp 0.43 and skull 0.01 (the 4-shell sphere head of issue 7, as in
 /// Dannhauer et al. 2011, Hum Brain Mapp 32:1383), CSF 1.79 (Baumann et al. 1997, IEEE TBME 44:220), grey
-/// matter 0.33 and white matter 0.14 (Ramon et al. 2004, Brain Topogr 16:245; as tabulated by Dannhauer et al. 2011); "brain"
-/// takes the grey-matter value 0.33 (the 3/4-shell sphere models' brain). Synonyms: skin = scalp,
-/// bone = skull, gm/gray = grey, wm = white.
+/// matter 0.33 and white matter 0.14 (Ramon et al. 2004, Brain Topogr 16:245; as tabulated by Dannhauer et al. 2011);
+/// "brain" takes the grey-matter value 0.33 (the 3/4-shell sphere models' brain). Synonyms: skin = scalp, bone = skull,
+/// gm/gray = grey, wm = white.
 const std::map<std::string, double>& default_head_conductivities();
 
 /// Conductivities for every tissue present in `mesh.tet_labels`: entries of `table` first (by label
 /// number or name, then by the most specific matching pattern), the remaining tissues from
 /// default_head_conductivities() by name when `use_defaults`.
 /// @throws InputError when a key of `table` names no tissue of the mesh (names the key and the known
-///         tissues), a pattern matches none, two equally specific patterns give one tissue different values, when a tissue present in the mesh has no conductivity (names it; the fix is to add
-///         it to the table), or when a tensor is not symmetric positive definite or not finite
-Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTable& table,
-                                      bool use_defaults = true);
+///         tissues), a pattern matches none, two equally specific patterns give one tissue different values, when a
+///         tissue present in the mesh has no conductivity (names it; the fix is to add it to the table), or when a
+///         tensor is not symmetric positive definite or not finite
+Conductivities resolve_conductivities(const TetMesh& mesh, const ConductivityTable& table, bool use_defaults = true);
 
 } // namespace tissuemesh::fem

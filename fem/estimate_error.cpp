@@ -45,8 +45,7 @@ std::vector<double> estimate_error(const TetMesh& mesh, const Conductivities& co
         for (int k = 0; k < 4; ++k) {
             const std::uint32_t other = adjacency.across(tet_index, k);
             if (other == no_tet) continue;
-            const Triangle face{tet[tet_faces[k][0]], tet[tet_faces[k][1]],
-                                tet[tet_faces[k][2]]};
+            const Triangle face{tet[tet_faces[k][0]], tet[tet_faces[k][1]], tet[tet_faces[k][2]]};
             squared += face_share(mesh, face, fields.current_a_per_m2[tet_index], fields.current_a_per_m2[other]);
         }
         indicator[tet_index] = std::sqrt(squared);

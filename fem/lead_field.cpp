@@ -21,10 +21,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Matrix = LeadFields::Matrix;
 
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string sensor_label(const MegSensor& sensor, std::size_t index)
 {
@@ -64,19 +61,20 @@ void check_meg_sensors(const TetMesh& mesh, const OuterBoundary& boundary, const
         const bool within = inside[c] != detail::outside_mesh;
         if (!within && nearest[c].distance_mm >= min_distance_mm) continue;
         const Vec3& p = coils[c];
-        throw InputError(concat(sensor_label(sensors[owner[c]], owner[c]), " has a coil at (", format_mm(p[0]), ", ",
-                                format_mm(p[1]), ", ", format_mm(p[2]), ") mm ",
-                                within ? "inside the head" : concat(format_mm(nearest[c].distance_mm), " mm from the head's surface"),
-                                "; MEG coils must be outside the head, at least ", format_mm(min_distance_mm),
-                                " mm from it: check the units (mm) and that the sensors are in the mesh's coordinates"));
+        throw InputError(concat(
+            sensor_label(sensors[owner[c]], owner[c]), " has a coil at (", format_mm(p[0]), ", ", format_mm(p[1]), ", ",
+            format_mm(p[2]), ") mm ",
+            within ? "inside the head" : concat(format_mm(nearest[c].distance_mm), " mm from the head's surface"),
+            "; MEG coils must be outside the head, at least ", format_mm(min_distance_mm),
+            " mm from it: check the units (mm) and that the sensors are in the mesh's coordinates"));
     }
 }
 
 // The sparse loads of every column in the system's rows, and the rows they touch (the transfer rows kept).
 struct KeptLoads {
-    std::vector<std::uint32_t> rows;                 ///< increasing system rows
-    std::vector<std::vector<std::uint32_t>> at;      ///< per column: positions in `rows`
-    std::vector<std::vector<double>> currents_a;     ///< per column, parallel to `at`
+    std::vector<std::uint32_t> rows;             ///< increasing system rows
+    std::vector<std::vector<std::uint32_t>> at;  ///< per column: positions in `rows`
+    std::vector<std::vector<double>> currents_a; ///< per column, parallel to `at`
 };
 
 KeptLoads keep_loads(const std::vector<detail::ColumnLoad>& loads, const std::vector<int>& free_index)
@@ -92,9 +90,10 @@ KeptLoads keep_loads(const std::vector<detail::ColumnLoad>& loads, const std::ve
         std::vector<double> currents;
         for (std::size_t k = 0; k < load.nodes.size(); ++k) {
             const int row = free_index[load.nodes[k]];
-            if (row < 0) continue;  // the node held at 0 V: its load does no work
+            if (row < 0) continue; // the node held at 0 V: its load does no work
             at.push_back(static_cast<std::uint32_t>(
-                std::lower_bound(kept.rows.begin(), kept.rows.end(), static_cast<std::uint32_t>(row)) - kept.rows.begin()));
+                std::lower_bound(kept.rows.begin(), kept.rows.end(), static_cast<std::uint32_t>(row)) -
+                kept.rows.begin()));
             currents.push_back(load.currents_a[k]);
         }
         kept.at.push_back(std::move(at));
@@ -107,7 +106,8 @@ KeptLoads keep_loads(const std::vector<detail::ColumnLoad>& loads, const std::ve
 void add_point(const SurfacePoint& point, double weight, const std::vector<int>& free_index, Eigen::VectorXd& b)
 {
     for (int k = 0; k < 3; ++k)
-        if (const int row = free_index[point.nodes[static_cast<std::size_t>(k)]]; row >= 0) b[row] += weight * point.weights[static_cast<std::size_t>(k)];
+        if (const int row = free_index[point.nodes[static_cast<std::size_t>(k)]]; row >= 0)
+            b[row] += weight * point.weights[static_cast<std::size_t>(k)];
 }
 
 double interpolate(const SurfacePoint& point, const std::vector<double>& values)
@@ -122,8 +122,8 @@ void subtraction_products(const TetMesh& mesh, const Conductivities& conductivit
                           const std::vector<LeadFieldSource>& sources, const std::vector<std::uint32_t>& tets,
                           const detail::ReducedSystem& system, const Matrix& transfer,
                           const std::vector<SurfacePoint>& electrodes, const std::vector<std::size_t>& solve_electrodes,
-                          std::size_t reference, const std::vector<std::vector<double>>& kernels, const Progress& progress,
-                          Matrix& raw)
+                          std::size_t reference, const std::vector<std::vector<double>>& kernels,
+                          const Progress& progress, Matrix& raw)
 {
     const OuterBoundary boundary = outer_boundary(mesh);
     ProgressTicker ticker(progress, "leadfield", sources.size());
@@ -142,8 +142,8 @@ void subtraction_products(const TetMesh& mesh, const Conductivities& conductivit
             }
             raw.col(column) = transfer * free_load;
             for (std::size_t k = 0; k < solve_electrodes.size(); ++k)
-                raw(static_cast<Eigen::Index>(k), column) +=
-                    interpolate(electrodes[solve_electrodes[k]], singular) - interpolate(electrodes[reference], singular);
+                raw(static_cast<Eigen::Index>(k), column) += interpolate(electrodes[solve_electrodes[k]], singular) -
+                                                             interpolate(electrodes[reference], singular);
             for (std::size_t j = 0; j < kernels.size(); ++j) {
                 double field = 0;
                 for (std::size_t i = 0; i < singular.size(); ++i) field += kernels[j][i] * singular[i];
@@ -184,7 +184,8 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
     const OuterBoundary boundary = outer_boundary(m);
     std::vector<Vec3> positions;
     std::vector<std::string> names;
-    for (const EegElectrode& electrode : electrodes) positions.push_back(electrode.position_mm), names.push_back(electrode.name);
+    for (const EegElectrode& electrode : electrodes)
+        positions.push_back(electrode.position_mm), names.push_back(electrode.name);
     const std::vector<SurfacePoint> on_surface =
         electrodes.empty() ? std::vector<SurfacePoint>{}
                            : project_onto_surface(m, boundary, positions, names, options.max_electrode_distance_mm);
@@ -199,7 +200,7 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
     for (const LeadFieldSource& source : sources) columns += source.orientation ? 1 : 3;
     KeptLoads kept;
     if (subtraction) {
-        for (std::size_t s = 0; s < sources.size(); ++s)  // refuse what subtraction cannot take before any solve
+        for (std::size_t s = 0; s < sources.size(); ++s) // refuse what subtraction cannot take before any solve
             detail::subtraction_source_in(m, conductivities, {sources[s].position_mm, Vec3{0, 0, 1}}, s, tets[s]);
     } else {
         kept = keep_loads(detail::column_loads(m, conductivities, sources, tets, options.dipole_model, options.venant),
@@ -207,8 +208,9 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
     }
     local.load_nodes = subtraction ? local.unknowns : kept.rows.size();
     local.sources_seconds = seconds_since(start);
-    progress.info("leadfield", concat(sources.size(), " sources located, ", columns, " lead-field columns, loads on ",
-                                      local.load_nodes, " nodes (", std::round(local.sources_seconds * 100) / 100, " s)"));
+    progress.info("leadfield",
+                  concat(sources.size(), " sources located, ", columns, " lead-field columns, loads on ",
+                         local.load_nodes, " nodes (", std::round(local.sources_seconds * 100) / 100, " s)"));
 
     // One solve per electrode but the reference, then one per MEG sensor.
     const std::size_t reference = options.reference_electrode.value_or(0);
@@ -219,16 +221,17 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
     local.solves = solves;
     local.columns = columns;
     Matrix raw = Matrix::Zero(static_cast<Eigen::Index>(solves), static_cast<Eigen::Index>(columns));
-    Matrix transfer;  // subtraction only: every system row of every solve
+    Matrix transfer; // subtraction only: every system row of every solve
     if (subtraction) transfer.resize(static_cast<Eigen::Index>(solves), system.matrix.rows());
-    std::vector<std::vector<double>> kernels;  // subtraction only: the MEG kernels, for the singular potential
+    std::vector<std::vector<double>> kernels; // subtraction only: the MEG kernels, for the singular potential
     const auto rhs = [&](std::size_t k, Eigen::VectorXd& b) {
         if (k < solve_electrodes.size()) {
             add_point(on_surface[solve_electrodes[k]], 1, system.free_index, b);
             add_point(on_surface[reference], -1, system.free_index, b);
             return;
         }
-        std::vector<double> kernel = volume_current_kernel(m, conductivities, meg_sensors[k - solve_electrodes.size()], options.meg);
+        std::vector<double> kernel =
+            volume_current_kernel(m, conductivities, meg_sensors[k - solve_electrodes.size()], options.meg);
         for (std::size_t i = 0; i < kernel.size(); ++i)
             if (system.free_index[i] >= 0) b[system.free_index[i]] = kernel[i];
         if (subtraction && kernels.size() == k - solve_electrodes.size()) kernels.push_back(std::move(kernel));
@@ -249,8 +252,8 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
                       options.solver, progress, &local.solver);
     if (subtraction) {
         start = Clock::now();
-        subtraction_products(m, conductivities, sources, tets, system, transfer, on_surface, solve_electrodes, reference,
-                             kernels, progress, raw);
+        subtraction_products(m, conductivities, sources, tets, system, transfer, on_surface, solve_electrodes,
+                             reference, kernels, progress, raw);
         local.products_seconds = seconds_since(start);
     }
 
@@ -267,7 +270,8 @@ LeadFields compute_lead_fields(const TetMesh& mesh, const Conductivities& conduc
         for (const LeadFieldSource& source : sources)
             for (const Vec3& moment : detail::column_moments(source)) {
                 for (std::size_t j = 0; j < meg_sensors.size(); ++j)
-                    fields.meg(static_cast<Eigen::Index>(j), column) += primary_field(meg_sensors[j], {source.position_mm, moment});
+                    fields.meg(static_cast<Eigen::Index>(j), column) +=
+                        primary_field(meg_sensors[j], {source.position_mm, moment});
                 ++column;
             }
     }

@@ -33,15 +33,15 @@ namespace tissuemesh::fem {
 /// An EEG electrode: a point on or near the scalp (projected onto the outer surface).
 struct EegElectrode {
     Vec3 position_mm{};
-    std::string name;  ///< for messages ("Fp1 (eeg.csv line 3)"); empty: "electrode <n>"
+    std::string name; ///< for messages ("Fp1 (eeg.csv line 3)"); empty: "electrode <n>"
 };
 
 /// A source position: three lead-field columns (unit moments along x, y, z) without an orientation, one
 /// (the unit moment along it) with.
 struct LeadFieldSource {
     Vec3 position_mm{};
-    std::optional<Vec3> orientation;  ///< unit vector
-    std::string name;                 ///< for messages; empty: "source <n>"
+    std::optional<Vec3> orientation; ///< unit vector
+    std::string name;                ///< for messages; empty: "source <n>"
 };
 
 /// Settings of compute_lead_fields(). Lengths in mm.
@@ -49,12 +49,12 @@ struct LeadFieldOptions {
     /// Venant: the most accurate of our models on our meshes at the eccentricities EEG sources have
     /// (docs/fem.md, accuracy); subtraction costs a pass over the mesh per source column.
     DipoleModel dipole_model = DipoleModel::venant;
-    VenantOptions venant;                       ///< used only with DipoleModel::venant
-    std::vector<Label> source_tissues;          ///< sources must lie in these tissues (empty: any)
-    double max_electrode_distance_mm = 10;      ///< electrodes farther from the surface are refused
-    double min_meg_distance_mm = 1;             ///< MEG coils nearer the surface (or inside) are refused
-    std::optional<std::size_t> reference_electrode;  ///< EEG against this electrode; none: average reference
-    VolumeCurrentOptions meg;                   ///< the volume-current integral
+    VenantOptions venant;                           ///< used only with DipoleModel::venant
+    std::vector<Label> source_tissues;              ///< sources must lie in these tissues (empty: any)
+    double max_electrode_distance_mm = 10;          ///< electrodes farther from the surface are refused
+    double min_meg_distance_mm = 1;                 ///< MEG coils nearer the surface (or inside) are refused
+    std::optional<std::size_t> reference_electrode; ///< EEG against this electrode; none: average reference
+    VolumeCurrentOptions meg;                       ///< the volume-current integral
     /// For every solve. A relative residual of 1e-6 moved the EEG lead field of the 62 k-node 4-shell test head by
     /// at most 3.9e-5 per column (median 7e-6) from its value at 1e-10, and MEG by 3.5e-7, far below the
     /// discretisation's 1e-2; 1e-8 takes about 40% more iterations (16-17 against 11-13 there).
@@ -63,24 +63,24 @@ struct LeadFieldOptions {
 
 /// What compute_lead_fields() did.
 struct LeadFieldReport {
-    std::size_t unknowns = 0;                 ///< free nodes of the system
-    std::size_t solves = 0;                   ///< right-hand sides: electrodes - 1 + MEG sensors
-    std::size_t columns = 0;                  ///< lead-field columns (3 per free source, 1 per oriented one)
-    std::size_t load_nodes = 0;               ///< nodes the source loads touch (the transfer rows kept)
+    std::size_t unknowns = 0;   ///< free nodes of the system
+    std::size_t solves = 0;     ///< right-hand sides: electrodes - 1 + MEG sensors
+    std::size_t columns = 0;    ///< lead-field columns (3 per free source, 1 per oriented one)
+    std::size_t load_nodes = 0; ///< nodes the source loads touch (the transfer rows kept)
     ColumnsReport solver;
-    std::vector<SurfacePoint> electrodes;     ///< where each electrode went (nodes numbered as the mesh's)
-    std::vector<Label> source_tissues;        ///< the tissue each source lies in
-    double assembly_seconds = 0;              ///< renumbering, stiffness matrix, reduction
-    double sources_seconds = 0;               ///< locating the sources and their loads
-    double sensors_seconds = 0;               ///< electrode projection and sensor checks
-    double products_seconds = 0;              ///< subtraction's per-source loads and products (0 otherwise)
+    std::vector<SurfacePoint> electrodes; ///< where each electrode went (nodes numbered as the mesh's)
+    std::vector<Label> source_tissues;    ///< the tissue each source lies in
+    double assembly_seconds = 0;          ///< renumbering, stiffness matrix, reduction
+    double sources_seconds = 0;           ///< locating the sources and their loads
+    double sensors_seconds = 0;           ///< electrode projection and sensor checks
+    double products_seconds = 0;          ///< subtraction's per-source loads and products (0 otherwise)
 };
 
 /// The lead fields: row per sensor, column per source column (source order; x, y, z for free sources).
 struct LeadFields {
     using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    Matrix eeg;  ///< V per A*m (#electrodes rows, or none); average reference unless a reference electrode is set
-    Matrix meg;  ///< T per A*m (#MEG sensors rows, or none): primary plus volume currents
+    Matrix eeg; ///< V per A*m (#electrodes rows, or none); average reference unless a reference electrode is set
+    Matrix meg; ///< T per A*m (#MEG sensors rows, or none): primary plus volume currents
 };
 
 /// The EEG and MEG lead fields of `sources` at `electrodes` and `meg_sensors` (either may be empty, not both).

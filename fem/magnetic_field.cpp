@@ -35,11 +35,11 @@ void add_coil(const TetMesh& mesh, const Conductivities& conductivities, const V
         const P1Element element = p1_element(mesh, tet);
         std::array<Vec3, 4> corners{};
         for (int k = 0; k < 4; ++k) corners[k] = metres_per_mm * mesh.vertices[mesh.tets[tet][k]];
-        const Vec3 integral = detail::adaptive_tet_integral(corners, element.volume_m3, coil_m, options.split_ratio,
-                                                            options.max_splits,
-                                                            [&](const Vec3& y) { return kernel_at(coil_m, y); });
+        const Vec3 integral =
+            detail::adaptive_tet_integral(corners, element.volume_m3, coil_m, options.split_ratio, options.max_splits,
+                                          [&](const Vec3& y) { return kernel_at(coil_m, y); });
         const Vec3 g_cross_n = cross(integral, normal);
-        const Vec3 weighted = multiply(conductivities.of(mesh.tet_labels[tet], tet), g_cross_n);  // sigma symmetric
+        const Vec3 weighted = multiply(conductivities.of(mesh.tet_labels[tet], tet), g_cross_n); // sigma symmetric
         for (int k = 0; k < 4; ++k) loads[tet][k] = -sign * biot_savart * dot(element.gradients[k], weighted);
     }
     for (std::size_t t = 0; t < mesh.tet_count(); ++t)
@@ -63,7 +63,8 @@ std::vector<double> volume_current_kernel(const TetMesh& mesh, const Conductivit
 {
     std::vector<double> kernel(mesh.vertex_count(), 0.0);
     add_coil(mesh, conductivities, sensor.position_mm, sensor.normal, 1, options, kernel);
-    if (sensor.second_coil_mm) add_coil(mesh, conductivities, *sensor.second_coil_mm, sensor.normal, -1, options, kernel);
+    if (sensor.second_coil_mm)
+        add_coil(mesh, conductivities, *sensor.second_coil_mm, sensor.normal, -1, options, kernel);
     return kernel;
 }
 
@@ -71,7 +72,8 @@ double magnetic_field(const TetMesh& mesh, const Conductivities& conductivities,
                       const std::vector<Dipole>& dipoles, const MegSensor& sensor, const VolumeCurrentOptions& options)
 {
     if (potential_v.size() != mesh.vertex_count())
-        throw InputError(concat("magnetic field: ", potential_v.size(), " potentials for ", mesh.vertex_count(), " nodes"));
+        throw InputError(
+            concat("magnetic field: ", potential_v.size(), " potentials for ", mesh.vertex_count(), " nodes"));
     const std::vector<double> kernel = volume_current_kernel(mesh, conductivities, sensor, options);
     double field = 0;
     for (std::size_t i = 0; i < kernel.size(); ++i) field += kernel[i] * potential_v[i];

@@ -19,9 +19,9 @@ namespace tissuemesh::fem {
 /// subtracted: B(position) . normal - B(second_coil) . normal), point coils.
 struct MegSensor {
     Vec3 position_mm{};
-    Vec3 normal{0, 0, 1};                  ///< unit vector
-    std::optional<Vec3> second_coil_mm;    ///< a gradiometer's second coil
-    std::string name;                      ///< for messages; empty: "MEG sensor <n>"
+    Vec3 normal{0, 0, 1};               ///< unit vector
+    std::optional<Vec3> second_coil_mm; ///< a gradiometer's second coil
+    std::string name;                   ///< for messages; empty: "MEG sensor <n>"
 };
 
 /// What `sensor` measures of the primary current of `dipole` (T): mu0/(4 pi) p x (x - x0) / |x - x0|^3 . n.
@@ -32,7 +32,7 @@ struct VolumeCurrentOptions {
     /// Each tet's integral of (x - y)/|x - y|^3 uses the 4-point degree-2 rule, on the 8 midpoint children of
     /// a tet while its longest edge exceeds this fraction of its centre's distance to the coil.
     double split_ratio = 0.5;
-    int max_splits = 4;  ///< at most this many levels of children (8^4 for the tets nearest the coil)
+    int max_splits = 4; ///< at most this many levels of children (8^4 for the tets nearest the coil)
 };
 
 /// The volume-current kernel of `sensor`: for P1 potentials phi (V) on `mesh`, the field of the volume
@@ -46,6 +46,7 @@ std::vector<double> volume_current_kernel(const TetMesh& mesh, const Conductivit
 /// What `sensor` measures of a solved problem (T): the primary field of `dipoles` plus the volume currents of
 /// `potential_v` (#V, V). For tests and single solves; lead fields use the kernel through a transfer matrix.
 double magnetic_field(const TetMesh& mesh, const Conductivities& conductivities, const std::vector<double>& potential_v,
-                      const std::vector<Dipole>& dipoles, const MegSensor& sensor, const VolumeCurrentOptions& options = {});
+                      const std::vector<Dipole>& dipoles, const MegSensor& sensor,
+                      const VolumeCurrentOptions& options = {});
 
 } // namespace tissuemesh::fem

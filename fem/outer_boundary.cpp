@@ -12,14 +12,13 @@ namespace tissuemesh::fem {
 namespace {
 
 struct BoundaryFace {
-    Triangle sorted;    ///< its vertices in increasing order: the key that pairs it with a neighbour's face
-    Triangle oriented;  ///< as its tet has it (outwards)
+    Triangle sorted;   ///< its vertices in increasing order: the key that pairs it with a neighbour's face
+    Triangle oriented; ///< as its tet has it (outwards)
 };
 
 BoundaryFace face_of(const Tet& tet, int k)
 {
-    BoundaryFace face{{}, {tet[tet_faces[k][0]], tet[tet_faces[k][1]],
-                           tet[tet_faces[k][2]]}};
+    BoundaryFace face{{}, {tet[tet_faces[k][0]], tet[tet_faces[k][1]], tet[tet_faces[k][2]]}};
     face.sorted = face.oriented;
     std::sort(face.sorted.begin(), face.sorted.end());
     return face;
@@ -28,7 +27,8 @@ BoundaryFace face_of(const Tet& tet, int k)
 // The boundary from its faces in any order: sorted by their vertex triples, nodes listed once.
 OuterBoundary boundary_from(std::vector<BoundaryFace> faces)
 {
-    std::sort(faces.begin(), faces.end(), [](const BoundaryFace& a, const BoundaryFace& b) { return a.sorted < b.sorted; });
+    std::sort(faces.begin(), faces.end(),
+              [](const BoundaryFace& a, const BoundaryFace& b) { return a.sorted < b.sorted; });
     OuterBoundary boundary;
     for (const BoundaryFace& face : faces) {
         boundary.faces.push_back(face.oriented);
@@ -60,13 +60,14 @@ OuterBoundary outer_boundary_near(const TetMesh& mesh, const Vec3& centre_mm, do
     if (mesh.tets.empty()) return {};
     validate_indices(mesh, "mesh");
     if (!(radius_mm >= 0) || !std::isfinite(radius_mm) || !std::isfinite(norm(centre_mm)))
-        throw InputError(concat("boundary near (", centre_mm[0], ", ", centre_mm[1], ", ", centre_mm[2], ") mm: radius ",
-                                radius_mm, " mm; give a finite centre and a finite radius >= 0"));
+        throw InputError(concat("boundary near (", centre_mm[0], ", ", centre_mm[1], ", ", centre_mm[2],
+                                ") mm: radius ", radius_mm, " mm; give a finite centre and a finite radius >= 0"));
     const auto count = static_cast<std::int64_t>(mesh.vertex_count());
     std::vector<char> inside(mesh.vertex_count());
 #pragma omp parallel for schedule(static)
     for (std::int64_t v = 0; v < count; ++v)
-        inside[static_cast<std::size_t>(v)] = distance(mesh.vertices[static_cast<std::size_t>(v)], centre_mm) <= radius_mm;
+        inside[static_cast<std::size_t>(v)] =
+            distance(mesh.vertices[static_cast<std::size_t>(v)], centre_mm) <= radius_mm;
     std::vector<BoundaryFace> faces;
     for (const Tet& tet : mesh.tets) {
         if (!inside[tet[0]] && !inside[tet[1]] && !inside[tet[2]] && !inside[tet[3]]) continue;
@@ -75,7 +76,8 @@ OuterBoundary outer_boundary_near(const TetMesh& mesh, const Vec3& centre_mm, do
             if (inside[face.sorted[0]] || inside[face.sorted[1]] || inside[face.sorted[2]]) faces.push_back(face);
         }
     }
-    std::sort(faces.begin(), faces.end(), [](const BoundaryFace& a, const BoundaryFace& b) { return a.sorted < b.sorted; });
+    std::sort(faces.begin(), faces.end(),
+              [](const BoundaryFace& a, const BoundaryFace& b) { return a.sorted < b.sorted; });
     std::vector<BoundaryFace> once;
     for (std::size_t i = 0; i < faces.size();) {
         std::size_t j = i + 1;

@@ -10,8 +10,8 @@ namespace tissuemesh::fem {
 
 /// Outer boundary of `mesh`, found from the tets alone (the mesh's face list is not needed).
 struct OuterBoundary {
-    std::vector<Triangle> faces;          ///< #B faces of exactly one tet, oriented outwards, sorted
-    std::vector<std::uint32_t> nodes;     ///< sorted vertex indices of those faces
+    std::vector<Triangle> faces;      ///< #B faces of exactly one tet, oriented outwards, sorted
+    std::vector<std::uint32_t> nodes; ///< sorted vertex indices of those faces
 };
 
 /// Faces shared by no other tet (the insulated outer surface and any inner cavity's surface).

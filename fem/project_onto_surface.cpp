@@ -12,8 +12,8 @@ namespace tissuemesh::fem {
 using detail::nearest_on_triangle;
 
 std::vector<SurfacePoint> project_onto_surface(const TetMesh& mesh, const OuterBoundary& boundary,
-                                               const std::vector<Vec3>& points_mm, const std::vector<std::string>& names,
-                                               double max_distance_mm)
+                                               const std::vector<Vec3>& points_mm,
+                                               const std::vector<std::string>& names, double max_distance_mm)
 {
     if (boundary.faces.empty()) throw InputError("the mesh has no outer boundary face to put the electrodes on");
     std::vector<SurfacePoint> projected(points_mm.size());
@@ -35,10 +35,10 @@ std::vector<SurfacePoint> project_onto_surface(const TetMesh& mesh, const OuterB
         if (projected[k].distance_mm <= max_distance_mm) continue;
         const std::string name = k < names.size() && !names[k].empty() ? names[k] : concat("electrode ", k + 1);
         const Vec3& p = points_mm[k];
-        throw InputError(concat(name, " at (", format_mm(p[0]), ", ", format_mm(p[1]), ", ", format_mm(p[2]), ") mm is ",
-                                format_mm(projected[k].distance_mm), " mm from the head's surface, more than ",
-                                format_mm(max_distance_mm), " mm; put it on the scalp (the mesh's coordinates, mm) or ",
-                                "raise --max-electrode-distance-mm"));
+        throw InputError(concat(
+            name, " at (", format_mm(p[0]), ", ", format_mm(p[1]), ", ", format_mm(p[2]), ") mm is ",
+            format_mm(projected[k].distance_mm), " mm from the head's surface, more than ", format_mm(max_distance_mm),
+            " mm; put it on the scalp (the mesh's coordinates, mm) or ", "raise --max-electrode-distance-mm"));
     }
     return projected;
 }

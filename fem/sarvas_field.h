@@ -16,6 +16,7 @@ inline constexpr double mu0_t_m_per_a = 4e-7 * 3.14159265358979323846;
 ///     F = |a| (|r| |a| + |r|^2 - r0 . r),
 ///     grad F = (|a|^2 / |r| + a . r / |a| + 2 |a| + 2 |r|) r - (|a| + 2 |r| + a . r / |a|) r0,
 /// with r and r0 the sensor and dipole positions from the centre, in metres.
-Vec3 sarvas_field(const Vec3& sensor_mm, const Vec3& position_mm, const Vec3& moment_am, const Vec3& centre_mm = {0, 0, 0});
+Vec3 sarvas_field(const Vec3& sensor_mm, const Vec3& position_mm, const Vec3& moment_am,
+                  const Vec3& centre_mm = {0, 0, 0});
 
 } // namespace tissuemesh::fem

@@ -18,10 +18,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string format_duration(double seconds)
 {
@@ -49,11 +46,12 @@ public:
         // The recomputed residual may sit slightly above the solver's own estimate (round-off in the
         // recurrence): allow a factor 10 before calling it a failure.
         if (!(relative_residual <= 10 * options_.relative_tolerance))
-            throw AlgorithmError(concat("linear system (", rows_, " unknowns", columns_ > 1 ? concat(", right-hand side ", k + 1, " of ", columns_) : "",
-                                        "): ", report_.preconditioner, "-CG reached relative residual ", relative_residual,
-                                        " after ", iterations, " iterations (tolerance ", options_.relative_tolerance,
-                                        ", cap ", options_.max_iterations, "); raise the cap, use the amg preconditioner, ",
-                                        "or improve the mesh (slivers slow CG down)"));
+            throw AlgorithmError(concat(
+                "linear system (", rows_, " unknowns",
+                columns_ > 1 ? concat(", right-hand side ", k + 1, " of ", columns_) : "",
+                "): ", report_.preconditioner, "-CG reached relative residual ", relative_residual, " after ",
+                iterations, " iterations (tolerance ", options_.relative_tolerance, ", cap ", options_.max_iterations,
+                "); raise the cap, use the amg preconditioner, ", "or improve the mesh (slivers slow CG down)"));
         if (k == 0) {
             report_.min_iterations = report_.max_iterations = iterations;
             report_.max_relative_residual = 0;
@@ -74,8 +72,9 @@ public:
         progress_.update("solve", static_cast<double>(done) / static_cast<double>(columns_));
         if (columns_ >= 10 && done % (columns_ / 10) == 0 && done < columns_) {
             const double each = done > 1 ? report_.later_solve_seconds : seconds;
-            progress_.info("solve", concat(done, " of ", columns_, " solves done, ", format_duration(each), " each, about ",
-                                           format_duration(each * static_cast<double>(columns_ - done)), " left"));
+            progress_.info("solve",
+                           concat(done, " of ", columns_, " solves done, ", format_duration(each), " each, about ",
+                                  format_duration(each * static_cast<double>(columns_ - done)), " left"));
         }
     }
 
@@ -89,7 +88,8 @@ private:
 };
 
 // The kept entries of x, in the order of kept_rows (all when empty).
-const double* kept_of(const Eigen::VectorXd& x, const std::vector<std::uint32_t>& kept_rows, std::vector<double>& buffer)
+const double* kept_of(const Eigen::VectorXd& x, const std::vector<std::uint32_t>& kept_rows,
+                      std::vector<double>& buffer)
 {
     if (kept_rows.empty()) return x.data();
     buffer.resize(kept_rows.size());
@@ -129,8 +129,8 @@ void columns_jacobi(const SparseMatrix& matrix, std::size_t columns, const RhsFi
 }
 
 void columns_amg_here(const SparseMatrix& matrix, std::size_t columns, const RhsFiller& rhs,
-                      const std::vector<std::uint32_t>& kept_rows, const SolutionSink& sink, const SolverOptions& options,
-                      ColumnLog& log, ColumnsReport& report)
+                      const std::vector<std::uint32_t>& kept_rows, const SolutionSink& sink,
+                      const SolverOptions& options, ColumnLog& log, ColumnsReport& report)
 {
     detail::AmgPcg pcg(matrix, options.relative_tolerance, options.max_iterations);
     report.copy_seconds = pcg.copy_seconds();
@@ -182,7 +182,8 @@ void solve_spd_columns(const SparseMatrix& matrix, std::size_t columns, const Rh
 {
     const auto start = Clock::now();
     if (matrix.rows() != matrix.cols())
-        throw InputError(concat("linear system: matrix is ", matrix.rows(), " x ", matrix.cols(), "; it must be square"));
+        throw InputError(
+            concat("linear system: matrix is ", matrix.rows(), " x ", matrix.cols(), "; it must be square"));
     for (const std::uint32_t row : kept_rows)
         if (row >= matrix.rows())
             throw InputError(concat("linear system: kept row ", row, " is out of range (", matrix.rows(), " rows)"));
@@ -196,18 +197,20 @@ void solve_spd_columns(const SparseMatrix& matrix, std::size_t columns, const Rh
             const int wanted = options.processes == 0 ? detail::available_cores() : std::max(options.processes, 1);
             const Eigen::Index share = std::max(options.min_unknowns_per_process, 1);
             local.processes = static_cast<int>(std::clamp<Eigen::Index>(matrix.rows() / share, 1, wanted));
-            if (local.processes > 1 &&
-                !columns_amg_on_processes(matrix, columns, rhs, kept_rows, sink, options, local.processes, progress, log, local))
+            if (local.processes > 1 && !columns_amg_on_processes(matrix, columns, rhs, kept_rows, sink, options,
+                                                                 local.processes, progress, log, local))
                 local.processes = 1;
             if (local.processes == 1) columns_amg_here(matrix, columns, rhs, kept_rows, sink, options, log, local);
         }
     }
     local.seconds = seconds_since(start);
-    progress.info("solve", concat(local.preconditioner, "-CG", local.processes > 1 ? concat(" on ", local.processes, " processes") : "",
-                                  ": ", matrix.rows(), " unknowns, ", columns, columns == 1 ? " right-hand side, " : " right-hand sides, ",
-                                  local.min_iterations == local.max_iterations ? concat(local.max_iterations)
-                                                                               : concat(local.min_iterations, "-", local.max_iterations),
-                                  " iterations, relative residual up to ", local.max_relative_residual));
+    progress.info(
+        "solve",
+        concat(local.preconditioner, "-CG", local.processes > 1 ? concat(" on ", local.processes, " processes") : "",
+               ": ", matrix.rows(), " unknowns, ", columns, columns == 1 ? " right-hand side, " : " right-hand sides, ",
+               local.min_iterations == local.max_iterations ? concat(local.max_iterations)
+                                                            : concat(local.min_iterations, "-", local.max_iterations),
+               " iterations, relative residual up to ", local.max_relative_residual));
     if (report) *report = local;
 }
 

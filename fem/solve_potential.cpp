@@ -38,7 +38,8 @@ void fix_node(const detail::LocalMesh& mesh, std::vector<double>& fixed, std::ui
 std::uint32_t local_node(const detail::LocalMesh& mesh, std::uint32_t node, const std::string& what)
 {
     if (node >= mesh.local.size())
-        throw InputError(concat(what, ": node ", node, " is out of range (the mesh has ", mesh.local.size(), " nodes)"));
+        throw InputError(
+            concat(what, ": node ", node, " is out of range (the mesh has ", mesh.local.size(), " nodes)"));
     return mesh.local[node];
 }
 
@@ -69,14 +70,14 @@ Eigen::VectorXd build_loads(const detail::LocalMesh& local, const Conductivities
         // Both branches name an lvalue: the whole boundary is not copied per electrode.
         const OuterBoundary near =
             needs_boundary ? OuterBoundary{} : outer_boundary_near(mesh, electrode.centre_mm, electrode.radius_mm);
-        const detail::ElectrodePatch patch = detail::electrode_patch(mesh, needs_boundary ? boundary : near, electrode, e);
+        const detail::ElectrodePatch patch =
+            detail::electrode_patch(mesh, needs_boundary ? boundary : near, electrode, e);
         report.electrode_nodes.push_back(patch.nodes.size());
         report.electrode_area_mm2.push_back(patch.area_mm2);
         for (std::size_t k = 0; k < patch.nodes.size(); ++k) {
             if (electrode.mode == Electrode::Mode::potential)
                 fix_node(local, fixed, patch.nodes[k], electrode.potential_v, detail::electrode_label(electrode, e));
-            else
-                rhs[patch.nodes[k]] += electrode.current_a * patch.node_area_mm2[k] / patch.area_mm2;
+            else rhs[patch.nodes[k]] += electrode.current_a * patch.node_area_mm2[k] / patch.area_mm2;
         }
         if (electrode.mode == Electrode::Mode::current) {
             injected += electrode.current_a;
@@ -148,7 +149,8 @@ std::vector<double> solve_potential(const TetMesh& mesh, const Conductivities& c
     std::vector<double> potential(fixed.size());
     for (std::size_t i = 0; i < potential.size(); ++i) {
         const std::uint32_t k = renumbered.local[i];
-        potential[i] = system.free_index[k] < 0 ? fixed[k] : solution[system.free_index[k]] + (singular.empty() ? 0 : singular[k]);
+        potential[i] =
+            system.free_index[k] < 0 ? fixed[k] : solution[system.free_index[k]] + (singular.empty() ? 0 : singular[k]);
     }
     local.unknowns = static_cast<std::size_t>(system.matrix.rows());
     local.fixed_nodes = fixed.size() - local.unknowns;

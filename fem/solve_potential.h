@@ -19,19 +19,19 @@ namespace tissuemesh::fem {
 /// A scalp electrode: the outer-boundary nodes within `radius_mm` (straight-line distance) of `centre_mm`.
 struct Electrode {
     enum class Mode { current, potential };
-    Vec3 centre_mm{};             ///< patch centre, world mm (need not lie on the surface)
-    double radius_mm = 5;         ///< patch radius, mm
-    Mode mode = Mode::current;    ///< inject a total current, or hold the patch at a potential
-    double current_a = 0;         ///< total current into the body, A (Mode::current), spread over the patch
-                                  ///< area: uniform normal current density
-    double potential_v = 0;       ///< patch potential, V (Mode::potential)
-    std::string name;             ///< how messages call it ("C3 (montage.csv line 4)"); empty: "electrode <n>"
+    Vec3 centre_mm{};          ///< patch centre, world mm (need not lie on the surface)
+    double radius_mm = 5;      ///< patch radius, mm
+    Mode mode = Mode::current; ///< inject a total current, or hold the patch at a potential
+    double current_a = 0;      ///< total current into the body, A (Mode::current), spread over the patch
+                               ///< area: uniform normal current density
+    double potential_v = 0;    ///< patch potential, V (Mode::potential)
+    std::string name;          ///< how messages call it ("C3 (montage.csv line 4)"); empty: "electrode <n>"
 };
 
 /// A current dipole: primary current p * delta(x - position). See DipoleModel for its treatment.
 struct Dipole {
-    Vec3 position_mm{};  ///< world mm, inside the mesh
-    Vec3 moment_am{};    ///< A*m
+    Vec3 position_mm{}; ///< world mm, inside the mesh
+    Vec3 moment_am{};   ///< A*m
 };
 
 /// How a dipole's singularity enters the FE system.
@@ -63,9 +63,9 @@ enum class DipoleModel {
 /// al. 1997; Vorwerk et al. 2019). The currents hardly depend on them: with 11 to 24 nodes the moment
 /// conditions leave room, and the regulariser only picks the smallest currents among those that meet them.
 struct VenantOptions {
-    double reference_length_mm = 20;  ///< a: node offsets enter the moment equations as (x_k - x0) / a
-    double regularisation = 1e-6;     ///< lambda: weight of the current-size penalty against the order-2 misfit
-    int weighting_exponent = 1;       ///< r: a node's current is penalised with weight (|x_k - x0| / a)^r
+    double reference_length_mm = 20; ///< a: node offsets enter the moment equations as (x_k - x0) / a
+    double regularisation = 1e-6;    ///< lambda: weight of the current-size penalty against the order-2 misfit
+    int weighting_exponent = 1;      ///< r: a node's current is penalised with weight (|x_k - x0| / a)^r
 };
 
 /// Dirichlet nodes: node indices with their potentials (V).
@@ -76,29 +76,29 @@ struct FixedPotentials {
 
 /// How the potential is made unique when no node has a fixed potential (pure Neumann problem).
 enum class Reference {
-    zero_mean,  ///< the nodal potentials average to zero
-    node,       ///< the potential at `reference_node` is zero
+    zero_mean, ///< the nodal potentials average to zero
+    node,      ///< the potential at `reference_node` is zero
 };
 
 struct PotentialProblem {
     std::vector<Electrode> electrodes;
     std::vector<Dipole> dipoles;
-    DipoleModel dipole_model = DipoleModel::partial_integration;  ///< for every dipole
-    VenantOptions venant;                  ///< used only with DipoleModel::venant
-    FixedPotentials fixed;                 ///< inner Dirichlet conditions (electrodes add theirs)
-    Reference reference = Reference::zero_mean;  ///< used only when nothing is fixed
-    std::uint32_t reference_node = 0;      ///< node index for Reference::node
+    DipoleModel dipole_model = DipoleModel::partial_integration; ///< for every dipole
+    VenantOptions venant;                                        ///< used only with DipoleModel::venant
+    FixedPotentials fixed;                                       ///< inner Dirichlet conditions (electrodes add theirs)
+    Reference reference = Reference::zero_mean;                  ///< used only when nothing is fixed
+    std::uint32_t reference_node = 0;                            ///< node index for Reference::node
 };
 
 struct PotentialReport {
     SolverReport solver;
-    std::size_t unknowns = 0;              ///< free nodes solved for
-    std::size_t fixed_nodes = 0;           ///< nodes with a Dirichlet value (electrodes included)
-    std::vector<std::size_t> electrode_nodes;  ///< boundary nodes per electrode
-    std::vector<double> electrode_area_mm2;    ///< patch area per electrode (faces with 3 nodes inside)
-    double loads_seconds = 0;      ///< outer boundary, electrode patches, dipole location, fixed nodes
-    double assembly_seconds = 0;   ///< renumbering for locality and the stiffness matrix
-    double reduction_seconds = 0;  ///< the system on the free nodes (the solver's times are in `solver`)
+    std::size_t unknowns = 0;                 ///< free nodes solved for
+    std::size_t fixed_nodes = 0;              ///< nodes with a Dirichlet value (electrodes included)
+    std::vector<std::size_t> electrode_nodes; ///< boundary nodes per electrode
+    std::vector<double> electrode_area_mm2;   ///< patch area per electrode (faces with 3 nodes inside)
+    double loads_seconds = 0;                 ///< outer boundary, electrode patches, dipole location, fixed nodes
+    double assembly_seconds = 0;              ///< renumbering for locality and the stiffness matrix
+    double reduction_seconds = 0;             ///< the system on the free nodes (the solver's times are in `solver`)
 };
 
 /// Nodal potentials (V, #V) of the problem.

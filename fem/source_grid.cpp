@@ -37,7 +37,8 @@ public:
                 Vec3 low = mesh.vertices[face[0]], high = low;
                 for (const std::uint32_t v : face)
                     for (int a = 0; a < 3; ++a)
-                        low[a] = std::min(low[a], mesh.vertices[v][a]), high[a] = std::max(high[a], mesh.vertices[v][a]);
+                        low[a] = std::min(low[a], mesh.vertices[v][a]),
+                        high[a] = std::max(high[a], mesh.vertices[v][a]);
                 const auto from = cell_of(low), to = cell_of(high);
                 for (std::int64_t z = from[2]; z <= to[2]; ++z)
                     for (std::int64_t y = from[1]; y <= to[1]; ++y)
@@ -69,7 +70,8 @@ public:
 private:
     std::array<std::int64_t, 3> cell_of(const Vec3& p) const
     {
-        return {static_cast<std::int64_t>(std::floor(p[0] / cell_)), static_cast<std::int64_t>(std::floor(p[1] / cell_)),
+        return {static_cast<std::int64_t>(std::floor(p[0] / cell_)),
+                static_cast<std::int64_t>(std::floor(p[1] / cell_)),
                 static_cast<std::int64_t>(std::floor(p[2] / cell_))};
     }
     static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z)
@@ -91,14 +93,17 @@ std::vector<Vec3> source_grid(const TetMesh& mesh, const SourceGridOptions& opti
     if (!(options.spacing_mm > 0) || !std::isfinite(options.spacing_mm))
         throw InputError(concat("source grid: spacing ", options.spacing_mm, " mm; give a positive length"));
     if (!(options.min_distance_mm >= 0) || !std::isfinite(options.min_distance_mm))
-        throw InputError(concat("source grid: distance ", options.min_distance_mm, " mm; give a length of 0 mm or more"));
+        throw InputError(
+            concat("source grid: distance ", options.min_distance_mm, " mm; give a length of 0 mm or more"));
     if (options.tissues.empty()) throw InputError("source grid: no tissue chosen; name the tissues the sources lie in");
-    Vec3 low{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    Vec3 low{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+             std::numeric_limits<double>::infinity()};
     Vec3 high = -1.0 * low;
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
         if (!chosen(options.tissues, mesh.tet_labels[t])) continue;
         for (const std::uint32_t v : mesh.tets[t])
-            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], mesh.vertices[v][a]), high[a] = std::max(high[a], mesh.vertices[v][a]);
+            for (int a = 0; a < 3; ++a)
+                low[a] = std::min(low[a], mesh.vertices[v][a]), high[a] = std::max(high[a], mesh.vertices[v][a]);
     }
     for (const Label label : options.tissues)
         if (std::find(mesh.tet_labels.begin(), mesh.tet_labels.end(), label) == mesh.tet_labels.end())
@@ -111,17 +116,20 @@ std::vector<Vec3> source_grid(const TetMesh& mesh, const SourceGridOptions& opti
         candidates *= static_cast<double>(std::max<std::int64_t>(0, last[a] - first[a] + 1));
     }
     if (candidates > static_cast<double>(options.max_points))
-        throw InputError(concat("source grid: ", candidates, " grid points at ", options.spacing_mm, " mm in the tissues' box, ",
-                                "more than ", options.max_points, "; choose a larger spacing"));
+        throw InputError(concat("source grid: ", candidates, " grid points at ", options.spacing_mm,
+                                " mm in the tissues' box, ", "more than ", options.max_points,
+                                "; choose a larger spacing"));
     std::vector<Vec3> points;
     for (std::int64_t z = first[2]; z <= last[2]; ++z)
         for (std::int64_t y = first[1]; y <= last[1]; ++y)
             for (std::int64_t x = first[0]; x <= last[0]; ++x)
-                points.push_back(options.spacing_mm * Vec3{static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
+                points.push_back(options.spacing_mm *
+                                 Vec3{static_cast<double>(x), static_cast<double>(y), static_cast<double>(z)});
     const std::vector<std::uint32_t> tets = detail::locate_points(mesh, points);
     std::vector<Vec3> inside;
     for (std::size_t p = 0; p < points.size(); ++p)
-        if (tets[p] != detail::outside_mesh && chosen(options.tissues, mesh.tet_labels[tets[p]])) inside.push_back(points[p]);
+        if (tets[p] != detail::outside_mesh && chosen(options.tissues, mesh.tet_labels[tets[p]]))
+            inside.push_back(points[p]);
     if (options.min_distance_mm <= 0) return inside;
     const BoundaryFaces faces(mesh, options.tissues, std::max(options.min_distance_mm, 0.5 * options.spacing_mm));
     std::vector<Vec3> kept;

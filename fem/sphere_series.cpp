@@ -43,18 +43,17 @@ double surface_factor(const LayeredSphere& sphere, int n, double source)
     // r^-(n+1) coefficient being the known source).
     const int last = layers - 1;
     m(size - 1, a_col(last)) = p;
-    if (last > 0)
-        m(size - 1, a_col(last) + 1) = q;
-    else
-        rhs[size - 1] = -q * source;
+    if (last > 0) m(size - 1, a_col(last) + 1) = q;
+    else rhs[size - 1] = -q * source;
     const Eigen::VectorXd x = m.fullPivLu().solve(rhs);
     return x[a_col(last)] + (last > 0 ? x[a_col(last) + 1] : source);
 }
 
 } // namespace
 
-std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
-                                              const std::vector<Vec3>& surface_points_mm, int terms)
+std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm,
+                                              const Vec3& moment_am, const std::vector<Vec3>& surface_points_mm,
+                                              int terms)
 {
     // Frame: z along the dipole position (or along the surface point for a centred dipole), x along the
     // moment's tangential part. The potential is linear in the moment: radial + tangential parts.

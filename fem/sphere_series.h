@@ -13,8 +13,8 @@
 namespace tissuemesh::fem {
 
 struct LayeredSphere {
-    std::vector<double> radii_mm;       ///< increasing; the last is the outer surface
-    std::vector<double> sigma_s_per_m;  ///< conductivity inside radii_mm[0], then of each shell
+    std::vector<double> radii_mm;      ///< increasing; the last is the outer surface
+    std::vector<double> sigma_s_per_m; ///< conductivity inside radii_mm[0], then of each shell
 };
 
 /// Potential (V) at `surface_point_mm` (on the outer sphere, centre at the origin) of the dipole with
@@ -24,8 +24,9 @@ double sphere_surface_potential(const LayeredSphere& sphere, const Vec3& positio
 
 /// The same at many points (one per surface point, in order): the series' radial factors, which do not
 /// depend on the point, are solved for once.
-std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm, const Vec3& moment_am,
-                                              const std::vector<Vec3>& surface_points_mm, int terms = 150);
+std::vector<double> sphere_surface_potentials(const LayeredSphere& sphere, const Vec3& position_mm,
+                                              const Vec3& moment_am, const std::vector<Vec3>& surface_points_mm,
+                                              int terms = 150);
 
 /// How numeric surface potentials agree with analytic ones, both average-referenced: the relative
 /// difference measure RDM (0..2: the distance between the two unit-norm patterns) and the magnitude

@@ -15,7 +15,8 @@ namespace tissuemesh::fem {
 
 TdcsLeadField compute_tdcs_lead_field(const TetMesh& mesh, const Conductivities& conductivities,
                                       const std::vector<Electrode>& electrodes, std::size_t reference,
-                                      const SolverOptions& options, const Progress& progress, TdcsLeadFieldReport* report)
+                                      const SolverOptions& options, const Progress& progress,
+                                      TdcsLeadFieldReport* report)
 {
     if (electrodes.size() < 2)
         throw InputError(concat("tDCS lead field: ", electrodes.size(), " electrode(s); a current needs at least 2"));
@@ -29,7 +30,7 @@ TdcsLeadField compute_tdcs_lead_field(const TetMesh& mesh, const Conductivities&
     const TetMesh& m = renumbered.mesh;
     SparseMatrix stiffness = detail::assemble_local_stiffness(mesh, renumbered, conductivities);
     std::vector<double> fixed(m.vertex_count(), std::nan(""));
-    fixed[renumbered.local[0]] = 0;  // one node at 0 V, as solve_potential() holds; each row gets zero mean at the end
+    fixed[renumbered.local[0]] = 0; // one node at 0 V, as solve_potential() holds; each row gets zero mean at the end
     const detail::ReducedSystem system = detail::reduce(stiffness, {}, fixed, m.vertices);
     stiffness = SparseMatrix();
     const OuterBoundary boundary = outer_boundary(m);
@@ -76,7 +77,8 @@ std::vector<double> montage_potential(const TdcsLeadField& lead_field, const std
 {
     const std::size_t count = lead_field.electrodes.size() + 1;
     if (currents_a.size() != count)
-        throw InputError(concat("montage: ", currents_a.size(), " currents for a lead field of ", count, " electrodes"));
+        throw InputError(
+            concat("montage: ", currents_a.size(), " currents for a lead field of ", count, " electrodes"));
     double sum = 0, magnitude = 0;
     for (const double current : currents_a) {
         if (!std::isfinite(current)) throw InputError("montage: a current is not finite");
@@ -84,11 +86,12 @@ std::vector<double> montage_potential(const TdcsLeadField& lead_field, const std
         magnitude += std::abs(current);
     }
     if (std::abs(sum) > 1e-9 * magnitude)
-        throw InputError(concat("montage: the currents sum to ", sum, " A; what goes in must come out: make them ",
-                                "sum to zero"));
+        throw InputError(
+            concat("montage: the currents sum to ", sum, " A; what goes in must come out: make them ", "sum to zero"));
     Eigen::RowVectorXd potential = Eigen::RowVectorXd::Zero(lead_field.potentials_v_per_a.cols());
     for (std::size_t k = 0; k < lead_field.electrodes.size(); ++k)
-        potential += currents_a[lead_field.electrodes[k]] * lead_field.potentials_v_per_a.row(static_cast<Eigen::Index>(k));
+        potential +=
+            currents_a[lead_field.electrodes[k]] * lead_field.potentials_v_per_a.row(static_cast<Eigen::Index>(k));
     return {potential.data(), potential.data() + potential.size()};
 }
 

@@ -22,16 +22,16 @@ namespace tissuemesh::fem {
 /// `electrodes[k]` and -1 A out of the reference, each spread over its patch as solve_potential() spreads a
 /// current electrode's (uniform normal current density).
 struct TdcsLeadField {
-    std::size_t reference = 0;          ///< the reference electrode (index into the input)
-    std::vector<std::size_t> electrodes;  ///< the others, in input order: one row each
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> potentials_v_per_a;  ///< #rows by #V
+    std::size_t reference = 0;           ///< the reference electrode (index into the input)
+    std::vector<std::size_t> electrodes; ///< the others, in input order: one row each
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> potentials_v_per_a; ///< #rows by #V
 };
 
 struct TdcsLeadFieldReport {
     ColumnsReport solver;
-    std::vector<std::size_t> electrode_nodes;  ///< boundary nodes per electrode patch (input order)
-    std::vector<double> electrode_area_mm2;    ///< patch area per electrode
-    double assembly_seconds = 0;               ///< renumbering, stiffness matrix, reduction, patches
+    std::vector<std::size_t> electrode_nodes; ///< boundary nodes per electrode patch (input order)
+    std::vector<double> electrode_area_mm2;   ///< patch area per electrode
+    double assembly_seconds = 0;              ///< renumbering, stiffness matrix, reduction, patches
 };
 
 /// The lead field of the electrode patches `electrodes` (centre, radius, name; mode and current are not used)

@@ -19,7 +19,7 @@ public:
     std::uint32_t find(std::uint32_t v)
     {
         while (parent_[v] != v) {
-            parent_[v] = parent_[parent_[v]];  // path halving
+            parent_[v] = parent_[parent_[v]]; // path halving
             v = parent_[v];
         }
         return v;
@@ -43,7 +43,7 @@ std::vector<std::array<int, 3>> backward_offsets(Connectivity connectivity)
     for (int dk = -1; dk <= 0; ++dk)
         for (int dj = -1; dj <= 1; ++dj)
             for (int di = -1; di <= 1; ++di) {
-                if (dk == 0 && (dj > 0 || (dj == 0 && di >= 0))) continue;  // not before the voxel
+                if (dk == 0 && (dj > 0 || (dj == 0 && di >= 0))) continue; // not before the voxel
                 if (connectivity == Connectivity::faces6 && std::abs(di) + std::abs(dj) + std::abs(dk) != 1) continue;
                 offsets.push_back({di, dj, dk});
             }
@@ -89,7 +89,7 @@ Components find_components(const LabelImage& image, Connectivity connectivity)
                     result.size.push_back(0);
                     result.touches_border.push_back(false);
                 } else {
-                    id = result.component[root];  // the root precedes v in memory order
+                    id = result.component[root]; // the root precedes v in memory order
                 }
                 result.component[v] = id;
                 ++result.size[id];

@@ -13,10 +13,10 @@ enum class Connectivity { faces6 = 6, full26 = 26 };
 
 /// Components of an image: every voxel belongs to exactly one, and all its voxels share a label.
 struct Components {
-    std::vector<std::uint32_t> component;  ///< #voxels: component id of each voxel (ids in scan order)
-    std::vector<Label> label;              ///< #components: the label of each component
-    std::vector<std::size_t> size;         ///< #components: voxel count of each component
-    std::vector<bool> touches_border;      ///< #components: whether a voxel lies on the image border
+    std::vector<std::uint32_t> component; ///< #voxels: component id of each voxel (ids in scan order)
+    std::vector<Label> label;             ///< #components: the label of each component
+    std::vector<std::size_t> size;        ///< #components: voxel count of each component
+    std::vector<bool> touches_border;     ///< #components: whether a voxel lies on the image border
 
     std::size_t count() const { return label.size(); }
 };

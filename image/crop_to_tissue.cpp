@@ -37,15 +37,15 @@ PrepReport crop_to_tissue(LabelImage& image, const CropOptions& options)
                 const Index3 source{start[0] + static_cast<std::int64_t>(i), start[1] + static_cast<std::int64_t>(j),
                                     start[2] + static_cast<std::int64_t>(k)};
                 if (image.contains(source))
-                    cropped.at(i, j, k) = image.at(static_cast<std::size_t>(source[0]),
-                                                   static_cast<std::size_t>(source[1]),
-                                                   static_cast<std::size_t>(source[2]));
+                    cropped.at(i, j, k) =
+                        image.at(static_cast<std::size_t>(source[0]), static_cast<std::size_t>(source[1]),
+                                 static_cast<std::size_t>(source[2]));
             }
     cropped.names() = image.names();
     image = std::move(cropped);
-    report.detail = concat(report.dims_before[0], "x", report.dims_before[1], "x", report.dims_before[2], " -> ",
-                           dims[0], "x", dims[1], "x", dims[2], " voxels (tissue box padded by ", options.pad_voxels,
-                           ")");
+    report.detail =
+        concat(report.dims_before[0], "x", report.dims_before[1], "x", report.dims_before[2], " -> ", dims[0], "x",
+               dims[1], "x", dims[2], " voxels (tissue box padded by ", options.pad_voxels, ")");
     finish_report(report, image);
     return report;
 }

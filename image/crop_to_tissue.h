@@ -8,8 +8,8 @@ namespace tissuemesh::image {
 
 /// Options of crop_to_tissue().
 struct CropOptions {
-    std::size_t pad_voxels = 2;   ///< background voxels kept (or added) around the tissue on every side
-    Label background = 0;         ///< the label that is not tissue; padding uses it
+    std::size_t pad_voxels = 2; ///< background voxels kept (or added) around the tissue on every side
+    Label background = 0;       ///< the label that is not tissue; padding uses it
 };
 
 /// Replaces the image by the bounding box of its non-background voxels grown by options.pad_voxels on

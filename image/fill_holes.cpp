@@ -20,11 +20,11 @@ PrepReport fill_holes(LabelImage& image, const FillHolesOptions& options)
     std::vector<std::uint32_t> filled;
     std::vector<Label> targets;
     for (std::size_t n = 0; n < holes.size(); ++n) {
-        const bool allowed = options.tissues.empty() ||
-                             std::all_of(surroundings[n].begin(), surroundings[n].end(), [&](const auto& entry) {
-                                 return std::find(options.tissues.begin(), options.tissues.end(), entry.first) !=
-                                        options.tissues.end();
-                             });
+        const bool allowed =
+            options.tissues.empty() ||
+            std::all_of(surroundings[n].begin(), surroundings[n].end(), [&](const auto& entry) {
+                return std::find(options.tissues.begin(), options.tissues.end(), entry.first) != options.tissues.end();
+            });
         if (!allowed || surroundings[n].empty()) continue;
         filled.push_back(holes[n]);
         targets.push_back(detail::most_common(surroundings[n], options.background));

@@ -10,8 +10,8 @@ namespace tissuemesh::image {
 
 /// Options of fill_holes().
 struct FillHolesOptions {
-    Label background = 0;         ///< the label whose enclosed pieces are holes
-    std::vector<Label> tissues;   ///< fill only holes surrounded by these tissues alone (empty: any)
+    Label background = 0;       ///< the label whose enclosed pieces are holes
+    std::vector<Label> tissues; ///< fill only holes surrounded by these tissues alone (empty: any)
 };
 
 /// A hole is a face-connected (6) piece of background that does not reach the image border. Each hole

@@ -12,8 +12,8 @@ PrepReport keep_largest_component(LabelImage& image, const std::vector<Label>& t
     PrepReport report = begin_report("keep-largest", image);
     for (const Label label : tissues)
         if (!report.voxels_before.contains(label))
-            throw InputError(concat("keep-largest: label ", label,
-                                    " is not in the image; check the labels with tm-info"));
+            throw InputError(
+                concat("keep-largest: label ", label, " is not in the image; check the labels with tm-info"));
     const Components components = find_components(image, connectivity);
     std::map<Label, std::uint32_t> largest;
     for (std::uint32_t c = 0; c < components.count(); ++c) {

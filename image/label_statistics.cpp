@@ -18,7 +18,9 @@ std::string orientation_code(const Mat3& direction)
         for (int row = 1; row < 3; ++row)
             if (std::abs(direction[3 * row + column]) > std::abs(direction[3 * axis + column])) axis = row;
         const bool positive = direction[3 * axis + column] > 0;
-        code += "RAS"[axis] == 'R' ? (positive ? 'R' : 'L') : axis == 1 ? (positive ? 'A' : 'P') : (positive ? 'S' : 'I');
+        code += "RAS"[axis] == 'R' ? (positive ? 'R' : 'L')
+                : axis == 1        ? (positive ? 'A' : 'P')
+                                   : (positive ? 'S' : 'I');
     }
     return code;
 }
@@ -83,10 +85,12 @@ void add_warnings(LabelSummary& s, const LabelStatisticsOptions& options)
 {
     if (s.label == options.background) return;
     if (s.border_voxels > 0)
-        s.warnings.push_back(concat(s.name, ": ", s.border_voxels, " voxels on the image border; the mesh would "
+        s.warnings.push_back(concat(s.name, ": ", s.border_voxels,
+                                    " voxels on the image border; the mesh would "
                                     "be cut open there. Pad the image: tm-prep --crop-pad 2"));
     if (s.thin_voxels > 0)
-        s.warnings.push_back(concat(s.name, ": ", s.thin_voxels, " voxels are one voxel thin (other tissues on "
+        s.warnings.push_back(concat(s.name, ": ", s.thin_voxels,
+                                    " voxels are one voxel thin (other tissues on "
                                     "both sides along an axis); surfaces may touch there. Resample finer "
                                     "(tm-prep --spacing-mm) or accept the contact"));
     if (s.islands > 0)
@@ -97,8 +101,7 @@ void add_warnings(LabelSummary& s, const LabelStatisticsOptions& options)
 
 } // namespace
 
-LabelStatistics analyze_labels(const LabelImage& image, const LabelStatisticsOptions& options,
-                               const Progress& progress)
+LabelStatistics analyze_labels(const LabelImage& image, const LabelStatisticsOptions& options, const Progress& progress)
 {
     if (image.empty()) throw InputError("label image is empty; nothing to analyse");
     LabelStatistics stats;

@@ -137,8 +137,8 @@ std::vector<std::pair<std::string, std::string>> phantom_names()
 
 Phantom make_phantom(const std::string& name, const PhantomOptions& options)
 {
-    const auto entry = std::find_if(std::begin(catalogue), std::end(catalogue),
-                                    [&](const Entry& e) { return name == e.name; });
+    const auto entry =
+        std::find_if(std::begin(catalogue), std::end(catalogue), [&](const Entry& e) { return name == e.name; });
     if (entry == std::end(catalogue)) {
         std::string known;
         for (const Entry& e : catalogue) known += std::string(known.empty() ? "" : ", ") + e.name;
@@ -146,8 +146,8 @@ Phantom make_phantom(const std::string& name, const PhantomOptions& options)
     }
     const double h = options.voxel_mm;
     if (!std::isfinite(h) || h <= 0 || h > max_voxel_mm)
-        throw InputError(concat("phantom ", name, ": voxel size ", format_mm(h), " mm; it must be in (0, ",
-                                max_voxel_mm, "] mm"));
+        throw InputError(
+            concat("phantom ", name, ": voxel size ", format_mm(h), " mm; it must be in (0, ", max_voxel_mm, "] mm"));
     // 92 mm spheres need 2 * 92 / h voxels per axis: refuse grids beyond 2^31 voxels before allocating.
     if (std::pow(2 * 100 / h, 3) > 2147483648.0)
         throw InputError(concat("phantom ", name, ": voxel size ", format_mm(h),
@@ -162,8 +162,8 @@ Phantom make_phantom(const std::string& name, const PhantomOptions& options)
     for (std::size_t k = 0; k < dims[2]; ++k)
         for (std::size_t j = 0; j < dims[1]; ++j)
             for (std::size_t i = 0; i < dims[0]; ++i)
-                image.at(i, j, k) = model.label_at(image.index_to_world(
-                    {static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)}));
+                image.at(i, j, k) = model.label_at(
+                    image.index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)}));
     image.names() = model.names;
     return {std::move(image), PhantomGeometry(std::move(setup.model))};
 }

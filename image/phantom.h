@@ -54,7 +54,7 @@ private:
 
 /// Options of make_phantom(). Lengths in mm.
 struct PhantomOptions {
-    double voxel_mm = 1.0;   ///< voxel size (mm) along x and y; along z too except for "ellipsoids" (1.5x)
+    double voxel_mm = 1.0; ///< voxel size (mm) along x and y; along z too except for "ellipsoids" (1.5x)
 };
 
 /// A phantom image and the exact geometry it samples: image.at(i,j,k) ==

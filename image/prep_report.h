@@ -10,13 +10,13 @@
 namespace tissuemesh::image {
 
 struct PrepReport {
-    std::string step;                               ///< "relabel", "crop-pad", "resample", ...
-    std::string detail;                             ///< one line: what was done, in the user's terms
+    std::string step;   ///< "relabel", "crop-pad", "resample", ...
+    std::string detail; ///< one line: what was done, in the user's terms
     Dims dims_before{0, 0, 0};
     Dims dims_after{0, 0, 0};
-    std::map<Label, std::size_t> voxels_before;     ///< voxel count per label before the step
-    std::map<Label, std::size_t> voxels_after;      ///< ... and after it
-    std::size_t changed_voxels = 0;                 ///< voxels whose label changed (same grid only; 0 otherwise)
+    std::map<Label, std::size_t> voxels_before; ///< voxel count per label before the step
+    std::map<Label, std::size_t> voxels_after;  ///< ... and after it
+    std::size_t changed_voxels = 0;             ///< voxels whose label changed (same grid only; 0 otherwise)
 };
 
 /// Starts a report: step name, dims and counts of `image` before the step.

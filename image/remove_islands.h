@@ -9,10 +9,10 @@ namespace tissuemesh::image {
 
 /// Options of remove_islands().
 struct RemoveIslandsOptions {
-    std::size_t min_voxels = 10;                        ///< components under this many voxels are removed
-    Connectivity connectivity = Connectivity::full26;   ///< what joins voxels into one component (26: a layer
-                                                        ///< touching only through edges stays whole)
-    Label background = 0;                               ///< never removed (its small pieces are holes: fill_holes())
+    std::size_t min_voxels = 10;                      ///< components under this many voxels are removed
+    Connectivity connectivity = Connectivity::full26; ///< what joins voxels into one component (26: a layer
+                                                      ///< touching only through edges stays whole)
+    Label background = 0;                             ///< never removed (its small pieces are holes: fill_holes())
 };
 
 /// Gives every tissue component under options.min_voxels voxels the label it shares most faces with,

@@ -12,7 +12,7 @@ namespace {
 /// of the new cell. Cells are measured in old continuous indices: old voxel i spans [i - 0.5, i + 0.5].
 struct AxisOverlaps {
     std::vector<std::vector<std::pair<std::size_t, double>>> cells;
-    std::vector<std::size_t> nearest;  ///< the old voxel containing each new centre
+    std::vector<std::size_t> nearest; ///< the old voxel containing each new centre
 };
 
 AxisOverlaps axis_overlaps(std::size_t old_count, std::size_t new_count, double ratio)
@@ -72,7 +72,7 @@ PrepReport resample_labels(LabelImage& image, const ResampleOptions& options, co
                            Label background)
 {
     PrepReport report = begin_report("resample", image);
-    const Dims old_dims = image.dims();  // a copy: the image is replaced below
+    const Dims old_dims = image.dims(); // a copy: the image is replaced below
     Dims dims{};
     Vec3 ratio{}, first_centre{};
     double count = 1;

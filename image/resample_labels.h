@@ -8,13 +8,13 @@
 namespace tissuemesh::image {
 
 enum class ResampleMethod {
-    majority,  ///< each new voxel takes the label covering most of its cell (exact overlap volumes)
-    nearest,   ///< each new voxel takes the label of the old voxel containing its centre
+    majority, ///< each new voxel takes the label covering most of its cell (exact overlap volumes)
+    nearest,  ///< each new voxel takes the label of the old voxel containing its centre
 };
 
 /// Options of resample_labels().
 struct ResampleOptions {
-    Vec3 spacing_mm{1, 1, 1};                    ///< new voxel size along i, j, k (mm), each > 0
+    Vec3 spacing_mm{1, 1, 1}; ///< new voxel size along i, j, k (mm), each > 0
     ResampleMethod method = ResampleMethod::majority;
 };
 

@@ -81,7 +81,8 @@ std::vector<std::size_t> parse_shape(std::string_view text, const Dictionary& di
             value = value * 10 + static_cast<std::size_t>(text[at++] - '0');
             ++digits;
         }
-        if (digits == 0) dictionary.fail(concat("the shape ", detail::printable(std::string(text)), " is not a tuple of sizes"));
+        if (digits == 0)
+            dictionary.fail(concat("the shape ", detail::printable(std::string(text)), " is not a tuple of sizes"));
         shape.push_back(value);
     }
     if (shape.empty() || shape.size() > 2)
@@ -135,13 +136,16 @@ NpyMatrix read_npy(const std::filesystem::path& path)
     } else {
         throw IoError(concat(file, ": .npy format version ", major, " is not 1, 2 or 3"));
     }
-    if (length > max_header_bytes) throw IoError(concat(file, ": a .npy header of ", length, " bytes; this is not a matrix file"));
+    if (length > max_header_bytes)
+        throw IoError(concat(file, ": a .npy header of ", length, " bytes; this is not a matrix file"));
     std::string header(length, '\0');
-    if (!in.read(header.data(), static_cast<std::streamsize>(length))) throw IoError(concat(file, ": truncated .npy header"));
+    if (!in.read(header.data(), static_cast<std::streamsize>(length)))
+        throw IoError(concat(file, ": truncated .npy header"));
     const Dictionary dictionary(header, file);
     const std::string_view descr = dictionary.value_of("descr");
     if (descr != "'<f8'" && descr != "'float64'")
-        dictionary.fail(concat("the values are ", detail::printable(std::string(descr)), ", not little-endian float64 ('<f8')"));
+        dictionary.fail(
+            concat("the values are ", detail::printable(std::string(descr)), ", not little-endian float64 ('<f8')"));
     const std::string_view order = dictionary.value_of("fortran_order");
     if (order != "False" && order != "True") dictionary.fail("fortran_order is neither True nor False");
     const std::vector<std::size_t> shape = parse_shape(dictionary.value_of("shape"), dictionary);
@@ -151,18 +155,20 @@ NpyMatrix read_npy(const std::filesystem::path& path)
     std::error_code error;
     const std::uintmax_t size = std::filesystem::file_size(path, error);
     const std::size_t data_bytes = size - std::min<std::uintmax_t>(size, preamble_size + length);
-    std::size_t count = 0, needed = 0;  // rows * columns * 8 without overflow
-    if (error || __builtin_mul_overflow(matrix.rows, matrix.columns, &count) || __builtin_mul_overflow(count, 8, &needed) ||
-        needed != data_bytes)
-        throw IoError(concat(file, ": the header says ", matrix.rows, " x ", matrix.columns, " values but the file holds ",
-                             data_bytes, " bytes of data; the file is truncated or not this matrix"));
+    std::size_t count = 0, needed = 0; // rows * columns * 8 without overflow
+    if (error || __builtin_mul_overflow(matrix.rows, matrix.columns, &count) ||
+        __builtin_mul_overflow(count, 8, &needed) || needed != data_bytes)
+        throw IoError(concat(file, ": the header says ", matrix.rows, " x ", matrix.columns,
+                             " values but the file holds ", data_bytes,
+                             " bytes of data; the file is truncated or not this matrix"));
     matrix.values.resize(matrix.rows * matrix.columns);
     if (!in.read(reinterpret_cast<char*>(matrix.values.data()), static_cast<std::streamsize>(data_bytes)))
         throw IoError(concat(file, ": truncated .npy data"));
-    if (order == "True" && matrix.columns > 1) {  // column-major on disk: transpose into C order
+    if (order == "True" && matrix.columns > 1) { // column-major on disk: transpose into C order
         std::vector<double> c_order(matrix.values.size());
         for (std::size_t r = 0; r < matrix.rows; ++r)
-            for (std::size_t c = 0; c < matrix.columns; ++c) c_order[r * matrix.columns + c] = matrix.values[c * matrix.rows + r];
+            for (std::size_t c = 0; c < matrix.columns; ++c)
+                c_order[r * matrix.columns + c] = matrix.values[c * matrix.rows + r];
         matrix.values = std::move(c_order);
     }
     return matrix;

@@ -64,7 +64,8 @@ json parse_table(const std::string& file, const std::string& text)
         if (event == json::parse_event_t::key && depth == 1 && repeated.empty()) {
             const std::string key = parsed.get<std::string>();
             const auto [first, inserted] = seen.emplace(normalized(key), key);
-            if (!inserted) repeated = concat("\"", detail::printable(first->second), "\" and \"", detail::printable(key), "\"");
+            if (!inserted)
+                repeated = concat("\"", detail::printable(first->second), "\" and \"", detail::printable(key), "\"");
         }
         return true;
     };
@@ -129,7 +130,8 @@ std::map<std::string, Mat3> read_conductivity_table(const fs::path& path)
     const json document = parse_table(file, text);
     std::map<std::string, Mat3> table;
     for (const auto& [key, value] : document.items()) {
-        if (key.empty()) throw InputError(concat(file, ": a key is empty; use a tissue name or label number, as in ", example));
+        if (key.empty())
+            throw InputError(concat(file, ": a key is empty; use a tissue name or label number, as in ", example));
         const std::string shown = concat("\"", detail::printable(key), "\"");
         if (value.is_number()) {
             const double sigma = value.get<double>();
@@ -140,8 +142,10 @@ std::map<std::string, Mat3> read_conductivity_table(const fs::path& path)
         }
         Mat3 tensor{};
         if (!read_tensor(value, tensor))
-            throw InputError(concat(file, ": ", shown, " is neither a number (S/m) nor a tensor of 9 finite numbers (3 rows "
-                                    "of 3, S/m): found JSON ", value.type_name()));
+            throw InputError(concat(file, ": ", shown,
+                                    " is neither a number (S/m) nor a tensor of 9 finite numbers (3 rows "
+                                    "of 3, S/m): found JSON ",
+                                    value.type_name()));
         table[key] = tensor;
     }
     return table;

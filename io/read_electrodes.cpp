@@ -24,23 +24,18 @@ std::vector<ElectrodeRow> read_rows(const std::filesystem::path& path, bool curr
         const double radius = row.numbers[3];
         if (!(radius > 0))
             throw InputError(concat(path.string(), " line ", row.line, ": radius_mm is ", radius,
-                                 "; a patch radius is a positive length in mm (e.g. 12.5 for a 25 mm disc)"));
+                                    "; a patch radius is a positive length in mm (e.g. 12.5 for a 25 mm disc)"));
         const double current = std::isnan(row.numbers[4]) ? 0.0 : row.numbers[4];
-        electrodes.push_back({{row.numbers[0], row.numbers[1], row.numbers[2]}, radius, current, std::move(row.text), row.line});
+        electrodes.push_back(
+            {{row.numbers[0], row.numbers[1], row.numbers[2]}, radius, current, std::move(row.text), row.line});
     }
     return electrodes;
 }
 
 } // namespace
 
-std::vector<ElectrodeRow> read_electrodes(const std::filesystem::path& path)
-{
-    return read_rows(path, true);
-}
+std::vector<ElectrodeRow> read_electrodes(const std::filesystem::path& path) { return read_rows(path, true); }
 
-std::vector<ElectrodeRow> read_electrode_patches(const std::filesystem::path& path)
-{
-    return read_rows(path, false);
-}
+std::vector<ElectrodeRow> read_electrode_patches(const std::filesystem::path& path) { return read_rows(path, false); }
 
 } // namespace tissuemesh::io

@@ -12,11 +12,11 @@ namespace tissuemesh::io {
 
 /// One electrode of a montage.
 struct ElectrodeRow {
-    Vec3 centre_mm{};      ///< patch centre, world mm (the mesh's coordinates; need not lie on the surface)
-    double radius_mm = 0;  ///< patch radius, mm, > 0
-    double current_a = 0;  ///< current into the body, A (negative: out of it; 0: a passive patch)
-    std::string name;      ///< "C3"; empty when the file has no name column
-    std::size_t line = 0;  ///< 1-based line in the file, for messages
+    Vec3 centre_mm{};     ///< patch centre, world mm (the mesh's coordinates; need not lie on the surface)
+    double radius_mm = 0; ///< patch radius, mm, > 0
+    double current_a = 0; ///< current into the body, A (negative: out of it; 0: a passive patch)
+    std::string name;     ///< "C3"; empty when the file has no name column
+    std::size_t line = 0; ///< 1-based line in the file, for messages
 };
 
 /// The most electrodes a montage may hold: far more than any cap (HD-EEG has 256); each costs the

@@ -17,7 +17,8 @@ GreyImage read_grey_image(const std::filesystem::path& path)
 {
     const std::string name = path.string();
     require_readable_file(path);
-    if (std::filesystem::file_size(path) == 0) throw IoError(concat(name, ": the file is empty; write or copy it again"));
+    if (std::filesystem::file_size(path) == 0)
+        throw IoError(concat(name, ": the file is empty; write or copy it again"));
     const std::string extension = full_extension(path);
     if (extension == ".nii" || extension == ".nii.gz") {
         const detail::NiftiHeader header = detail::check_nifti_header(path);
@@ -29,8 +30,9 @@ GreyImage read_grey_image(const std::filesystem::path& path)
     if (extension == ".nrrd" || extension == ".nhdr" || extension == ".mha" || extension == ".mhd")
         return detail::read_itk_grey_image(path, detail::text_header_payload_bound(path));
     if (extension != ".inr" && extension != ".inr.gz")
-        throw IoError(concat(name, ": unknown grey image format '", extension, "'; use NIfTI-1 (.nii, .nii.gz), "
-                                   "NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd) or Inrimage (.inr, .inr.gz)"));
+        throw IoError(concat(name, ": unknown grey image format '", extension,
+                             "'; use NIfTI-1 (.nii, .nii.gz), "
+                             "NRRD (.nrrd, .nhdr), MetaImage (.mha, .mhd) or Inrimage (.inr, .inr.gz)"));
     const detail::InrimageLayout layout = detail::read_inrimage_layout(path);
     const std::uint64_t needed = detail::checked_voxel_bytes(name, layout.dims, detail::voxel_type_size(layout.type));
     const std::uint64_t size = detail::uncompressed_size(path);

@@ -12,7 +12,7 @@ namespace tissuemesh::io {
 /// origin, direction and index <-> world as in core/label_image.h); its labels are all 0.
 struct GreyImage {
     LabelImage grid;
-    std::vector<float> values;  ///< grid.voxel_count() values, x fastest
+    std::vector<float> values; ///< grid.voxel_count() values, x fastest
 };
 
 /// Reads a grey-level image of any scalar voxel type (integers are converted to float). Formats: NIfTI-1

@@ -35,7 +35,8 @@ TissueNames read_tissue_names(const fs::path& path)
     const std::string name = path.string();
     constexpr std::uintmax_t max_bytes = 16u << 20;
     if (fs::file_size(path) > max_bytes)
-        throw IoError(concat(name, ": ", fs::file_size(path), " bytes is too large for a tissue-name table (at most 16 MiB); "
+        throw IoError(concat(name, ": ", fs::file_size(path),
+                             " bytes is too large for a tissue-name table (at most 16 MiB); "
                              "check that --labels names the table, not an image"));
     const std::string text = read_file_bytes(path);
     const std::size_t first = text.find_first_not_of(" \t\r\n");
@@ -44,13 +45,15 @@ TissueNames read_tissue_names(const fs::path& path)
     const nlohmann::json document = nlohmann::json::parse(text, nullptr, false);
     if (document.is_discarded())
         throw IoError(concat(name, ": not valid JSON; check the syntax (quotes, commas, braces)"));
-    if (document.is_object() && document.contains("labels")) return detail::parse_tissue_names(name, document["labels"]);
+    if (document.is_object() && document.contains("labels"))
+        return detail::parse_tissue_names(name, document["labels"]);
     return detail::parse_tissue_names(name, document);
 }
 
 std::vector<std::string> label_image_extensions()
 {
-    return {".nii", ".nii.gz", ".nrrd", ".nhdr", ".seg.nrrd", ".mha", ".mhd", ".inr", ".inr.gz", ".mgz", ".mgh", ".json"};
+    return {".nii", ".nii.gz", ".nrrd",   ".nhdr", ".seg.nrrd", ".mha",
+            ".mhd", ".inr",    ".inr.gz", ".mgz",  ".mgh",      ".json"};
 }
 
 LabelImage read_label_image(const fs::path& path, const ReadImageOptions& options)
@@ -63,8 +66,9 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     if (extension == ".nii" || extension == ".nii.gz") {
         const detail::NiftiHeader header = detail::check_nifti_header(path);
         if (header.version == 1) detail::require_finite_float_voxels(path, header);
-        image = header.version == 2 ? detail::read_nifti2(path, header, options.before_voxels)
-                                    : detail::read_itk_label_image(path, header.max_buffer_bytes, options.before_voxels);
+        image = header.version == 2
+                    ? detail::read_nifti2(path, header, options.before_voxels)
+                    : detail::read_itk_label_image(path, header.max_buffer_bytes, options.before_voxels);
     } else if (extension == ".nrrd" || extension == ".nhdr" || extension == ".seg.nrrd" || extension == ".mha" ||
                extension == ".mhd") {
         image = detail::read_itk_label_image(path, detail::text_header_payload_bound(path), options.before_voxels);

@@ -17,7 +17,8 @@ namespace tissuemesh::io {
 using BeforeVoxels = std::function<void(const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel)>;
 
 struct ReadImageOptions {
-    std::filesystem::path names_json;  ///< optional table of names (any format read_tissue_names() reads); overrides the file's
+    std::filesystem::path
+        names_json; ///< optional table of names (any format read_tissue_names() reads); overrides the file's
     /// Optional: called once the header is checked (dimensions, spacing, and that the file holds the voxels),
     /// before any voxel is allocated, with the dimensions, the spacing (mm) and the bytes per voxel of the
     /// file's type. It may throw to refuse the image: tools refuse images that need more memory than they

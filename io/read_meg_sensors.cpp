@@ -25,7 +25,8 @@ std::vector<MegSensorRow> read_meg_sensors(const std::filesystem::path& path)
         sensor.normal = (1 / length) * sensor.normal;
         const int given = !std::isnan(v[6]) + !std::isnan(v[7]) + !std::isnan(v[8]);
         if (given != 0 && given != 3)
-            throw IoError(concat(path.string(), " line ", row.line, ": ", given, " of the second coil's x2,y2,z2 given; ",
+            throw IoError(concat(path.string(), " line ", row.line, ": ", given,
+                                 " of the second coil's x2,y2,z2 given; ",
                                  "give all three for a gradiometer or none for a magnetometer"));
         if (given == 3) {
             sensor.second_coil_mm = Vec3{v[6], v[7], v[8]};

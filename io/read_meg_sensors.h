@@ -14,11 +14,11 @@ namespace tissuemesh::io {
 /// One MEG sensor: a magnetometer measures B . normal at its position (T); a gradiometer measures the
 /// difference of two such coils with the same normal, B(position) . normal - B(second_coil) . normal (T).
 struct MegSensorRow {
-    Vec3 position_mm{};                ///< world mm, outside the head
-    Vec3 normal{};                     ///< unit vector (normalised here)
-    std::optional<Vec3> second_coil_mm;  ///< a gradiometer's second coil, world mm; none for a magnetometer
-    std::string name;                  ///< empty when the file has no name column
-    std::size_t line = 0;              ///< 1-based line in the file, for messages
+    Vec3 position_mm{};                 ///< world mm, outside the head
+    Vec3 normal{};                      ///< unit vector (normalised here)
+    std::optional<Vec3> second_coil_mm; ///< a gradiometer's second coil, world mm; none for a magnetometer
+    std::string name;                   ///< empty when the file has no name column
+    std::size_t line = 0;               ///< 1-based line in the file, for messages
 };
 
 /// The most sensors a file may hold (whole-head systems have about 300).

@@ -13,10 +13,10 @@ namespace tissuemesh::io {
 
 /// One row of a source file.
 struct SourceRow {
-    Vec3 position_mm{};                 ///< world mm (the mesh's coordinates)
-    std::optional<Vec3> orientation;    ///< unit vector when the file fixes orientations (normalised here)
-    std::string name;                   ///< empty when the file has no name column
-    std::size_t line = 0;               ///< 1-based line in the file, for messages
+    Vec3 position_mm{};              ///< world mm (the mesh's coordinates)
+    std::optional<Vec3> orientation; ///< unit vector when the file fixes orientations (normalised here)
+    std::string name;                ///< empty when the file has no name column
+    std::size_t line = 0;            ///< 1-based line in the file, for messages
 };
 
 /// The most sources a file may hold: a 2 mm grid in the grey matter of a head has about 50 000; each costs

@@ -13,10 +13,10 @@ namespace tissuemesh::io {
 
 /// A .vtu as read: the mesh and its named arrays (the label array excepted).
 struct VtuContent {
-    TetMesh mesh;                        ///< tets positively oriented (a flipped tet's vertices swapped), no faces
-    std::vector<VtuArray> point_arrays;  ///< #points x components each, in file order
-    std::vector<VtuArray> cell_arrays;   ///< #tets x components each, in file order
-    std::string label_array;             ///< the cell array the tet labels came from ("" when none: labels 0)
+    TetMesh mesh;                       ///< tets positively oriented (a flipped tet's vertices swapped), no faces
+    std::vector<VtuArray> point_arrays; ///< #points x components each, in file order
+    std::vector<VtuArray> cell_arrays;  ///< #tets x components each, in file order
+    std::string label_array;            ///< the cell array the tet labels came from ("" when none: labels 0)
 
     /// The point or cell array named `name`, or null.
     const VtuArray* point_array(const std::string& name) const;

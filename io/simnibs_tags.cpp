@@ -84,9 +84,11 @@ SimnibsTagTable read_simnibs_tag_table(const fs::path& path)
         const std::string normal = label_key(key) >= 0 ? std::to_string(label_key(key)) : simnibs_name_key(key);
         if (normal.empty()) throw InputError(concat(name, ": an empty key; keys are tissue names or label numbers"));
         if (!seen.insert(normal).second)
-            throw InputError(concat(name, ": \"", key, "\" is given twice (names are compared in any case, labels by value); keep one"));
+            throw InputError(concat(name, ": \"", key,
+                                    "\" is given twice (names are compared in any case, labels by value); keep one"));
         if (!value.is_number_integer() || value.get<long long>() < 1 || value.get<long long>() > 999)
-            throw InputError(concat(name, ": the tag of \"", key, "\" is ", value.dump(), "; SimNIBS volume tags are integers "
+            throw InputError(concat(name, ": the tag of \"", key, "\" is ", value.dump(),
+                                    "; SimNIBS volume tags are integers "
                                     "1..999 (its surfaces take 1000 + the tag)"));
         table[key] = value.get<int>();
     }
@@ -111,27 +113,34 @@ std::map<Label, int> simnibs_tags(const TetMesh& mesh, const SimnibsTagTable& ta
             }
         if (assigned.count(label)) continue;
         for (const SimnibsTissue& tissue : simnibs_tissues())
-            if (std::find(tissue.accepted_names.begin(), tissue.accepted_names.end(), key) != tissue.accepted_names.end())
+            if (std::find(tissue.accepted_names.begin(), tissue.accepted_names.end(), key) !=
+                tissue.accepted_names.end())
                 assigned[label] = {tissue.tag, false};
     }
     std::string tissues;
-    for (const Label label : labels) tissues += concat(tissues.empty() ? "" : ", ", "\"", name_of(label), "\" (", label, ")");
+    for (const Label label : labels)
+        tissues += concat(tissues.empty() ? "" : ", ", "\"", name_of(label), "\" (", label, ")");
     for (const auto& [entry, tag] : table)
         if (!used_keys.count(entry))
-            throw InputError(concat("the tag table's key \"", entry, "\" names no tissue of the mesh; its tissues are ", tissues));
+            throw InputError(
+                concat("the tag table's key \"", entry, "\" names no tissue of the mesh; its tissues are ", tissues));
     std::string missing;
     for (const Label label : labels)
-        if (!assigned.count(label)) missing += concat(missing.empty() ? "" : ", ", "\"", name_of(label), "\" (label ", label, ")");
+        if (!assigned.count(label))
+            missing += concat(missing.empty() ? "" : ", ", "\"", name_of(label), "\" (label ", label, ")");
     if (!missing.empty())
-        throw InputError(concat("no SimNIBS tag for ", missing, "; SimNIBS knows ", known_names(),
-                                "; map the others in a table, e.g. --tissue-tags tags.json with {\"", name_of(*std::find_if(
-                                    labels.begin(), labels.end(), [&](Label l) { return !assigned.count(l); })), "\": 13}"));
+        throw InputError(
+            concat("no SimNIBS tag for ", missing, "; SimNIBS knows ", known_names(),
+                   "; map the others in a table, e.g. --tissue-tags tags.json with {\"",
+                   name_of(*std::find_if(labels.begin(), labels.end(), [&](Label l) { return !assigned.count(l); })),
+                   "\": 13}"));
     std::map<Label, int> tags;
     for (const auto& [label, a] : assigned) {
         for (const auto& [other, b] : assigned)
             if (other < label && a.tag == b.tag && !(a.from_table && b.from_table))
-                throw InputError(concat("\"", name_of(other), "\" and \"", name_of(label), "\" would both get SimNIBS tag ", a.tag,
-                                        "; to merge them, give both that tag in --tissue-tags, else map one elsewhere"));
+                throw InputError(
+                    concat("\"", name_of(other), "\" and \"", name_of(label), "\" would both get SimNIBS tag ", a.tag,
+                           "; to merge them, give both that tag in --tissue-tags, else map one elsewhere"));
         tags[label] = a.tag;
     }
     return tags;

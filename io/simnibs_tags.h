@@ -12,9 +12,9 @@ namespace tissuemesh::io {
 
 /// One tissue SimNIBS knows by number (simnibs/utils/mesh_element_properties.py, ElementTags).
 struct SimnibsTissue {
-    int tag = 0;                              ///< volume tag; its surfaces carry 1000 + tag
-    std::string name;                         ///< SimNIBS's own name ("WM", "Scalp", ...)
-    std::vector<std::string> accepted_names;  ///< names we map to it (compared as simnibs_name_key() gives them)
+    int tag = 0;                             ///< volume tag; its surfaces carry 1000 + tag
+    std::string name;                        ///< SimNIBS's own name ("WM", "Scalp", ...)
+    std::vector<std::string> accepted_names; ///< names we map to it (compared as simnibs_name_key() gives them)
 };
 
 /// The tissues with a standard SimNIBS tag and the names accepted for each: white matter 1, grey matter 2,

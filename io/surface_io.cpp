@@ -18,10 +18,9 @@ const char* const known_extensions = ".ply, .vtp, .off, .stl, .obj";
 std::string extension_of(const std::filesystem::path& path)
 {
     const std::string extension = full_extension(path);
-    if (extension != ".ply" && extension != ".vtp" && extension != ".off" && extension != ".stl" &&
-        extension != ".obj")
-        throw IoError(concat(path.string(), ": unknown surface extension '", extension, "'; use one of ",
-                             known_extensions));
+    if (extension != ".ply" && extension != ".vtp" && extension != ".off" && extension != ".stl" && extension != ".obj")
+        throw IoError(
+            concat(path.string(), ": unknown surface extension '", extension, "'; use one of ", known_extensions));
     return extension;
 }
 
@@ -33,7 +32,8 @@ void write_surface(const InterfaceComplex& complex, const std::filesystem::path&
     write_surface(complex, path, SurfaceWriteOptions{.ascii = false, .ply_comments = ply_comments});
 }
 
-void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path, const SurfaceWriteOptions& options)
+void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path,
+                   const SurfaceWriteOptions& options)
 {
     for (const std::string& comment : options.ply_comments)
         if (comment.find_first_of("\r\n") != std::string::npos)

@@ -22,7 +22,8 @@ struct SurfaceWriteOptions {
 /// as uint16 properties, tissue names as comments), `.vtp` (ParaView, cell data label_a, label_b),
 /// `.obj` (label pairs as groups `g tissues_<from>_<to>`), `.off` and `.stl` (binary or ASCII; geometry only).
 /// @throws IoError when the file cannot be written or the extension is unknown
-void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path, const SurfaceWriteOptions& options);
+void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path,
+                   const SurfaceWriteOptions& options);
 
 /// The same, binary, with `ply_comments` in a `.ply` header.
 void write_surface(const InterfaceComplex& complex, const std::filesystem::path& path,

@@ -60,7 +60,8 @@ void write_foreign_msh(const TetMesh& mesh, const fs::path& path, const TetMeshW
     // The conductivities first: the mesh never names tissues that have none.
     const std::string conductivities = detail::duneuro_conductivity_file(mesh, options.duneuro_conductivities_s_per_m);
     write_text_atomically(with_extension(path, ".con"), conductivities);
-    write_text_atomically(path, detail::format_msh2(mesh.vertices, detail::duneuro_elements(mesh, options.duneuro_tag_offset), false));
+    write_text_atomically(
+        path, detail::format_msh2(mesh.vertices, detail::duneuro_elements(mesh, options.duneuro_tag_offset), false));
 }
 
 } // namespace
@@ -72,13 +73,15 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWrit
         throw IoError(concat(path.string(), ": unknown mesh format \"", extension, "\"; use one of ", known));
     if (options.numbering != TissueNumbering::labels) {
         if (extension != ".msh")
-            throw InputError(concat(path.string(), ": ", options.numbering == TissueNumbering::simnibs ? "SimNIBS" : "DUNEuro",
+            throw InputError(concat(path.string(), ": ",
+                                    options.numbering == TissueNumbering::simnibs ? "SimNIBS" : "DUNEuro",
                                     " numbering is for Gmsh files; write a .msh"));
         validate_indices(mesh, path.string());
         return write_foreign_msh(mesh, path, options);
     }
     // write_vtu() validates the mesh itself.
-    if (extension == ".vtu") return write_vtu(mesh, path, {}, {}, options.vtu_compressed ? VtuEncoding::compressed : VtuEncoding::ascii);
+    if (extension == ".vtu")
+        return write_vtu(mesh, path, {}, {}, options.vtu_compressed ? VtuEncoding::compressed : VtuEncoding::ascii);
     validate_indices(mesh, path.string());
     if (extension == ".node" || extension == ".ele") {
         const detail::TetgenFiles files = detail::format_tetgen(mesh);
@@ -88,8 +91,9 @@ void write_tet_mesh(const TetMesh& mesh, const fs::path& path, const TetMeshWrit
         return;
     }
     if (extension == ".msh")
-        write_text_atomically(path, options.msh_version == MshVersion::v4_1 ? detail::format_msh4(mesh, options.binary)
-                                                                  : detail::format_msh2(mesh, options.binary));
+        write_text_atomically(path, options.msh_version == MshVersion::v4_1
+                                        ? detail::format_msh4(mesh, options.binary)
+                                        : detail::format_msh2(mesh, options.binary));
     if (extension == ".mesh") write_text_atomically(path, detail::format_medit(mesh));
     if (extension == ".inp") write_text_atomically(path, detail::format_abaqus(mesh, path.string()));
 }

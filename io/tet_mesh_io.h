@@ -14,20 +14,20 @@ enum class MshVersion { v2_2, v4_1 };
 
 /// How a .msh numbers its tissues and faces.
 enum class TissueNumbering {
-    labels,   ///< ours: tets by label, faces 1000 + from and 1000 * from + to, $PhysicalNames from the names
-    simnibs,  ///< SimNIBS's: tets by SimNIBS tag (simnibs_tags()), faces as its mesher makes them, 2.2 binary
-    duneuro,  ///< DUNEuro's: 2.2 ASCII that dune-grid reads, tets only, tagged from an offset, conductivity file
+    labels,  ///< ours: tets by label, faces 1000 + from and 1000 * from + to, $PhysicalNames from the names
+    simnibs, ///< SimNIBS's: tets by SimNIBS tag (simnibs_tags()), faces as its mesher makes them, 2.2 binary
+    duneuro, ///< DUNEuro's: 2.2 ASCII that dune-grid reads, tets only, tagged from an offset, conductivity file
 };
 
 /// Variants of the formats that have them. Readers detect version and encoding from the file.
 struct TetMeshWriteOptions {
-    MshVersion msh_version = MshVersion::v2_2;  ///< .msh: 2.2 (SimNIBS, DUNEuro) or 4.1 (current Gmsh)
-    bool binary = false;                        ///< .msh: binary instead of ASCII
-    bool vtu_compressed = true;                 ///< .vtu: zlib-compressed binary (appended) instead of ASCII
-    TissueNumbering numbering = TissueNumbering::labels;  ///< .msh only; the others always carry labels
-    SimnibsTagTable simnibs_table;              ///< simnibs: the user's tags, beside the built-in names
-    int duneuro_tag_offset = 1;                 ///< duneuro: the tag of the first tissue (DUNEuro's tensors.offset)
-    std::map<Label, double> duneuro_conductivities_s_per_m;  ///< duneuro: S/m of every tissue of the mesh
+    MshVersion msh_version = MshVersion::v2_2;           ///< .msh: 2.2 (SimNIBS, DUNEuro) or 4.1 (current Gmsh)
+    bool binary = false;                                 ///< .msh: binary instead of ASCII
+    bool vtu_compressed = true;                          ///< .vtu: zlib-compressed binary (appended) instead of ASCII
+    TissueNumbering numbering = TissueNumbering::labels; ///< .msh only; the others always carry labels
+    SimnibsTagTable simnibs_table;                       ///< simnibs: the user's tags, beside the built-in names
+    int duneuro_tag_offset = 1; ///< duneuro: the tag of the first tissue (DUNEuro's tensors.offset)
+    std::map<Label, double> duneuro_conductivities_s_per_m; ///< duneuro: S/m of every tissue of the mesh
 };
 
 /// Writes `mesh` atomically; the extension picks the format:

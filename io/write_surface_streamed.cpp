@@ -35,7 +35,9 @@ class SideFile {
 public:
     SideFile(fs::path path, const fs::path& what) : path_(std::move(path)), what_(what), out_(path_, std::ios::binary)
     {
-        if (!out_) throw IoError(concat(what_.string(), ": cannot open ", path_.string(), " for writing; check the permissions"));
+        if (!out_)
+            throw IoError(
+                concat(what_.string(), ": cannot open ", path_.string(), " for writing; check the permissions"));
     }
     ~SideFile()
     {
@@ -57,7 +59,8 @@ public:
         out_.close();
         if (!out_) throw IoError(concat(what_.string(), ": write failed (disk full?)"));
         const Descriptor in(::open(path_.c_str(), O_RDONLY)), out(::open(target.c_str(), O_WRONLY));
-        if (in.fd < 0 || out.fd < 0) throw IoError(concat(what_.string(), ": cannot reopen ", path_.string(), " or the output"));
+        if (in.fd < 0 || out.fd < 0)
+            throw IoError(concat(what_.string(), ": cannot reopen ", path_.string(), " or the output"));
         // In the kernel where the file system allows it (no copy through user memory), else read and write.
         auto at = static_cast<off_t>(offset);
         while (true) {
@@ -65,7 +68,8 @@ public:
             if (n == 0) return static_cast<std::size_t>(at);
             if (n > 0) continue;
             if (errno != EXDEV && errno != ENOSYS && errno != EINVAL && errno != EOPNOTSUPP)
-                throw IoError(concat(what_.string(), ": copying ", path_.string(), " failed (", std::strerror(errno), ")"));
+                throw IoError(
+                    concat(what_.string(), ": copying ", path_.string(), " failed (", std::strerror(errno), ")"));
             break;
         }
         std::vector<char> buffer(std::size_t{1} << 22);
@@ -103,12 +107,13 @@ public:
     {
         if (piece.first_vertex != vertex_count_ || piece.sides.size() != piece.triangles.size())
             throw InputError(concat(what_.string(), ": a streamed piece starts at vertex ", piece.first_vertex,
-                                    " after ", vertex_count_, " vertices or has ", piece.sides.size(), " label pairs for ",
-                                    piece.triangles.size(), " triangles; the producer is broken"));
+                                    " after ", vertex_count_, " vertices or has ", piece.sides.size(),
+                                    " label pairs for ", piece.triangles.size(), " triangles; the producer is broken"));
         bytes_.clear();
         for (const Vec3& v : piece.vertices) {
             if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
-                throw InputError(concat(what_.string(), ": vertex ", vertex_count_ + static_cast<std::size_t>(&v - piece.vertices.data()),
+                throw InputError(concat(what_.string(), ": vertex ",
+                                        vertex_count_ + static_cast<std::size_t>(&v - piece.vertices.data()),
                                         " has a non-finite coordinate"));
             detail::append_ply_vertex(bytes_, v);
         }
@@ -157,7 +162,7 @@ void write_surface_streamed(const fs::path& path, const std::function<void(Inter
 {
     if (full_extension(path) != ".ply")
         throw IoError(concat(path.string(), ": streamed writing supports .ply only; write other formats with "
-                             "write_surface()"));
+                                            "write_surface()"));
     write_atomically(path, [&](const fs::path& temporary) {
         PlySideWriter writer(temporary, path);
         produce(writer);

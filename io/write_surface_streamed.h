@@ -18,7 +18,6 @@ namespace tissuemesh::io {
 /// Disk: the side files take as much again as the PLY file until it is complete.
 /// @throws IoError when `path` is not .ply or cannot be written; InputError on an invalid piece (naming
 ///         `path`); whatever `produce` throws
-void write_surface_streamed(const std::filesystem::path& path,
-                            const std::function<void(InterfaceSink& sink)>& produce);
+void write_surface_streamed(const std::filesystem::path& path, const std::function<void(InterfaceSink& sink)>& produce);
 
 } // namespace tissuemesh::io

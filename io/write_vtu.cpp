@@ -86,7 +86,7 @@ private:
     /// then the zlib streams of the blocks.
     void append_compressed(const void* data, std::size_t bytes)
     {
-        constexpr std::size_t block = 1 << 20;  // fastest zlib level: 25x faster than 6 here, 8% larger
+        constexpr std::size_t block = 1 << 20; // fastest zlib level: 25x faster than 6 here, 8% larger
         const std::size_t blocks = bytes == 0 ? 0 : (bytes + block - 1) / block;
         std::vector<std::uint64_t> header{blocks, block, blocks == 0 ? 0 : bytes - (blocks - 1) * block};
         // The blocks are independent zlib streams: compressed in parallel, appended in order (the same
@@ -123,7 +123,8 @@ void add_array(ArrayWriter& writer, const VtuArray& array)
 {
     if (array.integer) {
         std::vector<std::int64_t> values(array.values.size());
-        std::transform(array.values.begin(), array.values.end(), values.begin(), [](double v) { return static_cast<std::int64_t>(v); });
+        std::transform(array.values.begin(), array.values.end(), values.begin(),
+                       [](double v) { return static_cast<std::int64_t>(v); });
         writer.add("Int64", array.name, array.components, values);
     } else {
         std::vector<double> values(array.values.size());
@@ -132,14 +133,15 @@ void add_array(ArrayWriter& writer, const VtuArray& array)
     }
 }
 
-void write_grid(const TetMesh& mesh, const std::vector<VtuArray>& point_arrays, const std::vector<VtuArray>& cell_arrays,
-                ArrayWriter& writer)
+void write_grid(const TetMesh& mesh, const std::vector<VtuArray>& point_arrays,
+                const std::vector<VtuArray>& cell_arrays, ArrayWriter& writer)
 {
-    writer.text(concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-                       "header_type=\"UInt64\"",
-                       writer.encoding() == VtuEncoding::compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", ">\n",
-                       "<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(), "\" NumberOfCells=\"",
-                       mesh.tets.size(), "\">\n<Points>\n"));
+    writer.text(concat(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+        "header_type=\"UInt64\"",
+        writer.encoding() == VtuEncoding::compressed ? " compressor=\"vtkZLibDataCompressor\"" : "", ">\n",
+        "<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(), "\" NumberOfCells=\"", mesh.tets.size(),
+        "\">\n<Points>\n"));
     std::vector<double> points;
     points.reserve(3 * mesh.vertices.size());
     for (const Vec3& v : mesh.vertices) points.insert(points.end(), v.begin(), v.end());
@@ -151,7 +153,7 @@ void write_grid(const TetMesh& mesh, const std::vector<VtuArray>& point_arrays, 
     for (std::size_t t = 1; t <= mesh.tets.size(); ++t) offsets.push_back(static_cast<std::int64_t>(4 * t));
     writer.add("Int64", "connectivity", 4, connectivity);
     writer.add("Int64", "offsets", 1, offsets);
-    writer.add("UInt8", "types", 1, std::vector<std::uint8_t>(mesh.tets.size(), 10));  // VTK_TETRA
+    writer.add("UInt8", "types", 1, std::vector<std::uint8_t>(mesh.tets.size(), 10)); // VTK_TETRA
     writer.text("</Cells>\n");
     if (!point_arrays.empty()) {
         writer.text(concat("<PointData Scalars=\"", point_arrays.front().name, "\">\n"));

@@ -12,10 +12,10 @@ namespace tissuemesh::io {
 
 /// A named array attached to the points or the cells of a mesh: #entries x components values, row by row.
 struct VtuArray {
-    std::string name;             ///< with its unit where it has one ("E_V_per_m")
-    std::vector<double> values;   ///< entries * components values
-    int components = 1;          ///< 1 (scalar) or 3 (vector)
-    bool integer = false;         ///< written as Int64 instead of Float64
+    std::string name;           ///< with its unit where it has one ("E_V_per_m")
+    std::vector<double> values; ///< entries * components values
+    int components = 1;         ///< 1 (scalar) or 3 (vector)
+    bool integer = false;       ///< written as Int64 instead of Float64
 };
 
 /// A scalar array from any range of numbers (one per point or cell).

@@ -11,8 +11,7 @@ namespace tissuemesh::render {
 Rgb mix(const Rgb& a, const Rgb& b, double t)
 {
     Rgb out{};
-    for (int c = 0; c < 3; ++c)
-        out[c] = static_cast<std::uint8_t>(std::lround((1 - t) * a[c] + t * b[c]));
+    for (int c = 0; c < 3; ++c) out[c] = static_cast<std::uint8_t>(std::lround((1 - t) * a[c] + t * b[c]));
     return out;
 }
 
@@ -52,19 +51,22 @@ void Canvas::draw_line(double x0, double y0, double x1, double y1, const Rgb& co
     for (int s = 0; s <= steps; ++s) {
         const double t = static_cast<double>(s) / steps, x = x0 + t * (x1 - x0), y = y0 + t * (y1 - y0);
         for (long py = std::lround(y - half); py < std::lround(y + half) || py == std::lround(y - half); ++py)
-            for (long px = std::lround(x - half); px < std::lround(x + half) || px == std::lround(x - half); ++px) set(px, py, colour);
+            for (long px = std::lround(x - half); px < std::lround(x + half) || px == std::lround(x - half); ++px)
+                set(px, py, colour);
     }
 }
 
-std::size_t Canvas::draw_triangle(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
-                                  const Rgb& colour)
+std::size_t Canvas::draw_triangle(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                  const std::array<double, 3>& c, const Rgb& colour)
 {
     const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
     if (area == 0 || !std::isfinite(area)) return 0;
     const long x_lo = std::max(0L, static_cast<long>(std::floor(std::min({a[0], b[0], c[0]}))));
-    const long x_hi = std::min(static_cast<long>(width_) - 1, static_cast<long>(std::ceil(std::max({a[0], b[0], c[0]}))));
+    const long x_hi =
+        std::min(static_cast<long>(width_) - 1, static_cast<long>(std::ceil(std::max({a[0], b[0], c[0]}))));
     const long y_lo = std::max(0L, static_cast<long>(std::floor(std::min({a[1], b[1], c[1]}))));
-    const long y_hi = std::min(static_cast<long>(height_) - 1, static_cast<long>(std::ceil(std::max({a[1], b[1], c[1]}))));
+    const long y_hi =
+        std::min(static_cast<long>(height_) - 1, static_cast<long>(std::ceil(std::max({a[1], b[1], c[1]}))));
     std::size_t written = 0;
     for (long y = y_lo; y <= y_hi; ++y)
         for (long x = x_lo; x <= x_hi; ++x) {
@@ -90,7 +92,8 @@ void Canvas::fill_polygon(const std::vector<std::array<double, 2>>& points, cons
     double y_min = points[0][1], y_max = points[0][1];
     for (const auto& p : points) y_min = std::min(y_min, p[1]), y_max = std::max(y_max, p[1]);
     // Scan lines through pixel centres; each crosses a convex polygon's edges at most twice.
-    for (long y = std::max(0L, static_cast<long>(std::floor(y_min))); y <= std::min(static_cast<long>(height_) - 1, static_cast<long>(y_max)); ++y) {
+    for (long y = std::max(0L, static_cast<long>(std::floor(y_min)));
+         y <= std::min(static_cast<long>(height_) - 1, static_cast<long>(y_max)); ++y) {
         const double py = static_cast<double>(y) + 0.5;
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (std::size_t e = 0; e < points.size(); ++e) {
@@ -101,7 +104,8 @@ void Canvas::fill_polygon(const std::vector<std::array<double, 2>>& points, cons
             lo = std::min(lo, x), hi = std::max(hi, x);
         }
         if (!(lo <= hi)) continue;
-        for (long x = static_cast<long>(std::ceil(lo - 0.5)); static_cast<double>(x) + 0.5 <= hi; ++x) blend(x, y, colour, opacity);
+        for (long x = static_cast<long>(std::ceil(lo - 0.5)); static_cast<double>(x) + 0.5 <= hi; ++x)
+            blend(x, y, colour, opacity);
     }
 }
 
@@ -113,7 +117,8 @@ long Canvas::draw_text(long x, long y, const std::string& text, const Rgb& colou
         for (int row = 0; row < 7; ++row)
             for (int column = 0; column < 5; ++column)
                 if (rows[static_cast<std::size_t>(row)] & (0x10 >> column))
-                    fill_rect(cursor + column * scale, y + row * scale, cursor + (column + 1) * scale, y + (row + 1) * scale, colour);
+                    fill_rect(cursor + column * scale, y + row * scale, cursor + (column + 1) * scale,
+                              y + (row + 1) * scale, colour);
         cursor += 6 * scale;
     }
     return cursor - x;

@@ -31,7 +31,7 @@ public:
     void set(long x, long y, const Rgb& colour);
     /// Blends pixel (x, y) towards `colour` by `opacity` (0: unchanged, 1: replaced).
     void blend(long x, long y, const Rgb& colour, double opacity);
-    void fill_rect(long x0, long y0, long x1, long y1, const Rgb& colour);  ///< [x0, x1) x [y0, y1)
+    void fill_rect(long x0, long y0, long x1, long y1, const Rgb& colour); ///< [x0, x1) x [y0, y1)
     /// A line between pixel positions (continuous coordinates), `thickness_px` wide, no depth test.
     void draw_line(double x0, double y0, double x1, double y1, const Rgb& colour, double thickness_px = 1);
     /// Fills the triangle of screen points (x, y, depth) where it is nearer than what the pixel holds;

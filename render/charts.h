@@ -17,9 +17,9 @@ struct Panel {
 /// Bars of several series per bin: counts[b][s] of series s in bin b, drawn in stack_colours[s].
 struct BarChart {
     std::string title, x_label;
-    std::vector<std::string> bin_labels;           ///< #bins, under each bar (every other one when crowded)
-    std::vector<std::vector<double>> counts;       ///< #bins x #stacks
-    std::vector<Rgb> stack_colours;                ///< #stacks
+    std::vector<std::string> bin_labels;     ///< #bins, under each bar (every other one when crowded)
+    std::vector<std::vector<double>> counts; ///< #bins x #stacks
+    std::vector<Rgb> stack_colours;          ///< #stacks
     /// true: the series side by side in each bin on a log10(1 + count) axis (every bar reads true against
     /// it); false, or more than 8 series: stacked, bottom first, on a linear axis.
     bool log_scale = true;
@@ -31,14 +31,14 @@ void draw_bar_chart(Canvas& canvas, const Panel& panel, const BarChart& chart);
 
 /// One polyline with a dot per point.
 struct LineSeries {
-    std::vector<std::array<double, 2>> points;  ///< (x, y)
+    std::vector<std::array<double, 2>> points; ///< (x, y)
     Rgb colour{0, 0, 0};
 };
 
 struct LineChart {
     std::string title, x_label, y_label;
     std::vector<LineSeries> series;
-    bool log_y = false;  ///< y on a log10 axis (values <= 0 drawn on the bottom axis line, with a note)
+    bool log_y = false; ///< y on a log10 axis (values <= 0 drawn on the bottom axis line, with a note)
 };
 
 /// Draws `chart` in `panel`, axes fitted to the data (x from a round number at or below its smallest value).

@@ -46,14 +46,15 @@ QualityHistograms quality_histograms(const TetMesh& mesh)
     return h;
 }
 
-Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& h, std::size_t width_px, std::size_t height_px,
-                                 const std::string& title)
+Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& h, std::size_t width_px,
+                                 std::size_t height_px, const std::string& title)
 {
     std::vector<Rgb> colours;
     for (const Label label : h.tissues) colours.push_back(tissue_colour(label));
     BarChart dihedral{"tets by smallest dihedral angle", "degrees", {}, h.min_dihedral, colours, true};
     for (int b = 0; b < 18; ++b) dihedral.bin_labels.push_back(std::to_string(5 * b));
-    BarChart ratio{"tets by radius-edge ratio", "circumradius / shortest edge (regular 0.61)", {}, h.radius_edge, colours, true};
+    BarChart ratio{
+        "tets by radius-edge ratio", "circumradius / shortest edge (regular 0.61)", {}, h.radius_edge, colours, true};
     for (const double edge : QualityHistograms::radius_edge_edges()) ratio.bin_labels.push_back(short_number(edge));
     Canvas canvas(width_px, height_px, {255, 255, 255});
     const long w = static_cast<long>(width_px), top = title.empty() ? 0 : 24, legend_w = 180;
@@ -68,7 +69,9 @@ Canvas render_quality_histograms(const TetMesh& mesh, const QualityHistograms& h
 std::vector<RefineLogRow> read_refine_log(const std::filesystem::path& path)
 {
     std::ifstream file(path);
-    if (!file) throw IoError(concat(path.string(), ": cannot open the refinement log; check the path (tm-refine --log writes it)"));
+    if (!file)
+        throw IoError(
+            concat(path.string(), ": cannot open the refinement log; check the path (tm-refine --log writes it)"));
     std::string line;
     std::getline(file, line);
     std::map<std::string, std::size_t> column;
@@ -77,10 +80,12 @@ std::vector<RefineLogRow> read_refine_log(const std::filesystem::path& path)
         std::size_t index = 0;
         for (std::string name; std::getline(header, name, ',');) column[name] = index++;
     }
-    const std::vector<std::string> needed{"iteration", "nodes", "tets", "total_error_volume_mm3", "worst_quality_key", "seconds"};
+    const std::vector<std::string> needed{"iteration",         "nodes",  "tets", "total_error_volume_mm3",
+                                          "worst_quality_key", "seconds"};
     for (const std::string& name : needed)
         if (!column.count(name))
-            throw InputError(concat(path.string(), ": no column \"", name, "\" in the header; is this a tm-refine --log CSV?"));
+            throw InputError(
+                concat(path.string(), ": no column \"", name, "\" in the header; is this a tm-refine --log CSV?"));
     std::vector<RefineLogRow> rows;
     for (std::size_t number = 2; std::getline(file, line); ++number) {
         if (line.empty()) continue;
@@ -89,20 +94,25 @@ std::vector<RefineLogRow> read_refine_log(const std::filesystem::path& path)
         for (std::string cell; std::getline(cells, cell, ',');) {
             char* end = nullptr;
             values.push_back(std::strtod(cell.c_str(), &end));
-            if (cell.empty() || *end != '\0') throw InputError(concat(path.string(), ":", number, ": \"", cell, "\" is not a number"));
+            if (cell.empty() || *end != '\0')
+                throw InputError(concat(path.string(), ":", number, ": \"", cell, "\" is not a number"));
         }
         auto get = [&](const std::string& name) {
             const std::size_t index = column.at(name);
-            if (index >= values.size()) throw InputError(concat(path.string(), ":", number, ": the row has ", values.size(), " values, the header more"));
+            if (index >= values.size())
+                throw InputError(
+                    concat(path.string(), ":", number, ": the row has ", values.size(), " values, the header more"));
             return values[index];
         };
-        rows.push_back({get("iteration"), get("nodes"), get("tets"), get("total_error_volume_mm3"), get("worst_quality_key"), get("seconds")});
+        rows.push_back({get("iteration"), get("nodes"), get("tets"), get("total_error_volume_mm3"),
+                        get("worst_quality_key"), get("seconds")});
     }
     if (rows.empty()) throw InputError(concat(path.string(), ": the refinement log has no row"));
     return rows;
 }
 
-Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t width_px, std::size_t height_px, const std::string& title)
+Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t width_px, std::size_t height_px,
+                          const std::string& title)
 {
     LineSeries error{{}, {200, 30, 30}}, key{{}, {30, 60, 200}};
     for (const RefineLogRow& row : rows) {
@@ -110,7 +120,8 @@ Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t wid
         key.points.push_back({row.nodes, row.worst_quality_key});
     }
     Canvas canvas(width_px, height_px, {255, 255, 255});
-    const long top = title.empty() ? 0 : 24, w = static_cast<long>(width_px), half = (static_cast<long>(height_px) - top) / 2;
+    const long top = title.empty() ? 0 : 24, w = static_cast<long>(width_px),
+               half = (static_cast<long>(height_px) - top) / 2;
     draw_line_chart(canvas, {0, top, w, half}, {"total error volume (mm^3, log)", "nodes", "", {error}, true});
     draw_line_chart(canvas, {0, top + half, w, half}, {"worst quality key (log)", "nodes", "", {key}, true});
     if (!title.empty()) canvas.draw_text(8, 6, title, {0, 0, 0});

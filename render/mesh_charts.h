@@ -13,13 +13,14 @@ namespace tissuemesh::render {
 
 /// Tets per quality bin and tissue, the data behind render_quality_histograms().
 struct QualityHistograms {
-    std::vector<Label> tissues;                            ///< ascending: the stacks of each bar
-    std::vector<std::vector<double>> min_dihedral;         ///< 18 bins of 5 deg (0-5, ..., 85-90) x tissues
-    std::vector<std::vector<double>> radius_edge;          ///< radius_edge_edges.size() bins x tissues
-    std::vector<std::size_t> tets;                         ///< per tissue
-    std::vector<double> min_dihedral_deg;                  ///< per tissue: smallest over its tets
-    std::vector<double> max_radius_edge_ratio;             ///< per tissue: largest over its tets
-    static const std::vector<double>& radius_edge_edges(); ///< lower bin edges 0.6, 0.8, 1, 1.25, 1.5, 2, 3, 5, 10 (last: and above)
+    std::vector<Label> tissues;                    ///< ascending: the stacks of each bar
+    std::vector<std::vector<double>> min_dihedral; ///< 18 bins of 5 deg (0-5, ..., 85-90) x tissues
+    std::vector<std::vector<double>> radius_edge;  ///< radius_edge_edges.size() bins x tissues
+    std::vector<std::size_t> tets;                 ///< per tissue
+    std::vector<double> min_dihedral_deg;          ///< per tissue: smallest over its tets
+    std::vector<double> max_radius_edge_ratio;     ///< per tissue: largest over its tets
+    static const std::vector<double>&
+    radius_edge_edges(); ///< lower bin edges 0.6, 0.8, 1, 1.25, 1.5, 2, 3, 5, 10 (last: and above)
 };
 
 /// Counts every tet of `mesh` by its smallest dihedral angle and its radius-edge ratio (tet_shape, core/tet_shape.h).
@@ -43,7 +44,7 @@ std::vector<RefineLogRow> read_refine_log(const std::filesystem::path& path);
 
 /// Error volume (mm^3) and worst quality key against nodes, two panels one above the other, log y axes.
 /// Default size 900 x 640 px.
-Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t width_px = 900, std::size_t height_px = 640,
-                          const std::string& title = "");
+Canvas render_convergence(const std::vector<RefineLogRow>& rows, std::size_t width_px = 900,
+                          std::size_t height_px = 640, const std::string& title = "");
 
 } // namespace tissuemesh::render

@@ -30,8 +30,8 @@ std::uint32_t get_u32(const std::string& bytes, std::size_t at)
 
 std::uint32_t chunk_crc(const std::string& type_and_data)
 {
-    return static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(type_and_data.data()),
-                                            static_cast<uInt>(type_and_data.size())));
+    return static_cast<std::uint32_t>(
+        crc32(0L, reinterpret_cast<const Bytef*>(type_and_data.data()), static_cast<uInt>(type_and_data.size())));
 }
 
 void put_chunk(std::string& out, const std::string& type, const std::string& data)
@@ -49,7 +49,8 @@ int paeth(int a, int b, int c)
 }
 
 /// Undoes the row filters in place: `data` holds height rows of 1 filter byte + stride bytes.
-void unfilter(std::vector<unsigned char>& data, std::size_t stride, std::size_t height, std::size_t bpp, const std::string& what)
+void unfilter(std::vector<unsigned char>& data, std::size_t stride, std::size_t height, std::size_t bpp,
+              const std::string& what)
 {
     for (std::size_t y = 0; y < height; ++y) {
         unsigned char* row = &data[y * (stride + 1)];
@@ -81,7 +82,7 @@ std::string encode_png(const Canvas& canvas)
     std::string raw;
     raw.reserve((stride + 1) * canvas.height());
     for (std::size_t y = 0; y < canvas.height(); ++y) {
-        raw.push_back('\0');  // filter 0 (none)
+        raw.push_back('\0'); // filter 0 (none)
         for (std::size_t x = 0; x < canvas.width(); ++x)
             for (const std::uint8_t channel : canvas.at(x, y)) raw.push_back(static_cast<char>(channel));
     }
@@ -95,7 +96,7 @@ std::string encode_png(const Canvas& canvas)
     std::string header;
     put_u32(header, static_cast<std::uint32_t>(canvas.width()));
     put_u32(header, static_cast<std::uint32_t>(canvas.height()));
-    header += std::string{'\x08', '\x02', '\0', '\0', '\0'};  // 8 bits, RGB, deflate, filter set 0, no interlace
+    header += std::string{'\x08', '\x02', '\0', '\0', '\0'}; // 8 bits, RGB, deflate, filter set 0, no interlace
     std::string out(signature, 8);
     put_chunk(out, "IHDR", header);
     put_chunk(out, "IDAT", packed);
@@ -118,7 +119,8 @@ Canvas decode_png(const std::string& bytes, const std::string& what)
     for (std::size_t at = 8; at < bytes.size() && !ended;) {
         if (at + 12 > bytes.size()) throw IoError(concat(what, ": PNG chunk header cut at byte ", at));
         const std::uint32_t length = get_u32(bytes, at);
-        if (length > bytes.size() - at - 12) throw IoError(concat(what, ": PNG chunk at byte ", at, " runs past the end"));
+        if (length > bytes.size() - at - 12)
+            throw IoError(concat(what, ": PNG chunk at byte ", at, " runs past the end"));
         const std::string body = bytes.substr(at + 4, 4 + length), type = body.substr(0, 4), data = body.substr(4);
         if (get_u32(bytes, at + 8 + length) != chunk_crc(body))
             throw IoError(concat(what, ": CRC of PNG chunk ", type, " at byte ", at, " is wrong (damaged file)"));
@@ -127,7 +129,8 @@ Canvas decode_png(const std::string& bytes, const std::string& what)
             width = get_u32(data, 0), height = get_u32(data, 4);
             const int depth = static_cast<unsigned char>(data[8]), colour = static_cast<unsigned char>(data[9]);
             if (depth != 8 || (colour != 2 && colour != 6) || data[12] != 0)
-                throw IoError(concat(what, ": only 8-bit RGB/RGBA non-interlaced PNGs are read (bit depth ", depth, ", colour type ", colour, ")"));
+                throw IoError(concat(what, ": only 8-bit RGB/RGBA non-interlaced PNGs are read (bit depth ", depth,
+                                     ", colour type ", colour, ")"));
             channels = colour == 2 ? 3 : 4;
         } else if (type == "IDAT") {
             packed += data;
@@ -137,11 +140,12 @@ Canvas decode_png(const std::string& bytes, const std::string& what)
         at += 12 + length;
     }
     if (channels == 0 || !ended) throw IoError(concat(what, ": PNG without ", channels == 0 ? "IHDR" : "IEND"));
-    Canvas canvas(width, height);  // throws InputError on absurd sizes
+    Canvas canvas(width, height); // throws InputError on absurd sizes
     const std::size_t stride = channels * width;
     std::vector<unsigned char> raw((stride + 1) * height);
     uLongf raw_size = static_cast<uLongf>(raw.size());
-    if (uncompress(raw.data(), &raw_size, reinterpret_cast<const Bytef*>(packed.data()), static_cast<uLong>(packed.size())) != Z_OK ||
+    if (uncompress(raw.data(), &raw_size, reinterpret_cast<const Bytef*>(packed.data()),
+                   static_cast<uLong>(packed.size())) != Z_OK ||
         raw_size != raw.size())
         throw IoError(concat(what, ": PNG image data does not inflate to ", width, " x ", height, " pixels"));
     unfilter(raw, stride, height, channels, what);

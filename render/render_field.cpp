@@ -40,14 +40,17 @@ std::string tick_text(double value)
 }
 
 /// Fills the screen triangle (a, b, c) with the colours of the values linear between its corners.
-void fill_gradient(Canvas& canvas, const std::array<Point2, 3>& p, const std::array<double, 3>& value, double low, double span)
+void fill_gradient(Canvas& canvas, const std::array<Point2, 3>& p, const std::array<double, 3>& value, double low,
+                   double span)
 {
     const double area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
     if (area == 0 || !std::isfinite(area)) return;
     const long x0 = std::max(0L, static_cast<long>(std::floor(std::min({p[0][0], p[1][0], p[2][0]}))));
-    const long x1 = std::min(static_cast<long>(canvas.width()) - 1, static_cast<long>(std::ceil(std::max({p[0][0], p[1][0], p[2][0]}))));
+    const long x1 = std::min(static_cast<long>(canvas.width()) - 1,
+                             static_cast<long>(std::ceil(std::max({p[0][0], p[1][0], p[2][0]}))));
     const long y0 = std::max(0L, static_cast<long>(std::floor(std::min({p[0][1], p[1][1], p[2][1]}))));
-    const long y1 = std::min(static_cast<long>(canvas.height()) - 1, static_cast<long>(std::ceil(std::max({p[0][1], p[1][1], p[2][1]}))));
+    const long y1 = std::min(static_cast<long>(canvas.height()) - 1,
+                             static_cast<long>(std::ceil(std::max({p[0][1], p[1][1], p[2][1]}))));
     const bool finite = std::isfinite(value[0]) && std::isfinite(value[1]) && std::isfinite(value[2]);
     for (long y = y0; y <= y1; ++y)
         for (long x = x0; x <= x1; ++x) {
@@ -68,9 +71,11 @@ void draw_colour_bar(Canvas& canvas, const FieldSectionOptions& options, const F
     canvas.draw_text(x - 6, 24, options.quantity, {0, 0, 0});
     if (!options.unit.empty()) canvas.draw_text(x - 6, 46, concat("(", options.unit, ")"), {0, 0, 0});
     for (long y = top; y <= bottom; ++y)
-        canvas.fill_rect(x, y, x + bar, y + 1, field_colour(static_cast<double>(bottom - y) / static_cast<double>(bottom - top)));
+        canvas.fill_rect(x, y, x + bar, y + 1,
+                         field_colour(static_cast<double>(bottom - y) / static_cast<double>(bottom - top)));
     const Rgb ink{0, 0, 0};
-    const double left = static_cast<double>(x), right = static_cast<double>(x + bar), up = static_cast<double>(top), down = static_cast<double>(bottom);
+    const double left = static_cast<double>(x), right = static_cast<double>(x + bar), up = static_cast<double>(top),
+                 down = static_cast<double>(bottom);
     canvas.draw_line(left, up, right, up, ink), canvas.draw_line(left, down, right, down, ink);
     canvas.draw_line(left, up, left, down, ink), canvas.draw_line(right, up, right, down, ink);
     for (int i = 0; i <= 4; ++i) {
@@ -79,7 +84,8 @@ void draw_colour_bar(Canvas& canvas, const FieldSectionOptions& options, const F
         canvas.draw_line(static_cast<double>(x + bar), y, static_cast<double>(x + bar + 6), y, ink);
         canvas.draw_text(x + bar + 10, std::lround(y) - 7, tick_text(value), ink);
     }
-    if (options.clip_percent > 0) canvas.draw_text(x - 6, bottom + 20, concat("clipped ", format_mm(options.clip_percent, 1), "%"), ink);
+    if (options.clip_percent > 0)
+        canvas.draw_text(x - 6, bottom + 20, concat("clipped ", format_mm(options.clip_percent, 1), "%"), ink);
 }
 
 } // namespace
@@ -87,8 +93,17 @@ void draw_colour_bar(Canvas& canvas, const FieldSectionOptions& options, const F
 Rgb field_colour(double t)
 {
     // The deciles of viridis (matplotlib's default map), joined linearly.
-    static const std::array<Rgb, 11> anchors{{{68, 1, 84}, {72, 36, 117}, {65, 68, 135}, {53, 95, 141}, {42, 120, 142}, {33, 145, 140},
-                                              {34, 168, 132}, {68, 191, 112}, {122, 209, 81}, {189, 223, 38}, {253, 231, 37}}};
+    static const std::array<Rgb, 11> anchors{{{68, 1, 84},
+                                              {72, 36, 117},
+                                              {65, 68, 135},
+                                              {53, 95, 141},
+                                              {42, 120, 142},
+                                              {33, 145, 140},
+                                              {34, 168, 132},
+                                              {68, 191, 112},
+                                              {122, 209, 81},
+                                              {189, 223, 38},
+                                              {253, 231, 37}}};
     const double s = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 10;
     const auto i = std::min<std::size_t>(9, static_cast<std::size_t>(s));
     return mix(anchors[i], anchors[i + 1], s - static_cast<double>(i));
@@ -111,14 +126,15 @@ Canvas render_field_section(const TetMesh& mesh, const std::vector<double>& valu
 {
     const bool nodal = values.size() == mesh.vertices.size();
     if (!nodal && values.size() != mesh.tets.size())
-        throw InputError(concat("field view: ", values.size(), " values for ", mesh.vertices.size(), " nodes and ", mesh.tets.size(),
-                                " tets; give one per node or one per tet"));
+        throw InputError(concat("field view: ", values.size(), " values for ", mesh.vertices.size(), " nodes and ",
+                                mesh.tets.size(), " tets; give one per node or one per tet"));
     if (!(options.clip_percent >= 0 && options.clip_percent < 50))
         throw InputError(concat("field view: clip percent ", options.clip_percent, " is not in [0, 50)"));
     Canvas canvas(options.width_px, options.height_px, {255, 255, 255});
     const double plot_width = std::max(1.0, static_cast<double>(options.width_px) - bar_panel_px);
     const detail::SectionFrame frame =
-        detail::fit_section(mesh, options.axis, options.at_centre, options.position_mm, plot_width, static_cast<double>(options.height_px), "field view");
+        detail::fit_section(mesh, options.axis, options.at_centre, options.position_mm, plot_width,
+                            static_cast<double>(options.height_px), "field view");
     FieldSectionReport counts;
     counts.position_mm = frame.at;
     std::array<double, 2> full{};
@@ -133,11 +149,13 @@ Canvas render_field_section(const TetMesh& mesh, const std::vector<double>& valu
         ++counts.tets_cut;
         for (Point2& p : polygon) p = frame.to_screen(p);
         if (!nodal) {
-            canvas.fill_polygon(polygon, std::isfinite(values[t]) ? field_colour((values[t] - range[0]) / span) : missing_colour);
+            canvas.fill_polygon(polygon, std::isfinite(values[t]) ? field_colour((values[t] - range[0]) / span)
+                                                                  : missing_colour);
             continue;
         }
         for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-            fill_gradient(canvas, {polygon[0], polygon[k], polygon[k + 1]}, {at_points[0], at_points[k], at_points[k + 1]}, range[0], span);
+            fill_gradient(canvas, {polygon[0], polygon[k], polygon[k + 1]},
+                          {at_points[0], at_points[k], at_points[k + 1]}, range[0], span);
     }
     if (options.outlines) {
         const auto segments = detail::tissue_outlines(mesh, frame);
@@ -148,7 +166,8 @@ Canvas render_field_section(const TetMesh& mesh, const std::vector<double>& valu
         }
     }
     draw_colour_bar(canvas, options, counts);
-    const std::string caption = concat("xyz"[options.axis], " = ", format_mm(frame.at, 1), " mm", options.title.empty() ? "" : "  ", options.title);
+    const std::string caption = concat("xyz"[options.axis], " = ", format_mm(frame.at, 1), " mm",
+                                       options.title.empty() ? "" : "  ", options.title);
     canvas.draw_text(8, static_cast<long>(options.height_px) - 22, caption, {0, 0, 0});
     if (report) *report = counts;
     return canvas;

@@ -15,20 +15,20 @@ namespace tissuemesh::render {
 /// Options for render_section(). Lengths in mm.
 struct SectionViewOptions {
     std::size_t width_px = 800, height_px = 800;
-    int axis = 2;                    ///< plane normal: 0 x (sagittal), 1 y (coronal), 2 z (axial)
-    bool at_centre = true;           ///< the plane through the centre of the mesh's bounding box
-    double position_mm = 0;          ///< else the plane axis = position_mm
-    double tet_opacity = 0.55;       ///< tissue colour of the cut tets over the pale image slice
-    double min_error_voxels = 1;     ///< tets with at least this error volume (in voxels) are highlighted
+    int axis = 2;                ///< plane normal: 0 x (sagittal), 1 y (coronal), 2 z (axial)
+    bool at_centre = true;       ///< the plane through the centre of the mesh's bounding box
+    double position_mm = 0;      ///< else the plane axis = position_mm
+    double tet_opacity = 0.55;   ///< tissue colour of the cut tets over the pale image slice
+    double min_error_voxels = 1; ///< tets with at least this error volume (in voxels) are highlighted
     bool legend = true;
     std::string title;
 };
 
 /// What render_section() drew.
 struct SectionViewReport {
-    double position_mm = 0;          ///< where the plane lies along its axis
-    std::size_t tets_cut = 0;        ///< tets the plane crosses
-    std::size_t tets_highlighted = 0;  ///< of those, tets at or over the error threshold
+    double position_mm = 0;           ///< where the plane lies along its axis
+    std::size_t tets_cut = 0;         ///< tets the plane crosses
+    std::size_t tets_highlighted = 0; ///< of those, tets at or over the error threshold
 };
 
 /// The section of `mesh` by the plane axis = position: the slice of `image` (when not null, nearest voxel)

@@ -21,7 +21,7 @@ Camera make_camera(double azimuth_deg, double elevation_deg)
     const double az = azimuth_deg * std::numbers::pi / 180, el = elevation_deg * std::numbers::pi / 180;
     const Vec3 toward{std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
     Vec3 right = cross(Vec3{0, 0, 1}, toward);
-    if (norm(right) < 1e-9) right = {0, 1, 0};  // looking straight down or up
+    if (norm(right) < 1e-9) right = {0, 1, 0}; // looking straight down or up
     right = (1 / norm(right)) * right;
     return {toward, right, cross(toward, right)};
 }
@@ -48,12 +48,14 @@ CutAway parse_cut_away(const std::string& name)
 
 Canvas render_surface(const InterfaceComplex& complex, const SurfaceViewOptions& options, SurfaceViewReport* report)
 {
-    if (complex.triangles.empty()) throw InputError("surface view: the interface complex has no triangle; nothing to draw");
+    if (complex.triangles.empty())
+        throw InputError("surface view: the interface complex has no triangle; nothing to draw");
     Vec3 low = complex.vertices[complex.triangles[0][0]], high = low;
     std::set<Label> tissues;
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
         for (const std::uint32_t v : complex.triangles[t])
-            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], complex.vertices[v][a]), high[a] = std::max(high[a], complex.vertices[v][a]);
+            for (int a = 0; a < 3; ++a)
+                low[a] = std::min(low[a], complex.vertices[v][a]), high[a] = std::max(high[a], complex.vertices[v][a]);
         for (const Label label : {complex.sides[t].from, complex.sides[t].to})
             if (label != complex.background) tissues.insert(label);
     }
@@ -79,7 +81,7 @@ Canvas render_surface(const InterfaceComplex& complex, const SurfaceViewOptions&
         const Vec3 normal = cross(b - a, c - a);
         const double length = norm(normal);
         if (length == 0) continue;
-        const double facing = dot(normal, camera.toward) / length;  // > 0: the camera is on the `to` side
+        const double facing = dot(normal, camera.toward) / length; // > 0: the camera is on the `to` side
         const Label near_side = facing > 0 ? complex.sides[t].to : complex.sides[t].from;
         const Label far_side = facing > 0 ? complex.sides[t].from : complex.sides[t].to;
         Rgb colour;
@@ -87,7 +89,8 @@ Canvas render_surface(const InterfaceComplex& complex, const SurfaceViewOptions&
         else colour = mix({0, 0, 0}, tissue_colour(far_side), 0.35 + 0.65 * std::abs(facing));
         auto screen = [&](const Vec3& p) {
             const Vec3 d = p - centre;
-            return std::array<double, 3>{cx + scale * dot(d, camera.right), cy - scale * dot(d, camera.up), -dot(d, camera.toward)};
+            return std::array<double, 3>{cx + scale * dot(d, camera.right), cy - scale * dot(d, camera.up),
+                                         -dot(d, camera.toward)};
         };
         canvas.draw_triangle(screen(a), screen(b), screen(c), colour);
     }

@@ -11,9 +11,9 @@ namespace tissuemesh::render {
 
 /// Which part of the model is taken away to look inside.
 enum class CutAway {
-    none,        ///< the whole model
-    half,        ///< the half-space x > cut_point_mm.x
-    wedge,       ///< the quarter x > cut_point_mm.x and y > cut_point_mm.y (seen best from azimuth 45)
+    none,  ///< the whole model
+    half,  ///< the half-space x > cut_point_mm.x
+    wedge, ///< the quarter x > cut_point_mm.x and y > cut_point_mm.y (seen best from azimuth 45)
 };
 
 /// CutAway from "none", "half" or "wedge". @throws InputError on another name
@@ -22,20 +22,20 @@ CutAway parse_cut_away(const std::string& name);
 /// Options for render_surface(). Angles in degrees, lengths in mm.
 struct SurfaceViewOptions {
     std::size_t width_px = 800, height_px = 800;
-    double azimuth_deg = 45;    ///< camera direction around +z, from +x towards +y (RAS: 0 = from the right)
-    double elevation_deg = 25;  ///< camera height above the xy-plane
+    double azimuth_deg = 45;   ///< camera direction around +z, from +x towards +y (RAS: 0 = from the right)
+    double elevation_deg = 25; ///< camera height above the xy-plane
     CutAway cut = CutAway::wedge;
-    bool cut_at_centre = true;  ///< cut through the centre of the bounding box (else at cut_point_mm)
+    bool cut_at_centre = true; ///< cut through the centre of the bounding box (else at cut_point_mm)
     Vec3 cut_point_mm{0, 0, 0};
-    bool legend = true;         ///< tissue names and colours in the top-left corner
-    std::string title;          ///< drawn at the bottom left when not empty
+    bool legend = true; ///< tissue names and colours in the top-left corner
+    std::string title;  ///< drawn at the bottom left when not empty
 };
 
 /// What render_surface() drew.
 struct SurfaceViewReport {
-    std::size_t triangles_drawn = 0;  ///< triangles kept by the cut
-    std::size_t triangles_cut = 0;    ///< triangles taken away with the cut region
-    std::size_t pixels_covered = 0;   ///< pixels showing a tissue
+    std::size_t triangles_drawn = 0; ///< triangles kept by the cut
+    std::size_t triangles_cut = 0;   ///< triangles taken away with the cut region
+    std::size_t pixels_covered = 0;  ///< pixels showing a tissue
 };
 
 /// Orthographic view of `complex`, fitted to the picture, with a depth buffer. A triangle is taken away
@@ -45,6 +45,7 @@ struct SurfaceViewReport {
 /// not capped, this gives the same picture). Otherwise it shows the tissue behind the triangle, shaded by
 /// a headlight: colour x (0.35 + 0.65 |cos|), so every pixel is a multiple of its tissue colour.
 /// @throws InputError when the complex has no triangle
-Canvas render_surface(const InterfaceComplex& complex, const SurfaceViewOptions& options = {}, SurfaceViewReport* report = nullptr);
+Canvas render_surface(const InterfaceComplex& complex, const SurfaceViewOptions& options = {},
+                      SurfaceViewReport* report = nullptr);
 
 } // namespace tissuemesh::render

@@ -13,7 +13,7 @@ namespace tissuemesh::render {
 /// A --json summary of one step, named after its file ("tetra" for tetra.json).
 struct ReportStep {
     std::string name;
-    nlohmann::json summary;  ///< as run_tool writes it: "tool", "status", "seconds", "peak_memory_mb", ...
+    nlohmann::json summary; ///< as run_tool writes it: "tool", "status", "seconds", "peak_memory_mb", ...
 };
 
 /// A PNG picture for the report, named after its file ("section" for section.png).
@@ -25,8 +25,8 @@ struct ReportPicture {
 /// What a report holds, in the order it shows them.
 struct ReportContent {
     std::string title = "tissuemesh run report";
-    std::vector<ReportStep> steps;        ///< in pipeline order (see collect_report)
-    std::vector<ReportPicture> pictures;  ///< in the order to show
+    std::vector<ReportStep> steps;       ///< in pipeline order (see collect_report)
+    std::vector<ReportPicture> pictures; ///< in the order to show
 };
 
 /// Reads every *.json in `folder` that is a tool summary (an object with "tool") and every *.png. Steps

@@ -22,11 +22,12 @@ constexpr std::uint32_t no_triangle = std::numeric_limits<std::uint32_t>::max();
 
 /// Whether two of the items 0..n-1 are equal (`same`), found by hashing (`hash`): the common answer "none"
 /// costs a pass instead of the sort that lists the repeats.
-template <class Hash, class Same> bool has_repeats(std::size_t n, Hash hash, Same same)
+template <class Hash, class Same>
+bool has_repeats(std::size_t n, Hash hash, Same same)
 {
     std::size_t size = 16;
     while (size < 2 * n) size *= 2;
-    std::vector<std::uint32_t> table(size, no_triangle);  // item indices; no_triangle: empty
+    std::vector<std::uint32_t> table(size, no_triangle); // item indices; no_triangle: empty
     for (std::uint32_t i = 0; i < n; ++i)
         for (std::size_t slot = hash(i) & (size - 1);; slot = (slot + 1) & (size - 1)) {
             if (table[slot] == no_triangle) {
@@ -65,7 +66,9 @@ std::vector<std::uint32_t> merge_coincident_vertices(DefectLog& log, CheckReport
         for (const double c : complex.vertices[used[i]]) h = mix(h, std::bit_cast<std::uint64_t>(c + 0.0));
         return static_cast<std::size_t>(h);
     };
-    const auto same_position = [&](std::uint32_t a, std::uint32_t b) { return complex.vertices[used[a]] == complex.vertices[used[b]]; };
+    const auto same_position = [&](std::uint32_t a, std::uint32_t b) {
+        return complex.vertices[used[a]] == complex.vertices[used[b]];
+    };
     if (!has_repeats(used.size(), position_hash, same_position)) return canonical;
     std::sort(used.begin(), used.end(), [&](std::uint32_t a, std::uint32_t b) {
         return complex.vertices[a] != complex.vertices[b] ? complex.vertices[a] < complex.vertices[b] : a < b;
@@ -113,7 +116,8 @@ std::vector<char> check_shapes(DefectLog& log, const std::vector<Triangle>& merg
         if (repeated || detail::are_collinear(p[0], p[1], p[2])) {
             degenerate[t] = 1;
             log.add(DefectKind::degenerate_triangle, [&] {
-                return triangle_defect(log, t, repeated ? "degenerate (repeated vertex)" : "degenerate (collinear vertices)");
+                return triangle_defect(log, t,
+                                       repeated ? "degenerate (repeated vertex)" : "degenerate (collinear vertices)");
             });
             continue;
         }
@@ -144,7 +148,8 @@ void check_duplicates(DefectLog& log, const std::vector<Triangle>& merged, std::
         for (const std::uint32_t v : vertex_set(i)) h = mix(h, v);
         return static_cast<std::size_t>(h);
     };
-    if (!has_repeats(kept.size(), set_hash, [&](std::uint32_t a, std::uint32_t b) { return vertex_set(a) == vertex_set(b); }))
+    if (!has_repeats(kept.size(), set_hash,
+                     [&](std::uint32_t a, std::uint32_t b) { return vertex_set(a) == vertex_set(b); }))
         return;
     std::vector<std::pair<Triangle, std::uint32_t>> sorted;
     for (std::uint32_t t = 0; t < merged.size(); ++t) {
@@ -164,8 +169,8 @@ void check_duplicates(DefectLog& log, const std::vector<Triangle>& merged, std::
         log.add(DefectKind::duplicate_triangle, [&] {
             Defect defect = triangle_defect(log, t, "");
             defect.triangles.insert(defect.triangles.begin(), original);
-            defect.tissues.insert(defect.tissues.end(), {log.complex().sides[original].from,
-                                                         log.complex().sides[original].to});
+            defect.tissues.insert(defect.tissues.end(),
+                                  {log.complex().sides[original].from, log.complex().sides[original].to});
             defect.description = concat("duplicate triangles: ", log.triangle(original), " and ", log.triangle(t),
                                         " have the same vertices ", DefectLog::near(defect.location_mm));
             return defect;
@@ -200,9 +205,9 @@ std::set<Label> check_intersections(DefectLog& log, const std::vector<Triangle>&
             defect.location_mm = detail::intersection_point(corners(complex, a), corners(complex, b));
             defect.triangles = {a, b};
             defect.tissues = {complex.sides[a].from, complex.sides[a].to, complex.sides[b].from, complex.sides[b].to};
-            defect.description = concat(self ? "self-intersection between " : "intersection between patches: ",
-                                        log.triangle(a), " and ", log.triangle(b), ' ',
-                                        DefectLog::near(defect.location_mm));
+            defect.description =
+                concat(self ? "self-intersection between " : "intersection between patches: ", log.triangle(a), " and ",
+                       log.triangle(b), ' ', DefectLog::near(defect.location_mm));
             return defect;
         });
     }
@@ -224,9 +229,9 @@ void validate_options(const CheckOptions& options, std::size_t triangles)
 std::string_view to_string(DefectKind kind)
 {
     static constexpr std::array<std::string_view, defect_kind_count> names{
-        "open-edge",           "orientation-conflict", "non-manifold-edge", "inverted-tissue",
-        "tangled-junction",    "degenerate-triangle",  "duplicate-triangle", "duplicate-vertex",
-        "self-intersection",   "patch-intersection",   "needle-triangle"};
+        "open-edge",         "orientation-conflict", "non-manifold-edge",  "inverted-tissue",
+        "tangled-junction",  "degenerate-triangle",  "duplicate-triangle", "duplicate-vertex",
+        "self-intersection", "patch-intersection",   "needle-triangle"};
     return names[static_cast<std::size_t>(kind)];
 }
 
@@ -310,7 +315,8 @@ std::string repair_hint(const CheckReport& report)
         if (report.count(kind) > 0 && !doubles)
             return concat("tm-repair cannot fix ", to_string(kind), " defects (it changes no topology): ", extract);
     return concat("tm-repair may fix it (it merges coincident vertices, drops repeated and zero-area triangles, turns "
-                  "flipped ones and moves crossing surfaces apart), or ", extract);
+                  "flipped ones and moves crossing surfaces apart), or ",
+                  extract);
 }
 
 double smallest_tissue_sector_deg(const InterfaceComplex& complex) { return detail::smallest_sector_deg(complex); }

@@ -16,17 +16,17 @@ namespace tissuemesh::surface {
 
 /// What can be wrong with an interface complex. Every kind is an error except needle_triangle.
 enum class DefectKind {
-    open_edge,             ///< a tissue's surface has a boundary edge (a hole)
-    orientation_conflict,  ///< a tissue's surface uses an edge twice in the same direction (flipped triangle)
-    non_manifold_edge,     ///< a tissue touches itself along an edge (more than 2 of its triangles share it)
-    inverted_tissue,       ///< a closed tissue encloses a negative volume (labels swapped, or unbounded)
-    tangled_junction,      ///< around a junction edge the triangles turn in an order their tissues contradict
-    degenerate_triangle,   ///< repeated vertex or exactly collinear vertices (zero area)
-    duplicate_triangle,    ///< two triangles on the same three vertices
-    duplicate_vertex,      ///< two vertex indices at the same coordinates, both used by triangles
-    self_intersection,     ///< two triangles of the same patch (same tissue pair) intersect
-    patch_intersection,    ///< triangles of two different patches intersect
-    needle_triangle,       ///< warning: an angle below CheckOptions::needle_angle_deg
+    open_edge,            ///< a tissue's surface has a boundary edge (a hole)
+    orientation_conflict, ///< a tissue's surface uses an edge twice in the same direction (flipped triangle)
+    non_manifold_edge,    ///< a tissue touches itself along an edge (more than 2 of its triangles share it)
+    inverted_tissue,      ///< a closed tissue encloses a negative volume (labels swapped, or unbounded)
+    tangled_junction,     ///< around a junction edge the triangles turn in an order their tissues contradict
+    degenerate_triangle,  ///< repeated vertex or exactly collinear vertices (zero area)
+    duplicate_triangle,   ///< two triangles on the same three vertices
+    duplicate_vertex,     ///< two vertex indices at the same coordinates, both used by triangles
+    self_intersection,    ///< two triangles of the same patch (same tissue pair) intersect
+    patch_intersection,   ///< triangles of two different patches intersect
+    needle_triangle,      ///< warning: an angle below CheckOptions::needle_angle_deg
 };
 inline constexpr std::size_t defect_kind_count = 11;
 
@@ -41,20 +41,20 @@ struct Defect {
     /// One line naming the tissues (by name when the complex has names) and the location in mm, e.g.
     /// "intersection between scalp|skull triangle 123 and skull|CSF triangle 456 near (31.2, -4, 55.8) mm".
     std::string description;
-    Vec3 location_mm{0, 0, 0};           ///< a point on the defect, world mm
-    std::vector<Label> tissues;          ///< the tissues involved, ascending
-    std::vector<std::uint32_t> triangles;  ///< the triangles involved (indices into the complex)
+    Vec3 location_mm{0, 0, 0};            ///< a point on the defect, world mm
+    std::vector<Label> tissues;           ///< the tissues involved, ascending
+    std::vector<std::uint32_t> triangles; ///< the triangles involved (indices into the complex)
 };
 
 /// The surface of one tissue: its triangles oriented outward (from the tissue into its neighbour).
 struct TissueCheck {
-    std::size_t triangles = 0;              ///< triangles with this tissue on one side
-    bool closed = true;                     ///< no open edge
-    bool oriented = true;                   ///< no orientation conflict
-    std::size_t open_edges = 0;             ///< edges used an odd number of times
-    std::size_t orientation_conflicts = 0;  ///< edges used evenly but not in matched opposite pairs
-    std::size_t non_manifold_edges = 0;     ///< edges where the tissue touches itself
-    std::size_t components = 0;             ///< edge-connected pieces of the surface
+    std::size_t triangles = 0;             ///< triangles with this tissue on one side
+    bool closed = true;                    ///< no open edge
+    bool oriented = true;                  ///< no orientation conflict
+    std::size_t open_edges = 0;            ///< edges used an odd number of times
+    std::size_t orientation_conflicts = 0; ///< edges used evenly but not in matched opposite pairs
+    std::size_t non_manifold_edges = 0;    ///< edges where the tissue touches itself
+    std::size_t components = 0;            ///< edge-connected pieces of the surface
     /// Signed volume enclosed by the outward surface (divergence theorem), mm^3. Meaningful when closed
     /// and oriented; positive for bounded tissues, minus the enclosed volume for the (unbounded) background.
     double volume_mm3 = 0;
@@ -63,14 +63,14 @@ struct TissueCheck {
 /// Everything check_complex() found. Defects are stored up to CheckOptions::max_defects_per_kind per
 /// kind, in a deterministic order; counts are exact.
 struct CheckReport {
-    std::size_t vertices = 0;        ///< vertices used by triangles
+    std::size_t vertices = 0; ///< vertices used by triangles
     std::size_t triangles = 0;
-    std::size_t edges = 0;           ///< distinct undirected edges
-    std::size_t junction_edges = 0;  ///< edges shared by three or more triangles (junction curves)
+    std::size_t edges = 0;          ///< distinct undirected edges
+    std::size_t junction_edges = 0; ///< edges shared by three or more triangles (junction curves)
     bool intersections_checked = false;
-    std::map<Label, TissueCheck> tissues;  ///< every label on either side of a triangle
+    std::map<Label, TissueCheck> tissues; ///< every label on either side of a triangle
     std::vector<Defect> defects;
-    std::array<std::size_t, defect_kind_count> counts{};  ///< exact number of defects per kind
+    std::array<std::size_t, defect_kind_count> counts{}; ///< exact number of defects per kind
 
     std::size_t count(DefectKind kind) const { return counts[static_cast<std::size_t>(kind)]; }
     std::size_t error_count() const;

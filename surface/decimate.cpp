@@ -24,7 +24,8 @@ void validate(const DecimateOptions& options)
     if (!(options.max_edge_mm >= 0))
         throw InputError(concat("decimate: max edge ", options.max_edge_mm, " mm must not be negative (0: no bound)"));
     if (!(options.max_normal_change_deg > 0 && options.max_normal_change_deg <= 180))
-        throw InputError(concat("decimate: max normal change ", options.max_normal_change_deg, " deg is outside (0, 180]"));
+        throw InputError(
+            concat("decimate: max normal change ", options.max_normal_change_deg, " deg is outside (0, 180]"));
     if (!(options.min_angle_deg >= 0 && options.min_angle_deg < 60))
         throw InputError(concat("decimate: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
     if (!(options.min_gap_mm >= 0)) throw InputError("decimate: min gap must not be negative");
@@ -33,7 +34,8 @@ void validate(const DecimateOptions& options)
     if (options.mode == DecimateMode::size && !(options.target_edge_mm > 0) && options.target_edge_mm_by_pair.empty())
         throw InputError("decimate: size mode needs a target edge length (target_edge_mm or per tissue pair)");
     if (options.mode == DecimateMode::size && options.max_edge_mm > 0)
-        throw InputError(concat("decimate: a max edge (", options.max_edge_mm, " mm) bounds curvature mode only; size "
+        throw InputError(concat("decimate: a max edge (", options.max_edge_mm,
+                                " mm) bounds curvature mode only; size "
                                 "mode splits every edge longer than 4/3 of its target edge length anyway: drop the "
                                 "max edge, or lower the target"));
     if (options.slabs > options.max_slabs)
@@ -127,9 +129,12 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
         report.refused_by_length += piece.report.refused_by_length;
         report.refused_by_checks += piece.report.refused_by_checks;
         report.max_distance_mm = std::max(report.max_distance_mm, piece.report.max_distance_mm);
-        detail::add_counters(report, {.topology = piece.report.refused_topology, .shape = piece.report.refused_shape,
-                              .normal = piece.report.refused_fold, .intersection = piece.report.refused_intersection,
-                              .gap = piece.report.refused_gap, .wedge = piece.report.refused_wedge});
+        detail::add_counters(report, {.topology = piece.report.refused_topology,
+                                      .shape = piece.report.refused_shape,
+                                      .normal = piece.report.refused_fold,
+                                      .intersection = piece.report.refused_intersection,
+                                      .gap = piece.report.refused_gap,
+                                      .wedge = piece.report.refused_wedge});
     }
     // Every input vertex is answered for by exactly one triangle: a slab that lost or doubled one would
     // leave the distance bound unchecked there.
@@ -138,11 +143,11 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
                                     samples_before, " (internal error)"));
     std::sort(seams.begin(), seams.end());
     seams.erase(std::unique(seams.begin(), seams.end()), seams.end());
-    progress.debug("decimate", concat(slabs.size(), " slabs: ", report.triangles_before, " -> ",
-                                      whole.triangle_count(), " triangles, ", seams.size(),
-                                      " vertices held back at the seams (",
-                                      format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1),
-                                      " s)"));
+    progress.debug("decimate",
+                   concat(slabs.size(), " slabs: ", report.triangles_before, " -> ", whole.triangle_count(),
+                          " triangles, ", seams.size(), " vertices held back at the seams (",
+                          format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1),
+                          " s)"));
     return whole;
 }
 

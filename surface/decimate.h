@@ -13,14 +13,14 @@ namespace tissuemesh::surface {
 
 /// What decides which edges go first.
 enum class DecimateMode {
-    curvature,  ///< quadric error (Garland-Heckbert): flat places coarsen first, curved places stay fine
-    size,       ///< edge length against a target size per tissue pair: short edges collapse, long ones split
+    curvature, ///< quadric error (Garland-Heckbert): flat places coarsen first, curved places stay fine
+    size,      ///< edge length against a target size per tissue pair: short edges collapse, long ones split
 };
 
 /// Options of decimate(). Lengths in mm, angles in degrees.
 struct DecimateOptions {
     DecimateMode mode = DecimateMode::curvature;
-    std::size_t target_triangles = 0;    ///< stop at or below this count (0: only the limits stop it)
+    std::size_t target_triangles = 0; ///< stop at or below this count (0: only the limits stop it)
     /// No vertex of the input may end up further than this from the output surface (a one-sided
     /// Hausdorff bound, tracked through every collapse).
     double max_distance_mm = 0.5;
@@ -29,9 +29,9 @@ struct DecimateOptions {
     /// edges of flat places (which it would then collapse again) and the decimation from the collapses
     /// that make them.
     double max_edge_mm = 0;
-    double max_normal_change_deg = 20;   ///< a collapse may tilt a triangle at most this much
-    double min_angle_deg = 5;            ///< no collapse may create an angle below this (unless not worse)
-    double min_gap_mm = 0.1;             ///< triangles sharing no vertex keep this distance (unless closer before)
+    double max_normal_change_deg = 20; ///< a collapse may tilt a triangle at most this much
+    double min_angle_deg = 5;          ///< no collapse may create an angle below this (unless not worse)
+    double min_gap_mm = 0.1;           ///< triangles sharing no vertex keep this distance (unless closer before)
     /// Smallest angle kept between neighbouring triangles around an edge that holds a tissue (unless a
     /// collapse leaves it no smaller than before): it bounds the dihedral angles of the tets there (0: no rule).
     double min_sector_deg = 15;
@@ -44,7 +44,7 @@ struct DecimateOptions {
     /// 400 000 triangles, at most 8. The result depends on it, never on the thread count.
     /// With target_triangles (a global count) there is one slab. At most max_slabs.
     std::size_t slabs = 0;
-    static constexpr std::size_t max_slabs = 64;  ///< each slab costs a pass over the whole complex
+    static constexpr std::size_t max_slabs = 64; ///< each slab costs a pass over the whole complex
 };
 
 /// What decimate() did.
@@ -73,7 +73,6 @@ struct DecimateReport {
 /// result passes check_complex() whenever the input does.
 /// @pre  `complex` passes check_complex()      @post it still does, with the same topology per tissue
 /// @throws InputError when options are out of range
-DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& options = {},
-                        const Progress& progress = {});
+DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& options = {}, const Progress& progress = {});
 
 } // namespace tissuemesh::surface

@@ -15,7 +15,7 @@ namespace tissuemesh::surface {
 namespace {
 
 constexpr std::uint32_t no_vertex = std::numeric_limits<std::uint32_t>::max();
-constexpr std::size_t max_priority_side = 80'000;  // (side + 2) * 24 fits 21 bits
+constexpr std::size_t max_priority_side = 80'000; // (side + 2) * 24 fits 21 bits
 constexpr std::uint64_t coordinate_mask = (std::uint64_t{1} << 21) - 1;
 
 /// Positions inside one cube in 24ths of a voxel, so that every dual point is exact (down to the
@@ -41,8 +41,7 @@ long long orientation(const Local& p, const Local& q, const Local& r, const Loca
     const long long a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
     const long long b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
     const long long c[3] = {s[0] - p[0], s[1] - p[1], s[2] - p[2]};
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
 struct DualPoint {
@@ -57,8 +56,8 @@ class SlabExtractor {
 public:
     SlabExtractor(const LabelImage& image, std::vector<Label> label_map, Label background,
                   const std::map<Label, int>& priority)
-        : image_(image), map_(std::move(label_map)), background_(background), rule_(priority),
-          px_(image.dims()[0] + 2), py_(image.dims()[1] + 2), flip_(determinant(image.direction()) < 0)
+        : image_(image), map_(std::move(label_map)), background_(background), rule_(priority), px_(image.dims()[0] + 2),
+          py_(image.dims()[1] + 2), flip_(determinant(image.direction()) < 0)
     {
         for (int layer = 0; layer < 2; ++layer) {
             labels_[layer].assign(px_ * py_, background_);
@@ -123,9 +122,8 @@ private:
         for (std::size_t j = 0; j + 1 < py_; ++j) {
             for (std::size_t i = 0; i + 1 < px_; ++i) {
                 const std::size_t at = j * px_ + i;
-                const std::array<Label, 8> corners{bottom[at], bottom[at + 1], bottom[at + px_],
-                                                   bottom[at + px_ + 1], top[at], top[at + 1],
-                                                   top[at + px_], top[at + px_ + 1]};
+                const std::array<Label, 8> corners{bottom[at], bottom[at + 1], bottom[at + px_], bottom[at + px_ + 1],
+                                                   top[at],    top[at + 1],    top[at + px_],    top[at + px_ + 1]};
                 bool uniform = true;
                 for (int c = 1; c < 8; ++c) uniform = uniform && corners[c] == corners[0];
                 if (uniform) continue;
@@ -197,8 +195,8 @@ private:
             const std::array<int, 4>& lone = a_lone ? side_a : side_b;
             const std::array<int, 4>& rest = a_lone ? side_b : side_a;
             const int w = lone[0];
-            emit(edge_point(w, rest[0]), edge_point(w, rest[1]), edge_point(w, rest[2]), w,
-                   a_lone ? la : other, a_lone ? other : la);
+            emit(edge_point(w, rest[0]), edge_point(w, rest[1]), edge_point(w, rest[2]), w, a_lone ? la : other,
+                 a_lone ? other : la);
             return;
         }
         const int a = side_a[0], b = side_a[1], c = side_b[0], d = side_b[1];
@@ -285,7 +283,8 @@ private:
     std::uint32_t shared_vertex(const Local& local)
     {
         const auto global = [&](int axis, std::size_t base) {
-            return static_cast<std::uint64_t>(24 * base) + static_cast<std::uint64_t>(local[static_cast<std::size_t>(axis)]);
+            return static_cast<std::uint64_t>(24 * base) +
+                   static_cast<std::uint64_t>(local[static_cast<std::size_t>(axis)]);
         };
         const std::uint64_t key = global(0, i_) << 42 | global(1, j_) << 21 | global(2, k_);
         const auto [it, inserted] = shared_.try_emplace(key, no_vertex);
@@ -331,9 +330,8 @@ private:
 void extract_interfaces(const LabelImage& image, const ExtractOptions& options, InterfaceSink& sink,
                         const Progress& progress)
 {
-    detail::ExtractionLabels labels = detail::prepare_extraction(image, options.tissues, options.background,
-                                                                 options.priority, max_priority_side,
-                                                                 "extract_interfaces");
+    detail::ExtractionLabels labels = detail::prepare_extraction(
+        image, options.tissues, options.background, options.priority, max_priority_side, "extract_interfaces");
     const std::set<Label>& tissues = labels.tissues;
     std::vector<Label> map = std::move(labels.map);
     SlabExtractor extractor(image, std::move(map), options.background, options.priority);
@@ -341,10 +339,11 @@ void extract_interfaces(const LabelImage& image, const ExtractOptions& options, 
     // No tissue may be lost: padding gives every tissue a boundary, so this is a guard against bugs.
     for (const Label tissue : tissues)
         if (!extractor.produced(tissue))
-            throw AlgorithmError(concat("extract_interfaces: tissue ", tissue, " produced no triangles; this is "
+            throw AlgorithmError(concat("extract_interfaces: tissue ", tissue,
+                                        " produced no triangles; this is "
                                         "a bug, please report it with the image"));
-    progress.info("extract", concat(extractor.triangle_count(), " triangles, ", extractor.vertex_count(),
-                                    " vertices, ", tissues.size(), " tissues"));
+    progress.info("extract", concat(extractor.triangle_count(), " triangles, ", extractor.vertex_count(), " vertices, ",
+                                    tissues.size(), " tissues"));
 }
 
 InterfaceComplex extract_interfaces(const LabelImage& image, const ExtractOptions& options, const Progress& progress)

@@ -76,8 +76,9 @@ struct ExtractOptions {
 ///    face's chosen diagonal, the Kuhn main diagonal of unsplit cubes, and centre-to-corner edges of split
 ///    cubes. So wherever a listed tissue is a cube's top label, any two of its corners in that cube are
 ///    connected (26-style; split or not), and the 14-neighbourhood holds everywhere else; in a split
-///    cube the other labels are connected only along cube edges and chosen face diagonals. The surface of a tissue has c(tissue) + c(rest) - 1
-///    pieces with c counted under this rule (rest: every other label, split-cube centres included).
+///    cube the other labels are connected only along cube edges and chosen face diagonals. The surface of a tissue has
+///    c(tissue) + c(rest) - 1 pieces with c counted under this rule (rest: every other label, split-cube centres
+///    included).
 /// Works slab by slab (two voxel layers at a time); memory beyond the output is O(nx * ny) (with a
 /// priority, plus a hash map of the current slab's split-cube points).
 /// @throws InputError when the image is empty, `background` is among `tissues`, a chosen tissue is absent

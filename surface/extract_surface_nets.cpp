@@ -14,8 +14,8 @@ InterfaceComplex extract_surface_nets(const LabelImage& image, const ExtractOpti
                                       SurfaceNetsReport* report)
 {
     detail::validate(smoothing);
-    const detail::ExtractionLabels labels = detail::prepare_extraction(image, options.tissues, options.background,
-                                                                       options.priority, 0, "surface nets");
+    const detail::ExtractionLabels labels =
+        detail::prepare_extraction(image, options.tissues, options.background, options.priority, 0, "surface nets");
     detail::SurfaceNet net = detail::build_surface_net(image, labels.map, options.background, options.priority);
     SurfaceNetsReport local;
     SurfaceNetsReport& out = report ? *report : local;
@@ -25,7 +25,8 @@ InterfaceComplex extract_surface_nets(const LabelImage& image, const ExtractOpti
     progress.info("extract", concat(net.mixed_cubes, " mixed cubes (", net.fallback_cubes, " kept as tetrahedra), ",
                                     net.triangles.size(), " triangles, ", net.positions.size(), " vertices"));
     const std::vector<Vec3> start = net.positions;
-    if (smoothing.iterations > 0) detail::smooth_net(net, image, labels.map, options.background, smoothing, progress, out);
+    if (smoothing.iterations > 0)
+        detail::smooth_net(net, image, labels.map, options.background, smoothing, progress, out);
 
     InterfaceComplex complex;
     complex.names = image.names();
@@ -48,7 +49,8 @@ InterfaceComplex extract_surface_nets(const LabelImage& image, const ExtractOpti
     for (const LabelPair& pair : complex.sides) seen[pair.from] = seen[pair.to] = true;
     for (const Label tissue : labels.tissues) {
         if (!seen[tissue])
-            throw AlgorithmError(concat("surface nets: tissue ", tissue, " produced no triangles; this is a bug, "
+            throw AlgorithmError(concat("surface nets: tissue ", tissue,
+                                        " produced no triangles; this is a bug, "
                                         "please report it with the image"));
     }
     return complex;

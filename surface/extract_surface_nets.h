@@ -15,8 +15,8 @@ namespace tissuemesh::surface {
 struct NetSmoothOptions {
     /// Taubin lambda|mu pairs (0: the raw net, vertices at cube centres).
     std::size_t iterations = 16;
-    double lambda = 0.6307;  ///< shrinking step factor (Taubin 1995: pass band k_PB = 0.1)
-    double mu = -0.6732;     ///< inflating step factor, |mu| > lambda
+    double lambda = 0.6307; ///< shrinking step factor (Taubin 1995: pass band k_PB = 0.1)
+    double mu = -0.6732;    ///< inflating step factor, |mu| > lambda
     /// Pairs run between two checks (each step keeps every vertex in its box and near its voxels; the
     /// checks between triangles judge the net move of the run, offenders go back to its start).
     std::size_t pairs_per_check = 4;
@@ -26,8 +26,8 @@ struct NetSmoothOptions {
     /// A vertex must stay within this distance (voxels) of the voxels of each tissue it separates (three
     /// where more meet), as tm-smooth's --max-depth-voxels; in (0, 1].
     double max_depth_voxels = 0.5;
-    double min_angle_deg = 2.0;         ///< no move may leave a triangle with a smaller angle (unless not worse)
-    double max_normal_change_deg = 30;  ///< one step may tilt a triangle at most this much
+    double min_angle_deg = 2.0;        ///< no move may leave a triangle with a smaller angle (unless not worse)
+    double max_normal_change_deg = 30; ///< one step may tilt a triangle at most this much
 };
 
 /// What extract_surface_nets() did.

@@ -19,7 +19,7 @@ void project_to_face_if_junction(const std::array<Label, 4>& label, std::array<d
     int distinct = 0;
     for (int c = 0; c < 4; ++c) distinct += std::find(label.begin(), label.begin() + c, label[c]) == label.begin() + c;
     const auto drop = static_cast<std::size_t>(std::min_element(weight.begin(), weight.end()) - weight.begin());
-    if (distinct < 3 || weight[drop] >= 0.25) return;  // two tissues, or the centroid itself
+    if (distinct < 3 || weight[drop] >= 0.25) return; // two tissues, or the centroid itself
     const double scale = 0.25 / (0.25 - weight[drop]);
     for (double& w : weight) w = 0.25 + scale * (w - 0.25);
     weight[drop] = 0;
@@ -78,9 +78,10 @@ ExtractedTissue::ExtractedTissue(ExtractedTissue&&) noexcept = default;
 
 Label ExtractedTissue::corner_label(const Index3& corner) const
 {
-    return image_.contains(corner) ? map_[image_.at(static_cast<std::size_t>(corner[0]), static_cast<std::size_t>(corner[1]),
-                                                    static_cast<std::size_t>(corner[2]))]
-                                   : background_;
+    return image_.contains(corner)
+               ? map_[image_.at(static_cast<std::size_t>(corner[0]), static_cast<std::size_t>(corner[1]),
+                                static_cast<std::size_t>(corner[2]))]
+               : background_;
 }
 
 Label ExtractedTissue::at_index(const Vec3& index) const
@@ -88,10 +89,12 @@ Label ExtractedTissue::at_index(const Vec3& index) const
     Index3 base;
     Vec3 f;
     for (int axis = 0; axis < 3; ++axis)
-        base[axis] = static_cast<std::int64_t>(std::floor(index[axis])), f[axis] = index[axis] - std::floor(index[axis]);
+        base[axis] = static_cast<std::int64_t>(std::floor(index[axis])),
+        f[axis] = index[axis] - std::floor(index[axis]);
     if (rule_) {
         std::array<Label, 8> corners;
-        for (int c = 0; c < 8; ++c) corners[c] = corner_label({base[0] + (c & 1), base[1] + (c >> 1 & 1), base[2] + (c >> 2 & 1)});
+        for (int c = 0; c < 8; ++c)
+            corners[c] = corner_label({base[0] + (c & 1), base[1] + (c >> 1 & 1), base[2] + (c >> 2 & 1)});
         const detail::CubePlan plan = rule_->plan(corners);
         if (plan.split) {
             // The split cube's tetrahedron holding f: the one whose smallest weight is largest (>= 0 inside it).
@@ -113,7 +116,8 @@ Label ExtractedTissue::at_index(const Vec3& index) const
     // weights are the differences of the sorted fractions.
     std::array<int, 3> order{0, 1, 2};
     std::sort(order.begin(), order.end(), [&](int a, int b) { return f[a] > f[b] || (f[a] == f[b] && a < b); });
-    const std::array<double, 4> weight{1 - f[order[0]], f[order[0]] - f[order[1]], f[order[1]] - f[order[2]], f[order[2]]};
+    const std::array<double, 4> weight{1 - f[order[0]], f[order[0]] - f[order[1]], f[order[1]] - f[order[2]],
+                                       f[order[2]]};
     std::array<Label, 4> label;
     Index3 corner = base;
     for (int c = 0; c < 4; ++c) {

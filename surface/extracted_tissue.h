@@ -46,7 +46,7 @@ private:
     const LabelImage& image_;
     std::vector<Label> map_;
     Label background_;
-    std::unique_ptr<const detail::PriorityRule> rule_;  ///< null without a priority
+    std::unique_ptr<const detail::PriorityRule> rule_; ///< null without a priority
 };
 
 } // namespace tissuemesh::surface

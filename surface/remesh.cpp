@@ -19,12 +19,11 @@ namespace {
 
 using detail::LocalEditor;
 using detail::Reference;
-using detail::unordered;
 using detail::Slab;
 using detail::TriangleCorners;
+using detail::unordered;
 using detail::VertexKind;
 using Edge = std::pair<std::uint32_t, std::uint32_t>;
-
 
 void validate(const RemeshOptions& options)
 {
@@ -44,12 +43,12 @@ void validate(const RemeshOptions& options)
         throw InputError(concat("remesh: min sector ", options.min_sector_deg, " deg is outside [0, 90)"));
 }
 
-
 double smallest_angle_deg(const InterfaceComplex& complex)
 {
     double smallest = 180;
     for (const Triangle& t : complex.triangles)
-        smallest = std::min(smallest, detail::smallest_angle_deg({complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]}));
+        smallest = std::min(smallest, detail::smallest_angle_deg(
+                                          {complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]}));
     return smallest;
 }
 
@@ -58,8 +57,7 @@ public:
     /// `reference`: the input surface, to project onto; `fence`: where edits may happen (nullopt: anywhere).
     Remesher(InterfaceComplex&& complex, const Reference& reference, const RemeshOptions& options, double cell_mm,
              RemeshReport& report, const std::optional<detail::EditFence>& fence = std::nullopt)
-        : options_(options), report_(report),
-          editor_(std::move(complex), detail::limits_of(options), cell_mm),
+        : options_(options), report_(report), editor_(std::move(complex), detail::limits_of(options), cell_mm),
           reference_(reference)
     {
         editor_.set_fence(fence);
@@ -92,10 +90,8 @@ public:
         std::sort(long_edges.begin(), long_edges.end());
         for (const auto& [l, e] : long_edges) {
             if (editor_.edge_multiplicity(e.first, e.second) == 0) continue;
-            if (editor_.try_split(e.first, e.second, split_point(e.first, e.second)))
-                ++report_.splits;
-            else
-                ++report_.refused;
+            if (editor_.try_split(e.first, e.second, split_point(e.first, e.second))) ++report_.splits;
+            else ++report_.refused;
         }
     }
 
@@ -124,7 +120,8 @@ private:
             if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
             const auto it = options_.target_edge_mm_by_pair.find(unordered(editor_.side(t)));
             if (it != options_.target_edge_mm_by_pair.end()) length = std::min(length, it->second);
-            const auto reversed = options_.target_edge_mm_by_pair.find({unordered(editor_.side(t)).second, unordered(editor_.side(t)).first});
+            const auto reversed = options_.target_edge_mm_by_pair.find(
+                {unordered(editor_.side(t)).second, unordered(editor_.side(t)).first});
             if (reversed != options_.target_edge_mm_by_pair.end()) length = std::min(length, reversed->second);
         }
         return length;
@@ -150,7 +147,8 @@ private:
     {
         editor_.ring(v, ring_);
         for (const LocalEditor::RingEntry& e : ring_)
-            if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
+            if (e.vertex != w &&
+                distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
                 return false;
         return true;
     }
@@ -173,10 +171,10 @@ private:
             const auto [a, b] = e;
             if (!editor_.vertex_alive(a) || !editor_.vertex_alive(b) || editor_.edge_multiplicity(a, b) == 0) continue;
             if (length(e) >= 0.8 * target(a, b)) continue;
-            if ((may_collapse(a, b) && editor_.try_collapse(a, b)) || (may_collapse(b, a) && editor_.try_collapse(b, a)))
+            if ((may_collapse(a, b) && editor_.try_collapse(a, b)) ||
+                (may_collapse(b, a) && editor_.try_collapse(b, a)))
                 ++report_.collapses;
-            else
-                ++report_.refused;
+            else ++report_.refused;
         }
     }
 
@@ -191,14 +189,17 @@ private:
         std::vector<std::pair<double, std::uint32_t>> bad;
         for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t)
             if (editor_.triangle_alive(t))
-                if (const double a = detail::smallest_angle_deg(editor_.corners(t)); a < bad_deg) bad.emplace_back(a, t);
+                if (const double a = detail::smallest_angle_deg(editor_.corners(t)); a < bad_deg)
+                    bad.emplace_back(a, t);
         std::sort(bad.begin(), bad.end());
         const auto may = [&](std::uint32_t v, std::uint32_t w) {
             const VertexKind kind = editor_.kind(v);
-            if (kind == VertexKind::corner || (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3)) return false;
+            if (kind == VertexKind::corner || (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3))
+                return false;
             editor_.ring(v, ring_);
             for (const LocalEditor::RingEntry& e : ring_)
-                if (e.vertex != w && distance(editor_.position(e.vertex), editor_.position(w)) > 1.6 * target(v, e.vertex))
+                if (e.vertex != w &&
+                    distance(editor_.position(e.vertex), editor_.position(w)) > 1.6 * target(v, e.vertex))
                     return false;
             return true;
         };
@@ -209,7 +210,7 @@ private:
             if (!editor_.triangle_alive(t)) continue;
             const Triangle tri = editor_.triangle(t);
             const TriangleCorners c = editor_.corners(t);
-            int apex = 0, shortest = 0;  // the corner of the largest angle; the shortest edge (from corner k)
+            int apex = 0, shortest = 0; // the corner of the largest angle; the shortest edge (from corner k)
             double largest = 0, lengths[3];
             for (int k = 0; k < 3; ++k) {
                 const Vec3 u = c[(k + 1) % 3] - c[k], w = c[(k + 2) % 3] - c[k];
@@ -220,12 +221,12 @@ private:
             for (int k = 1; k < 3; ++k)
                 if (lengths[k] < lengths[shortest]) shortest = k;
             bool fixed = false;
-            if (largest > 2.0944) {  // 120 degrees: a cap
+            if (largest > 2.0944) { // 120 degrees: a cap
                 const std::uint32_t x = tri[(apex + 1) % 3], y = tri[(apex + 2) % 3];
                 fixed = (editor_.edge_multiplicity(x, y) == 2 && editor_.try_flip(x, y)) ||
                         (may(tri[apex], x) && editor_.try_collapse(tri[apex], x)) ||
                         (may(tri[apex], y) && editor_.try_collapse(tri[apex], y));
-                if (fixed && editor_.vertex_alive(tri[apex]) ) ++report_.flips;
+                if (fixed && editor_.vertex_alive(tri[apex])) ++report_.flips;
                 else if (fixed) ++report_.collapses;
             } else if (lengths[shortest] < 0.5 * std::max({lengths[0], lengths[1], lengths[2]})) {
                 fixed = collapse_either(tri[shortest], tri[(shortest + 1) % 3]);
@@ -274,7 +275,7 @@ private:
     /// (the Delaunay criterion), and surfaces with larger smallest angles give TetGen better tetrahedra.
     void flip_towards_delaunay()
     {
-        constexpr double max_fold_cos = 0.9659;  // the two triangles' normals within 15 degrees
+        constexpr double max_fold_cos = 0.9659; // the two triangles' normals within 15 degrees
         for (const Edge& e : edges()) {
             const auto [v, w] = e;
             if (editor_.edge_multiplicity(v, w) != 2) continue;
@@ -332,7 +333,8 @@ private:
             } else {
                 const Vec3 n = normal_at(v);
                 const Vec3 tangential = p + (mean - p) - dot(mean - p, n) * n;
-                target_point = reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
+                target_point =
+                    reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
             }
             if (editor_.try_move(v, target_point)) ++report_.moves;
             else ++report_.refused;
@@ -343,7 +345,7 @@ private:
     RemeshReport& report_;
     LocalEditor editor_;
     const Reference& reference_;
-    mutable std::vector<LocalEditor::RingEntry> ring_;  ///< scratch
+    mutable std::vector<LocalEditor::RingEntry> ring_; ///< scratch
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any
@@ -372,9 +374,9 @@ std::size_t slab_count(const InterfaceComplex& complex, const RemeshOptions& opt
 
 /// Remeshes the slabs marked in `run` side by side (in parallel), each behind its fence (the slab shrunk by
 /// more than the gap: slabs.h), and puts the whole together. Independent of the thread count.
-InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs, const std::vector<char>& run,
-                              const Reference& reference, const RemeshOptions& options, double cell_mm,
-                              RemeshReport& report)
+InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs,
+                              const std::vector<char>& run, const Reference& reference, const RemeshOptions& options,
+                              double cell_mm, RemeshReport& report)
 {
     std::vector<detail::EditedSlab> edited(slabs.size());
     for (std::size_t k = 0; k < slabs.size(); ++k) edited[k].slab = slabs[k];
@@ -434,7 +436,8 @@ std::vector<Slab> cut_for_remeshing(const InterfaceComplex& complex, std::size_t
         double low = std::numeric_limits<double>::max(), high = -low;
         for (const Vec3& p : complex.vertices) low = std::min(low, p[axis]), high = std::max(high, p[axis]);
         double narrowest = std::numeric_limits<double>::max();
-        for (const Slab& slab : slabs) narrowest = std::min(narrowest, std::min(slab.high, high) - std::max(slab.low, low));
+        for (const Slab& slab : slabs)
+            narrowest = std::min(narrowest, std::min(slab.high, high) - std::max(slab.low, low));
         if (slabs.size() <= 1 || narrowest >= 6 * largest_target(options)) return slabs;
     }
 }
@@ -453,7 +456,9 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     const double cell_mm = 2 * std::max(detail::mean_edge_length(complex), options.target_edge_mm);
     const Reference reference(input, cell_mm);
     const auto began = std::chrono::steady_clock::now();
-    const auto seconds = [&] { return format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1); };
+    const auto seconds = [&] {
+        return format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1);
+    };
     const std::size_t count = slab_count(complex, options);
     if (count > 1) {
         // Long edges are split first, over the whole: no triangle is then so long that the fences of the
@@ -461,14 +466,16 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
         Remesher splitter(std::move(complex), reference, options, cell_mm, report);
         splitter.split_long_edges();
         complex = splitter.editor().result();
-        progress.debug("remesh", concat("long edges split over the whole: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+        progress.debug("remesh", concat("long edges split over the whole: ", complex.triangle_count(), " triangles (",
+                                        seconds(), " s)"));
     }
     const std::vector<Slab> slabs = count > 1 ? cut_for_remeshing(complex, count, options) : std::vector<Slab>{};
     if (slabs.size() > 1) {
         // Slabs side by side, then bands around the cuts between them (slabs.h).
         report.slabs = slabs.size();
         complex = remesh_slabs(complex, slabs, std::vector<char>(slabs.size(), 1), reference, options, cell_mm, report);
-        progress.debug("remesh", concat(slabs.size(), " slabs remeshed: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+        progress.debug("remesh", concat(slabs.size(), " slabs remeshed: ", complex.triangle_count(), " triangles (",
+                                        seconds(), " s)"));
         progress.update("remesh", 0.8);
         std::vector<Slab> bands;
         std::vector<char> run;
@@ -478,7 +485,8 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
         for (const auto& [band, edit] : seam_bands(slabs, 2.5 * largest_target(options) + options.min_gap_mm))
             bands.push_back(band), run.push_back(edit);
         complex = remesh_slabs(complex, bands, run, reference, options, cell_mm, report);
-        progress.debug("remesh", concat("the bands around the cuts remeshed: ", complex.triangle_count(), " triangles (", seconds(), " s)"));
+        progress.debug("remesh", concat("the bands around the cuts remeshed: ", complex.triangle_count(),
+                                        " triangles (", seconds(), " s)"));
     } else {
         Remesher remesher(std::move(complex), reference, options, cell_mm, report);
         remesher.run(progress);
@@ -489,11 +497,11 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     report.min_sector_after_deg = detail::smallest_sector_deg(complex);
     report.mean_edge_after_mm = detail::mean_edge_length(complex);
     report.max_distance_mm = distance_to_input(complex, reference, cell_mm);
-    progress.info("remesh", concat(report.triangles_before, " -> ", report.triangles_after, " triangles; smallest angle ",
-                                   format_mm(report.min_angle_before_deg, 2), " -> ",
-                                   format_mm(report.min_angle_after_deg, 2), " deg; smallest tissue sector ",
-                                   format_mm(report.min_sector_before_deg, 2), " -> ",
-                                   format_mm(report.min_sector_after_deg, 2), " deg"));
+    progress.info("remesh",
+                  concat(report.triangles_before, " -> ", report.triangles_after, " triangles; smallest angle ",
+                         format_mm(report.min_angle_before_deg, 2), " -> ", format_mm(report.min_angle_after_deg, 2),
+                         " deg; smallest tissue sector ", format_mm(report.min_sector_before_deg, 2), " -> ",
+                         format_mm(report.min_sector_after_deg, 2), " deg"));
     return report;
 }
 

@@ -13,21 +13,21 @@ namespace tissuemesh::surface {
 
 /// Options of remesh(). Lengths in mm, angles in degrees.
 struct RemeshOptions {
-    double target_edge_mm = 0;  ///< target edge length (required unless every patch has one by pair)
+    double target_edge_mm = 0; ///< target edge length (required unless every patch has one by pair)
     /// Target edge length per tissue pair (either order), overriding target_edge_mm on that patch; an edge
     /// takes the smallest target of the patches around it.
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
-    std::size_t iterations = 5;          ///< split / collapse / flip / relax rounds
-    double min_angle_deg = 15;           ///< no edit may create an angle below this (unless not worse)
-    double max_normal_change_deg = 30;   ///< one edit may tilt a triangle at most this much
-    double min_gap_mm = 0.1;             ///< distance kept between patches (unless closer before)
+    std::size_t iterations = 5;        ///< split / collapse / flip / relax rounds
+    double min_angle_deg = 15;         ///< no edit may create an angle below this (unless not worse)
+    double max_normal_change_deg = 30; ///< one edit may tilt a triangle at most this much
+    double min_gap_mm = 0.1;           ///< distance kept between patches (unless closer before)
     /// Smallest angle kept between neighbouring triangles around an edge that holds a tissue (unless an edit
     /// leaves it no smaller than before): it bounds the dihedral angles of the tets there (0: no rule).
     double min_sector_deg = 15;
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
     /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
-    static constexpr std::size_t max_slabs = 64;  ///< each slab costs a pass over the whole complex
+    static constexpr std::size_t max_slabs = 64; ///< each slab costs a pass over the whole complex
 };
 
 /// What remesh() did.
@@ -38,16 +38,16 @@ struct RemeshReport {
     std::size_t collapses = 0;
     std::size_t flips = 0;
     std::size_t moves = 0;
-    std::size_t refused = 0;              ///< edits the validity checks (or the slabs' fences) refused
-    std::size_t slabs = 1;                ///< slabs remeshed side by side (RemeshOptions::slabs)
-    double min_angle_before_deg = 0;      ///< smallest triangle angle
+    std::size_t refused = 0;         ///< edits the validity checks (or the slabs' fences) refused
+    std::size_t slabs = 1;           ///< slabs remeshed side by side (RemeshOptions::slabs)
+    double min_angle_before_deg = 0; ///< smallest triangle angle
     double min_angle_after_deg = 0;
     /// Smallest angle between neighbouring triangles around an edge that holds a tissue (edge_fan.h's
     /// smallest_sector_deg()): it bounds the dihedral angles of any tet mesh keeping the complex.
     double min_sector_before_deg = 0;
     double min_sector_after_deg = 0;
     double mean_edge_after_mm = 0;
-    double max_distance_mm = 0;           ///< largest distance of a final vertex to the input surface
+    double max_distance_mm = 0; ///< largest distance of a final vertex to the input surface
 };
 
 /// Remeshes `complex` in place towards edges of the target length (Botsch and Kobbelt 2004): split edges

@@ -99,7 +99,8 @@ void turn_flipped_triangles(InterfaceComplex& complex, RepairLog& log)
 {
     for (int pass = 0; pass < 8; ++pass) {
         // Directed edges in each patch's canonical winding: (patch, min, max) -> (triangle, forward).
-        std::map<std::tuple<Label, Label, std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, bool>>> edges;
+        std::map<std::tuple<Label, Label, std::uint32_t, std::uint32_t>, std::vector<std::pair<std::uint32_t, bool>>>
+            edges;
         for (std::uint32_t i = 0; i < complex.triangles.size(); ++i) {
             const auto [patch, w] = oriented_key(complex.triangles[i], complex.sides[i]);
             for (int k = 0; k < 3; ++k) {
@@ -140,16 +141,17 @@ std::set<Label> tissues_of(const InterfaceComplex& complex)
 void require_repairable(const InterfaceComplex& complex, const std::string& when)
 {
     const CheckReport check = check_complex(complex, {.max_defects_per_kind = 1, .check_intersections = false});
-    for (const DefectKind kind : {DefectKind::open_edge, DefectKind::orientation_conflict, DefectKind::non_manifold_edge,
-                                  DefectKind::duplicate_triangle, DefectKind::duplicate_vertex}) {
+    for (const DefectKind kind :
+         {DefectKind::open_edge, DefectKind::orientation_conflict, DefectKind::non_manifold_edge,
+          DefectKind::duplicate_triangle, DefectKind::duplicate_vertex}) {
         if (check.count(kind) == 0) continue;
-        const auto found = std::find_if(check.defects.begin(), check.defects.end(),
-                                        [&](const Defect& d) { return d.kind == kind; });
-        throw AlgorithmError(concat("repair: ", check.count(kind), ' ', to_string(kind), " defect",
-                                    check.count(kind) == 1 ? "" : "s", ' ', when, ", first: ",
-                                    found != check.defects.end() ? found->description : "?",
-                                    "; repair fixes only unambiguous defects and never changes the topology: re-extract the "
-                                    "interfaces from the label image with tm-extract"));
+        const auto found =
+            std::find_if(check.defects.begin(), check.defects.end(), [&](const Defect& d) { return d.kind == kind; });
+        throw AlgorithmError(
+            concat("repair: ", check.count(kind), ' ', to_string(kind), " defect", check.count(kind) == 1 ? "" : "s",
+                   ' ', when, ", first: ", found != check.defects.end() ? found->description : "?",
+                   "; repair fixes only unambiguous defects and never changes the topology: re-extract the "
+                   "interfaces from the label image with tm-extract"));
     }
 }
 
@@ -200,12 +202,18 @@ RepairReport repair(InterfaceComplex& complex, const RepairOptions& options, con
     // Untangling crossings may pass through thin wedges at shared vertices on the way (a crossing is the
     // worse defect, and the moves never add one), so the wedge rule of the other steps is off here.
     detail::ComplexEditor editor(std::move(complex),
-                                 {.min_angle_deg = 0, .max_normal_change_deg = 90, .min_gap_mm = 0, .min_wedge_deg = 0,
+                                 {.min_angle_deg = 0,
+                                  .max_normal_change_deg = 90,
+                                  .min_gap_mm = 0,
+                                  .min_wedge_deg = 0,
                                   .tolerate_existing_intersections = true},
                                  cell_mm);
     detail::collapse_degenerate_triangles(editor, log);
-    detail::separate_surfaces(editor, {.gap_mm = options.gap_mm, .max_rounds = options.max_rounds, .image = image,
-                                       .max_depth_voxels = options.max_depth_voxels},
+    detail::separate_surfaces(editor,
+                              {.gap_mm = options.gap_mm,
+                               .max_rounds = options.max_rounds,
+                               .image = image,
+                               .max_depth_voxels = options.max_depth_voxels},
                               log, progress);
     complex = editor.result();
     report.triangles_after = complex.triangle_count();
@@ -213,7 +221,8 @@ RepairReport repair(InterfaceComplex& complex, const RepairOptions& options, con
     const std::set<Label> now = tissues_of(complex);
     for (const Label tissue : tissues)
         if (!now.contains(tissue))
-            throw AlgorithmError(concat("repair: tissue ", log.tissue(tissue), " would lose its last triangle; "
+            throw AlgorithmError(concat("repair: tissue ", log.tissue(tissue),
+                                        " would lose its last triangle; "
                                         "its surface is degenerate: re-extract the interfaces with tm-extract"));
     const CheckReport check = check_complex(complex, {.max_defects_per_kind = 1});
     if (!check.ok())

@@ -17,11 +17,11 @@ struct RepairOptions {
     /// Near-contacts: triangles of different patches sharing no vertex that are closer than this (vertex to
     /// face) are pushed apart until they are this far apart. 0: only intersections are removed.
     double gap_mm = 0;
-    std::size_t max_rounds = 30;         ///< rounds of local moves before repair() gives up
+    std::size_t max_rounds = 30; ///< rounds of local moves before repair() gives up
     /// With an image: a moved vertex must stay within this distance (voxels) of the voxels of each of its
     /// tissues, unless it was already further (as smooth() holds it).
     double max_depth_voxels = 0.5;
-    std::size_t max_actions = 100;       ///< store at most this many located actions in the report
+    std::size_t max_actions = 100; ///< store at most this many located actions in the report
 };
 
 /// What a repair action fixed.
@@ -42,8 +42,8 @@ std::string to_string(RepairKind kind);
 struct RepairAction {
     RepairKind kind = RepairKind::merged_vertex;
     Vec3 location_mm{0, 0, 0};
-    std::vector<Label> tissues;  ///< the tissues around it, ascending
-    std::string description;     ///< one line, with tissue names and the location in mm
+    std::vector<Label> tissues; ///< the tissues around it, ascending
+    std::string description;    ///< one line, with tissue names and the location in mm
 };
 
 /// What repair() did. Counts are exact; actions are stored up to RepairOptions::max_actions.
@@ -55,13 +55,13 @@ struct RepairReport {
     std::size_t removed_degenerate = 0;
     std::size_t collapsed_degenerate = 0;
     std::size_t flipped_triangles = 0;
-    std::size_t self_intersections_before = 0;   ///< intersecting pairs within one patch
-    std::size_t patch_intersections_before = 0;  ///< intersecting pairs of different patches
-    std::size_t near_contacts_before = 0;        ///< triangle pairs closer than the gap
-    std::size_t near_contacts_after = 0;         ///< left where the image or the shapes allowed no move
-    std::size_t rounds = 0;                      ///< rounds of local moves
-    std::size_t moved_vertices = 0;              ///< distinct vertices moved
-    double max_move_mm = 0;                      ///< largest distance a vertex moved
+    std::size_t self_intersections_before = 0;  ///< intersecting pairs within one patch
+    std::size_t patch_intersections_before = 0; ///< intersecting pairs of different patches
+    std::size_t near_contacts_before = 0;       ///< triangle pairs closer than the gap
+    std::size_t near_contacts_after = 0;        ///< left where the image or the shapes allowed no move
+    std::size_t rounds = 0;                     ///< rounds of local moves
+    std::size_t moved_vertices = 0;             ///< distinct vertices moved
+    double max_move_mm = 0;                     ///< largest distance a vertex moved
     std::vector<RepairAction> actions;
 
     /// Whether anything changed.

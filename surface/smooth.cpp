@@ -80,7 +80,8 @@ std::vector<Vec3> jacobi_step(const ComplexEditor& editor, const Rings& rings, c
 #pragma omp parallel for schedule(dynamic, 4096)
     for (std::int64_t i = 0; i < slots; ++i) {
         const auto v = static_cast<std::uint32_t>(i);
-        if (rings.begin[v + 1] > rings.begin[v]) next[v] = positions[v] + factor * umbrella(editor, rings, positions, v);
+        if (rings.begin[v + 1] > rings.begin[v])
+            next[v] = positions[v] + factor * umbrella(editor, rings, positions, v);
     }
     return next;
 }
@@ -111,7 +112,9 @@ std::size_t move_checked(ComplexEditor& editor, const detail::VoxelEvidence& evi
         else ++report.refused_by_checks;
     }
     const std::vector<char> moved_again = editor.move_together(again, halves);
-    const auto made = [](const std::vector<char>& m) { return static_cast<std::size_t>(std::count(m.begin(), m.end(), 1)); };
+    const auto made = [](const std::vector<char>& m) {
+        return static_cast<std::size_t>(std::count(m.begin(), m.end(), 1));
+    };
     report.refused_by_checks += again.size() - made(moved_again);
     report.moves += made(moved) + made(moved_again);
     return made(moved) + made(moved_again);
@@ -227,7 +230,7 @@ void step_pairs(ComplexEditor& editor, const Rings& rings, const detail::VoxelEv
         for (std::int64_t i = 0; i < slots; ++i) {
             const auto v = static_cast<std::size_t>(i);
             const Vec3 s = after[v] - now[v];
-            if (dot(s, s) < 1e-20) continue;  // flat here (or a corner): nothing to do
+            if (dot(s, s) < 1e-20) continue; // flat here (or a corner): nothing to do
             const std::optional<Vec3> target = allowed_target(now[v], s, evidence, tissues[v]);
             if (target) next[v] = *target;
             else refused[v] = 1;
@@ -246,10 +249,11 @@ void step_pairs(ComplexEditor& editor, const Rings& rings, const detail::VoxelEv
     // Each pair tilted each triangle at most by the limit; the run as a whole may turn it further, but not over.
     const detail::EditLimits limits = editor.limits();
     if (count > 1)
-        editor.set_limits({.min_angle_deg = limits.min_angle_deg,
-                           .max_normal_change_deg = std::min(90.0, static_cast<double>(count) * limits.max_normal_change_deg),
-                           .min_gap_mm = limits.min_gap_mm,
-                           .min_wedge_deg = limits.min_wedge_deg});
+        editor.set_limits(
+            {.min_angle_deg = limits.min_angle_deg,
+             .max_normal_change_deg = std::min(90.0, static_cast<double>(count) * limits.max_normal_change_deg),
+             .min_gap_mm = limits.min_gap_mm,
+             .min_wedge_deg = limits.min_wedge_deg});
     move_checked(editor, evidence, tissues, vertices, targets, report);
     editor.set_limits(limits);
 }
@@ -319,9 +323,9 @@ SmoothReport smooth(InterfaceComplex& complex, const LabelImage& image, const Sm
         ++counted;
     }
     if (counted > 0) report.mean_displacement_mm /= static_cast<double>(counted);
-    progress.info("smooth", concat(report.moves, " moves in ", report.iterations, " iterations; ",
-                                   report.refused_by_image, " refused by the image, ", report.refused_by_checks,
-                                   " by the validity checks"));
+    progress.info("smooth",
+                  concat(report.moves, " moves in ", report.iterations, " iterations; ", report.refused_by_image,
+                         " refused by the image, ", report.refused_by_checks, " by the validity checks"));
     return report;
 }
 

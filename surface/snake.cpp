@@ -26,8 +26,8 @@ void validate(const SnakeOptions& o, const std::vector<SnakeTarget>& targets)
     if (!positive(o.max_step_voxels) || o.max_step_voxels > 2)
         throw InputError(concat("snake: max step ", o.max_step_voxels, " voxels must lie in (0, 2]"));
     if (!std::isfinite(o.balloon_voxels) || std::abs(o.balloon_voxels) > o.max_step_voxels)
-        throw InputError(concat("snake: balloon ", o.balloon_voxels, " voxels exceeds the max step ",
-                                o.max_step_voxels, " voxels"));
+        throw InputError(
+            concat("snake: balloon ", o.balloon_voxels, " voxels exceeds the max step ", o.max_step_voxels, " voxels"));
     if (!(o.target_edge_mm >= 0) || !(o.max_chord_error_mm >= 0) || !(o.min_separation_voxels >= 0) ||
         !positive(o.tolerance_voxels))
         throw InputError("snake: target edge, chord error and separation must be >= 0, the tolerance > 0");
@@ -204,9 +204,9 @@ private:
     const SnakeOptions& options_;
     double voxel_mm_;
     std::vector<Vec3> normal_, laplacian_;
-    Vec3 largest_at_{0, 0, 0};      ///< where the largest motion of the last iteration started
-    std::vector<Vec3> last_shift_;  ///< per vertex slot: its shift of the previous iteration
-    std::vector<double> damping_;   ///< per vertex slot: factor of its step, halved on each reversal
+    Vec3 largest_at_{0, 0, 0};     ///< where the largest motion of the last iteration started
+    std::vector<Vec3> last_shift_; ///< per vertex slot: its shift of the previous iteration
+    std::vector<double> damping_;  ///< per vertex slot: factor of its step, halved on each reversal
     std::vector<double> curvature_;
     std::vector<std::size_t> snake_;
 };
@@ -243,14 +243,14 @@ SnakeReport evolve_snakes(InterfaceComplex& complex, const std::vector<SnakeTarg
     editor.rebuild_grid(2 * std::max(editor.mean_edge_length(), voxel_mm));
     SnakeStepper stepper(editor, targets, options, voxel_mm);
     const double tolerance_mm = options.tolerance_voxels * voxel_mm;
-    bool edited = true;  // resolution edits since the last converged check
+    bool edited = true; // resolution edits since the last converged check
     for (std::size_t i = 0; i < options.max_iterations; ++i) {
         report.last_max_motion_mm = stepper.iterate(report);
         ++report.iterations;
         const Vec3& at = stepper.largest_at();
-        progress.debug("snake", concat("iteration ", i + 1, ": largest motion ", format_mm(report.last_max_motion_mm, 4),
-                                       " mm near (", format_mm(at[0], 1), ", ", format_mm(at[1], 1), ", ",
-                                       format_mm(at[2], 1), ") mm"));
+        progress.debug("snake", concat("iteration ", i + 1, ": largest motion ",
+                                       format_mm(report.last_max_motion_mm, 4), " mm near (", format_mm(at[0], 1), ", ",
+                                       format_mm(at[1], 1), ", ", format_mm(at[2], 1), ") mm"));
         progress.update("snake", static_cast<double>(i + 1) / static_cast<double>(options.max_iterations));
         if (report.last_max_motion_mm < tolerance_mm && !edited) {
             report.converged = true;

@@ -32,12 +32,12 @@ struct SnakeOptions {
     /// > 0: curvature-adapted resolution, edges shortened where the chord of the local curvature circle
     /// would leave the surface by more than this (never below a quarter of target_edge_mm)
     double max_chord_error_mm = 0;
-    std::size_t resolution_every = 5;     ///< split/collapse/flip pass every this many iterations (0: never)
-    double min_separation_voxels = 0.25;  ///< distance kept between different snakes (and folds of one)
-    std::size_t max_iterations = 300;     ///< iteration cap
-    double tolerance_voxels = 0.01;       ///< converged when no vertex moves more than this in an iteration
-    double min_angle_deg = 5;             ///< no edit may create a smaller angle (unless not worse)
-    double max_normal_change_deg = 45;    ///< one edit may tilt a triangle at most this much
+    std::size_t resolution_every = 5;    ///< split/collapse/flip pass every this many iterations (0: never)
+    double min_separation_voxels = 0.25; ///< distance kept between different snakes (and folds of one)
+    std::size_t max_iterations = 300;    ///< iteration cap
+    double tolerance_voxels = 0.01;      ///< converged when no vertex moves more than this in an iteration
+    double min_angle_deg = 5;            ///< no edit may create a smaller angle (unless not worse)
+    double max_normal_change_deg = 45;   ///< one edit may tilt a triangle at most this much
 };
 
 /// What evolve_snakes() did. `converged` false means the iteration cap stopped it (the surfaces are still
@@ -45,15 +45,15 @@ struct SnakeOptions {
 struct SnakeReport {
     std::size_t iterations = 0;
     bool converged = false;
-    double last_max_motion_mm = 0;      ///< largest vertex motion of the last iteration
-    std::size_t moves = 0;              ///< vertex moves made (full or shortened)
-    std::size_t shortened_moves = 0;    ///< moves made only at half or a quarter of their step
-    std::size_t refused_moves = 0;      ///< moves the validity checks refused even at a quarter step
+    double last_max_motion_mm = 0;   ///< largest vertex motion of the last iteration
+    std::size_t moves = 0;           ///< vertex moves made (full or shortened)
+    std::size_t shortened_moves = 0; ///< moves made only at half or a quarter of their step
+    std::size_t refused_moves = 0;   ///< moves the validity checks refused even at a quarter step
     std::size_t splits = 0;
     std::size_t collapses = 0;
     std::size_t flips = 0;
-    std::size_t triangles = 0;          ///< at the end
-    double mean_abs_field_distance_mm = 0;  ///< mean |phi / |grad phi|| over the final vertices
+    std::size_t triangles = 0;             ///< at the end
+    double mean_abs_field_distance_mm = 0; ///< mean |phi / |grad phi|| over the final vertices
 };
 
 /// Moves the snakes of `complex` (closed, nested, non-intersecting surfaces, one per target) to the zero

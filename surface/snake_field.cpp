@@ -40,8 +40,8 @@ void smooth_axis(std::vector<float>& values, const Dims& dims, int axis, const s
         for (std::size_t a = 0; a < n; ++a) {
             double sum = 0;
             for (std::int64_t d = -radius; d <= radius; ++d) {
-                const std::int64_t b = std::clamp<std::int64_t>(static_cast<std::int64_t>(a) + d, 0,
-                                                                static_cast<std::int64_t>(n) - 1);
+                const std::int64_t b =
+                    std::clamp<std::int64_t>(static_cast<std::int64_t>(a) + d, 0, static_cast<std::int64_t>(n) - 1);
                 sum += kernel[static_cast<std::size_t>(d + radius)] * line[static_cast<std::size_t>(b)];
             }
             values[start + a * stride] = static_cast<float>(sum);
@@ -130,7 +130,7 @@ Vec3 PotentialField::gradient(const Vec3& world_mm) const
         const int d[3] = {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1};
         const double f = at(c.base[0] + d[0], c.base[1] + d[1], c.base[2] + d[2]);
         for (std::size_t a = 0; a < 3; ++a) {
-            double w = d[a] ? 1 : -1;  // derivative of the weight along axis a
+            double w = d[a] ? 1 : -1; // derivative of the weight along axis a
             for (std::size_t b = 0; b < 3; ++b)
                 if (b != a) w *= d[b] ? c.t[b] : 1 - c.t[b];
             g_index[a] += w * f;
@@ -177,8 +177,8 @@ std::vector<char> enclosed_region(const LabelImage& image, Label tissue)
     const Dims& dims = image.dims();
     const std::vector<Label>& labels = image.labels();
     if (std::find(labels.begin(), labels.end(), tissue) == labels.end())
-        throw InputError(concat("snake: the image has no voxel of tissue ", image.name_of(tissue),
-                                " (label ", tissue, "); choose a tissue it holds (tm-info lists them)"));
+        throw InputError(concat("snake: the image has no voxel of tissue ", image.name_of(tissue), " (label ", tissue,
+                                "); choose a tissue it holds (tm-info lists them)"));
     // Flood the outside from the border voxels through voxels of other labels (6-connected).
     std::vector<char> outside(labels.size(), 0);
     std::deque<std::size_t> queue;
@@ -223,8 +223,8 @@ PotentialField label_potential(const LabelImage& image, const std::vector<char>&
     return PotentialField(image, std::move(values));
 }
 
-PotentialField grey_potential(const LabelImage& geometry, const std::vector<float>& values, double iso,
-                              double sigma_mm, bool bright_inside)
+PotentialField grey_potential(const LabelImage& geometry, const std::vector<float>& values, double iso, double sigma_mm,
+                              bool bright_inside)
 {
     if (values.size() != geometry.voxel_count())
         throw InputError(concat("snake: ", values.size(), " grey values for ", geometry.voxel_count(), " voxels"));

@@ -62,8 +62,8 @@ PotentialField label_potential(const LabelImage& image, const std::vector<char>&
 /// minus `iso`: positive where the value exceeds the iso value (`bright_inside`, e.g. bone in CT) or, with
 /// `bright_inside` false, where it is below. The zero level is the iso-surface of the smoothed image.
 /// @throws InputError when sizes disagree, sigma_mm is negative or iso is not finite
-PotentialField grey_potential(const LabelImage& geometry, const std::vector<float>& values, double iso,
-                              double sigma_mm, bool bright_inside = true);
+PotentialField grey_potential(const LabelImage& geometry, const std::vector<float>& values, double iso, double sigma_mm,
+                              bool bright_inside = true);
 
 /// Gaussian smoothing in place of a float volume on `dims` with per-axis standard deviations in voxels
 /// (0: that axis is left alone); borders replicate the edge voxels.

@@ -47,7 +47,8 @@ InterfaceComplex ellipsoid_surface(const Vec3& centre_mm, const Vec3& radii_mm, 
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
         const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
             const auto key = std::minmax(a, b);
-            const auto [it, added] = middle.try_emplace({key.first, key.second}, static_cast<std::uint32_t>(unit.size()));
+            const auto [it, added] =
+                middle.try_emplace({key.first, key.second}, static_cast<std::uint32_t>(unit.size()));
             if (added) {
                 const Vec3 m = unit[a] + unit[b];
                 unit.push_back((1 / norm(m)) * m);
@@ -80,7 +81,8 @@ std::vector<SnakeTarget> nested_label_targets(const LabelImage& image, const std
             throw InputError("snake: the background (label 0) cannot be a snake's tissue; list the tissues inside it");
         for (std::size_t j = 0; j < k; ++j)
             if (tissues_outer_first[j] == tissue)
-                throw InputError(concat("snake: tissue ", image.name_of(tissue), " is listed twice; list each once, "
+                throw InputError(concat("snake: tissue ", image.name_of(tissue),
+                                        " is listed twice; list each once, "
                                         "outermost first"));
         const Label outside = k == 0 ? Label{0} : tissues_outer_first[k - 1];
         targets.push_back({{tissue, outside}, label_potential(image, enclosed_region(image, tissue), sigma_mm)});
@@ -115,9 +117,9 @@ void label_start_surface(InterfaceComplex& complex, const std::vector<SnakeTarge
         return false;
     };
     if (std::all_of(complex.sides.begin(), complex.sides.end(), matches)) return;
-    const bool one_pair = !complex.sides.empty() &&
-                          std::all_of(complex.sides.begin(), complex.sides.end(),
-                                      [&](const LabelPair& side) { return side == complex.sides.front(); });
+    const bool one_pair =
+        !complex.sides.empty() && std::all_of(complex.sides.begin(), complex.sides.end(),
+                                              [&](const LabelPair& side) { return side == complex.sides.front(); });
     if (targets.size() == 1 && one_pair) {
         for (LabelPair& side : complex.sides) side = targets.front().pair;
         return;

@@ -110,8 +110,11 @@ void InterfaceSummarizer::collect_edges(const InterfacePiece& piece)
             const auto [a, b] = edge_of(piece.triangles[t], e);
             if (a < previous_first_vertex_ || b >= end_vertex)
                 throw InputError(concat("summarize_interfaces: triangle ", done_.triangles + t, " uses vertex ",
-                                        a < previous_first_vertex_ ? a : b, ", outside its piece and the one before "
-                                        "(vertices ", previous_first_vertex_, "..", end_vertex - 1, "); the streamed "
+                                        a < previous_first_vertex_ ? a : b,
+                                        ", outside its piece and the one before "
+                                        "(vertices ",
+                                        previous_first_vertex_, "..", end_vertex - 1,
+                                        "); the streamed "
                                         "summary needs local pieces, use summarize_interfaces() on the whole complex"));
             ++bucket_start_[a - previous_first_vertex_ + 1];
         }
@@ -148,7 +151,8 @@ InterfaceSummary InterfaceSummarizer::summary() const
     InterfaceSummary summary = done_;
     for (const auto& [key, labels] : pending_) count_edge(labels, summary);
     for (std::size_t label = 0; label < triangles_per_tissue_.size(); ++label)
-        if (triangles_per_tissue_[label] > 0) summary.tissues[static_cast<Label>(label)].triangles = triangles_per_tissue_[label];
+        if (triangles_per_tissue_[label] > 0)
+            summary.tissues[static_cast<Label>(label)].triangles = triangles_per_tissue_[label];
     summary.patches = pairs_.size();
     return summary;
 }

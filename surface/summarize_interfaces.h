@@ -16,17 +16,17 @@ namespace tissuemesh::surface {
 
 /// Counts for one tissue.
 struct TissueCounts {
-    std::size_t triangles = 0;       ///< triangles with this tissue on one side
-    std::size_t junction_edges = 0;  ///< edges of its surface where 3 or more tissues meet
+    std::size_t triangles = 0;      ///< triangles with this tissue on one side
+    std::size_t junction_edges = 0; ///< edges of its surface where 3 or more tissues meet
 };
 
 /// Counts for a whole complex.
 struct InterfaceSummary {
-    std::size_t vertices = 0;               ///< of the whole complex
-    std::size_t triangles = 0;              ///< of the whole complex
-    std::map<Label, TissueCounts> tissues;  ///< by label, background included
-    std::size_t patches = 0;                ///< distinct unordered tissue pairs
-    std::size_t junction_edges = 0;         ///< edges where 3 or more tissues meet
+    std::size_t vertices = 0;              ///< of the whole complex
+    std::size_t triangles = 0;             ///< of the whole complex
+    std::map<Label, TissueCounts> tissues; ///< by label, background included
+    std::size_t patches = 0;               ///< distinct unordered tissue pairs
+    std::size_t junction_edges = 0;        ///< edges where 3 or more tissues meet
 };
 
 /// Counts triangles per tissue and junction edges (an edge whose incident triangles name 3 or more
@@ -58,17 +58,17 @@ public:
     };
 
 private:
-    using Edge = std::pair<std::uint64_t, EdgeLabels>;  ///< (lower vertex << 32 | upper vertex, labels)
+    using Edge = std::pair<std::uint64_t, EdgeLabels>; ///< (lower vertex << 32 | upper vertex, labels)
     /// Sorts this piece's edge uses (bucketed by lower vertex) into edges_ with their labels.
     void collect_edges(const InterfacePiece& piece);
 
-    InterfaceSummary done_;                             ///< counts of finished edges
+    InterfaceSummary done_; ///< counts of finished edges
     std::vector<std::size_t> triangles_per_tissue_ = std::vector<std::size_t>(std::size_t{1} << 16, 0);
     std::set<std::pair<Label, Label>> pairs_;
-    std::vector<Edge> pending_;                         ///< the previous piece's edges, sorted by key
-    std::vector<Edge> edges_;                           ///< this piece's edges, sorted by key
-    std::vector<std::size_t> bucket_start_;             ///< scratch: uses bucketed by lower vertex
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> uses_;  ///< scratch: (upper vertex, triangle)
+    std::vector<Edge> pending_;                                 ///< the previous piece's edges, sorted by key
+    std::vector<Edge> edges_;                                   ///< this piece's edges, sorted by key
+    std::vector<std::size_t> bucket_start_;                     ///< scratch: uses bucketed by lower vertex
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> uses_; ///< scratch: (upper vertex, triangle)
     std::size_t previous_first_vertex_ = 0;
 };
 

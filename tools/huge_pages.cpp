@@ -32,7 +32,7 @@ void* try_allocate(std::size_t size)
     if (block != nullptr && size >= huge_page) {
         const auto start = (reinterpret_cast<std::uintptr_t>(block) + huge_page - 1) / huge_page * huge_page;
         const auto end = (reinterpret_cast<std::uintptr_t>(block) + size) / huge_page * huge_page;
-        if (end > start)  // refused (EINVAL) without THP: harmless
+        if (end > start) // refused (EINVAL) without THP: harmless
             madvise(reinterpret_cast<void*>(start), end - start, MADV_HUGEPAGE);
     }
     return block;

@@ -13,14 +13,16 @@ namespace tissuemesh::tools {
 
 struct ImproveFlags {
     volume::ImproveOptions options;
-    bool off = false;          ///< --no-improve (tm-tetra, tm-refine)
+    bool off = false; ///< --no-improve (tm-tetra, tm-refine)
     bool keep_interfaces = false;
     CLI::Option* insert_below = nullptr;
 
     /// `with_switch`: the tool improves by default and takes --no-improve.
     void add_to(CLI::App& app, bool with_switch)
     {
-        if (with_switch) app.add_flag("--no-improve", off, "Keep the mesh as meshed: no smoothing, flips or insertion of the improver");
+        if (with_switch)
+            app.add_flag("--no-improve", off,
+                         "Keep the mesh as meshed: no smoothing, flips or insertion of the improver");
         app.add_option("--improve-target-deg", options.target_dihedral_deg,
                        "Improver: work on tets whose smallest dihedral angle is below this (degrees)")
             ->check(CLI::Range(1.0, 70.0))
@@ -28,11 +30,13 @@ struct ImproveFlags {
         app.add_option("--improve-passes", options.max_passes, "Improver: rounds over the tets below the target")
             ->check(CLI::Range(1, 100))
             ->capture_default_str();
-        insert_below = app.add_option("--improve-insert-below-deg", options.insert_below_deg,
-                       "Improver: insert nodes for tets whose smallest dihedral angle is below this (0: never; given, it "
-                       "turns insertion on where the tool leaves it off)")
-            ->check(CLI::Range(0.0, 70.0))
-            ->capture_default_str();
+        insert_below =
+            app.add_option(
+                   "--improve-insert-below-deg", options.insert_below_deg,
+                   "Improver: insert nodes for tets whose smallest dihedral angle is below this (0: never; given, it "
+                   "turns insertion on where the tool leaves it off)")
+                ->check(CLI::Range(0.0, 70.0))
+                ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
                      "Improver: interface nodes stay where they are and none is added on interfaces");
     }
@@ -46,9 +50,11 @@ struct ImproveFlags {
         if (insert_below != nullptr && insert_below->count() > 0) {
             // The improver works only below its target, so a higher insertion bound would act as the target.
             if (o.insert_below_deg > o.target_dihedral_deg)
-                throw InputError(concat("--improve-insert-below-deg ", o.insert_below_deg, " is above --improve-target-deg ",
-                                        o.target_dihedral_deg, "; the improver inserts only in tets below its target: give "
-                                        "0..", o.target_dihedral_deg, " or raise the target"));
+                throw InputError(concat("--improve-insert-below-deg ", o.insert_below_deg,
+                                        " is above --improve-target-deg ", o.target_dihedral_deg,
+                                        "; the improver inserts only in tets below its target: give "
+                                        "0..",
+                                        o.target_dihedral_deg, " or raise the target"));
             o.insert = o.insert_below_deg > 0;
         }
         if (o.insert_below_deg <= 0) o.insert = false;
@@ -58,30 +64,38 @@ struct ImproveFlags {
 
 inline nlohmann::json shape_json(const volume::ShapeFigures& f)
 {
-    return {{"min_dihedral_deg", f.min_dihedral_deg}, {"max_dihedral_deg", f.max_dihedral_deg},
+    return {{"min_dihedral_deg", f.min_dihedral_deg},       {"max_dihedral_deg", f.max_dihedral_deg},
             {"p1_min_dihedral_deg", f.p1_min_dihedral_deg}, {"tets_under_10_deg", f.tets_under_10_deg},
-            {"tets_under_20_deg", f.tets_under_20_deg}, {"tets", f.tets}};
+            {"tets_under_20_deg", f.tets_under_20_deg},     {"tets", f.tets}};
 }
 
 inline nlohmann::json improve_json(const volume::ImproveReport& r)
 {
-    return {{"before", shape_json(r.before)}, {"after", shape_json(r.after)}, {"smoothed_nodes", r.smoothed_nodes},
-            {"edges_removed", r.edges_removed}, {"faces_removed", r.faces_removed},
-            {"interface_edges_flipped", r.interface_edges_flipped}, {"nodes_inserted", r.nodes_inserted},
-            {"nodes_inserted_on_interfaces", r.nodes_inserted_on_interfaces}, {"passes", r.passes}, {"seconds", r.seconds},
+    return {{"before", shape_json(r.before)},
+            {"after", shape_json(r.after)},
+            {"smoothed_nodes", r.smoothed_nodes},
+            {"edges_removed", r.edges_removed},
+            {"faces_removed", r.faces_removed},
+            {"interface_edges_flipped", r.interface_edges_flipped},
+            {"nodes_inserted", r.nodes_inserted},
+            {"nodes_inserted_on_interfaces", r.nodes_inserted_on_interfaces},
+            {"passes", r.passes},
+            {"seconds", r.seconds},
             {"cpu_seconds", r.cpu_seconds}};
 }
 
 /// "smallest dihedral 0.21 -> 18.3 deg, 1st percentile 9.1 -> 24.0 deg, ... in 1.2 s"
 inline std::string improve_line(const volume::ImproveReport& r)
 {
-    return concat("improved: smallest dihedral ", format_mm(r.before.min_dihedral_deg, 2), " -> ", format_mm(r.after.min_dihedral_deg, 2),
-                  " deg, 1st percentile ", format_mm(r.before.p1_min_dihedral_deg, 1), " -> ", format_mm(r.after.p1_min_dihedral_deg, 1),
-                  " deg, tets under 10 deg ", r.before.tets_under_10_deg, " -> ", r.after.tets_under_10_deg, " (", r.smoothed_nodes,
-                  " moves, ", r.edges_removed + r.faces_removed + r.interface_edges_flipped, " flips (",
-                  r.interface_edges_flipped, " on interfaces), ", r.nodes_inserted + r.nodes_inserted_on_interfaces,
-                  " new nodes, ", r.nodes_inserted_on_interfaces, " of them on interfaces) in ", format_mm(r.seconds, 2), " s (",
-                  format_mm(r.cpu_seconds, 2), " s CPU)");
+    return concat("improved: smallest dihedral ", format_mm(r.before.min_dihedral_deg, 2), " -> ",
+                  format_mm(r.after.min_dihedral_deg, 2), " deg, 1st percentile ",
+                  format_mm(r.before.p1_min_dihedral_deg, 1), " -> ", format_mm(r.after.p1_min_dihedral_deg, 1),
+                  " deg, tets under 10 deg ", r.before.tets_under_10_deg, " -> ", r.after.tets_under_10_deg, " (",
+                  r.smoothed_nodes, " moves, ", r.edges_removed + r.faces_removed + r.interface_edges_flipped,
+                  " flips (", r.interface_edges_flipped, " on interfaces), ",
+                  r.nodes_inserted + r.nodes_inserted_on_interfaces, " new nodes, ", r.nodes_inserted_on_interfaces,
+                  " of them on interfaces) in ", format_mm(r.seconds, 2), " s (", format_mm(r.cpu_seconds, 2),
+                  " s CPU)");
 }
 
 } // namespace tissuemesh::tools

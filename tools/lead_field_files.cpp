@@ -37,11 +37,13 @@ nlohmann::json read_sidecar(const std::filesystem::path& path)
     require_readable_file(path);
     std::error_code error;
     if (std::filesystem::file_size(path, error) > max_sidecar_bytes || error)
-        throw IoError(concat(path.string(), ": larger than ", max_sidecar_bytes >> 20, " MiB; not a lead-field sidecar"));
+        throw IoError(
+            concat(path.string(), ": larger than ", max_sidecar_bytes >> 20, " MiB; not a lead-field sidecar"));
     try {
         return nlohmann::json::parse(read_file_bytes(path));
     } catch (const nlohmann::json::exception& failure) {
-        throw IoError(concat(path.string(), ": not valid JSON (", failure.what(), "); write it again with tm-leadfield"));
+        throw IoError(
+            concat(path.string(), ": not valid JSON (", failure.what(), "); write it again with tm-leadfield"));
     }
 }
 
@@ -65,7 +67,10 @@ std::string mesh_fingerprint(const TetMesh& mesh)
 
 nlohmann::json mesh_description(const std::string& path, const TetMesh& mesh)
 {
-    return {{"path", path}, {"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"fingerprint", mesh_fingerprint(mesh)}};
+    return {{"path", path},
+            {"nodes", mesh.vertex_count()},
+            {"tets", mesh.tet_count()},
+            {"fingerprint", mesh_fingerprint(mesh)}};
 }
 
 nlohmann::json conductivity_description(const TetMesh& mesh, const fem::Conductivities& conductivities)
@@ -74,10 +79,8 @@ nlohmann::json conductivity_description(const TetMesh& mesh, const fem::Conducti
     for (const auto& [label, sigma] : conductivities.by_label) {
         const auto name = mesh.names.find(label);
         const std::string key = name == mesh.names.end() ? std::to_string(label) : name->second;
-        if (sigma == fem::isotropic(sigma[0]))
-            table[key] = sigma[0];
-        else
-            table[key] = std::vector<double>(sigma.begin(), sigma.end());
+        if (sigma == fem::isotropic(sigma[0])) table[key] = sigma[0];
+        else table[key] = std::vector<double>(sigma.begin(), sigma.end());
     }
     return table;
 }
@@ -103,8 +106,8 @@ TdcsLeadFieldFile read_tdcs_lead_field(const std::filesystem::path& npy, const T
     TdcsLeadFieldFile read;
     try {
         if (sidecar.at("kind").get<std::string>() != "tdcs")
-            throw IoError(concat(file, ": a lead field of kind '", sidecar.at("kind").get<std::string>(), "', not tdcs; ",
-                                 "give the --tdcs-output of tm-leadfield"));
+            throw IoError(concat(file, ": a lead field of kind '", sidecar.at("kind").get<std::string>(),
+                                 "', not tdcs; ", "give the --tdcs-output of tm-leadfield"));
         const nlohmann::json& described = sidecar.at("mesh");
         if (described.at("nodes").get<std::size_t>() != mesh.vertex_count() ||
             described.at("fingerprint").get<std::string>() != mesh_fingerprint(mesh))
@@ -121,7 +124,8 @@ TdcsLeadFieldFile read_tdcs_lead_field(const std::filesystem::path& npy, const T
         }
         read.lead_field.reference = sidecar.at("reference_index").get<std::size_t>();
     } catch (const nlohmann::json::exception& failure) {
-        throw IoError(concat(file, ": not a tDCS lead-field sidecar (", failure.what(), "); write it again with tm-leadfield"));
+        throw IoError(
+            concat(file, ": not a tDCS lead-field sidecar (", failure.what(), "); write it again with tm-leadfield"));
     }
     const std::size_t count = read.names.size();
     if (count < 2 || read.lead_field.reference >= count)
@@ -130,10 +134,12 @@ TdcsLeadFieldFile read_tdcs_lead_field(const std::filesystem::path& npy, const T
     const io::NpyMatrix matrix = io::read_npy(npy);
     if (matrix.rows != count - 1 || matrix.columns != mesh.vertex_count())
         throw IoError(concat(npy.string(), ": ", matrix.rows, " x ", matrix.columns, " values where its sidecar says ",
-                             count - 1, " electrodes x ", mesh.vertex_count(), " nodes; write both again with tm-leadfield"));
+                             count - 1, " electrodes x ", mesh.vertex_count(),
+                             " nodes; write both again with tm-leadfield"));
     for (std::size_t e = 0; e < count; ++e)
         if (e != read.lead_field.reference) read.lead_field.electrodes.push_back(e);
-    read.lead_field.potentials_v_per_a.resize(static_cast<Eigen::Index>(matrix.rows), static_cast<Eigen::Index>(matrix.columns));
+    read.lead_field.potentials_v_per_a.resize(static_cast<Eigen::Index>(matrix.rows),
+                                              static_cast<Eigen::Index>(matrix.columns));
     std::memcpy(read.lead_field.potentials_v_per_a.data(), matrix.values.data(), matrix.values.size() * sizeof(double));
     return read;
 }

@@ -40,7 +40,7 @@ std::optional<std::uint64_t> cgroup_available(const char* limit_path, const char
 {
     const auto limit = read_number(limit_path);
     const auto usage = read_number(usage_path);
-    if (!limit || !usage || *limit >= (std::uint64_t{1} << 60)) return std::nullopt;  // v1 writes 2^63 - 4096 for none
+    if (!limit || !usage || *limit >= (std::uint64_t{1} << 60)) return std::nullopt; // v1 writes 2^63 - 4096 for none
     const std::uint64_t cache = read_field(stat_path, "inactive_file", 1).value_or(0);
     const std::uint64_t used = *usage > cache ? *usage - cache : 0;
     return *limit > used ? *limit - used : 0;
@@ -51,11 +51,10 @@ std::optional<std::uint64_t> cgroup_available(const char* limit_path, const char
 std::uint64_t available_memory_bytes()
 {
     std::optional<std::uint64_t> available = read_field("/proc/meminfo", "MemAvailable:", 1024);
-    for (const auto& group : {cgroup_available("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current",
-                                               "/sys/fs/cgroup/memory.stat"),
-                              cgroup_available("/sys/fs/cgroup/memory/memory.limit_in_bytes",
-                                               "/sys/fs/cgroup/memory/memory.usage_in_bytes",
-                                               "/sys/fs/cgroup/memory/memory.stat")})
+    for (const auto& group :
+         {cgroup_available("/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current", "/sys/fs/cgroup/memory.stat"),
+          cgroup_available("/sys/fs/cgroup/memory/memory.limit_in_bytes", "/sys/fs/cgroup/memory/memory.usage_in_bytes",
+                           "/sys/fs/cgroup/memory/memory.stat")})
         if (group) available = available ? std::min(*available, *group) : *group;
     return available.value_or(0);
 }
@@ -96,10 +95,11 @@ void require_memory(const MemoryLimit& limit, const std::string& subject, double
     const double needed = held + data_bytes;
     if (needed <= static_cast<double>(limit.bytes)) return;
     const std::string over = limit.from_flag
-                                 ? concat("more than --max-memory ", format_bytes(static_cast<double>(limit.bytes)), "; ", fix,
-                                          " or raise --max-memory")
+                                 ? concat("more than --max-memory ", format_bytes(static_cast<double>(limit.bytes)),
+                                          "; ", fix, " or raise --max-memory")
                                  : concat("more than the ", format_bytes(static_cast<double>(limit.bytes)),
-                                          " this machine has available; ", fix, ", free memory, or set --max-memory (MiB) "
+                                          " this machine has available; ", fix,
+                                          ", free memory, or set --max-memory (MiB) "
                                           "to try anyway");
     throw InputError(concat(subject, ": needs about ", format_bytes(needed), " (", detail, ", and ", format_bytes(held),
                             " for the program), ", over));
@@ -109,7 +109,8 @@ ImageSizeCheck image_memory_check(const MemoryLimit& limit, const std::string& p
                                   const std::string& fix)
 {
     return [limit, path, step_bytes_per_voxel, fix](const Dims& dims, const Vec3&, std::size_t file_bytes_per_voxel) {
-        const double voxels = static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
+        const double voxels =
+            static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
         const double per_voxel = static_cast<double>(file_bytes_per_voxel) + step_bytes_per_voxel;
         require_memory(limit, path, voxels * per_voxel,
                        concat(format_count(voxels), " voxels x ", format_bytes(per_voxel)), fix);

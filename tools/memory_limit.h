@@ -13,10 +13,10 @@ namespace tissuemesh::tools {
 
 /// The memory a run may use.
 struct MemoryLimit {
-    std::uint64_t bytes = 0;          ///< 0: no limit known (nothing is refused)
-    bool from_flag = false;           ///< set by --max-memory (else: the memory available when the tool started,
-                                      ///< plus program_bytes)
-    std::uint64_t program_bytes = 0;  ///< resident memory of the program itself when the tool started
+    std::uint64_t bytes = 0;         ///< 0: no limit known (nothing is refused)
+    bool from_flag = false;          ///< set by --max-memory (else: the memory available when the tool started,
+                                     ///< plus program_bytes)
+    std::uint64_t program_bytes = 0; ///< resident memory of the program itself when the tool started
 };
 
 /// The memory this process may still use: /proc/meminfo's MemAvailable, or less when the process's

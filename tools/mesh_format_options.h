@@ -20,8 +20,8 @@ struct MeshFormatFlags {
     bool binary = false;
     bool vtu_ascii = false;
     std::string numbering = "labels";
-    std::string tissue_tags;    ///< --tissue-tags FILE (simnibs)
-    std::string conductivity;   ///< --conductivity FILE (duneuro)
+    std::string tissue_tags;  ///< --tissue-tags FILE (simnibs)
+    std::string conductivity; ///< --conductivity FILE (duneuro)
     int duneuro_offset = 1;
 
     void add_to(CLI::App& app)
@@ -31,17 +31,23 @@ struct MeshFormatFlags {
             ->capture_default_str();
         app.add_flag("--binary", binary, ".msh output in binary instead of ASCII");
         app.add_flag("--vtu-ascii", vtu_ascii, ".vtu output as ASCII instead of zlib-compressed binary");
-        app.add_option("--tissue-numbering", numbering,
-                       ".msh tags: labels (ours), simnibs (SimNIBS's tissue numbers from the names, 2.2 binary; "
-                       "FieldTrip/Brainstorm read them too) or duneuro (2.2 ASCII dune-grid reads, tets only, tags from "
-                       "--duneuro-offset, conductivities in <stem>.con beside)")
+        app.add_option(
+               "--tissue-numbering", numbering,
+               ".msh tags: labels (ours), simnibs (SimNIBS's tissue numbers from the names, 2.2 binary; "
+               "FieldTrip/Brainstorm read them too) or duneuro (2.2 ASCII dune-grid reads, tets only, tags from "
+               "--duneuro-offset, conductivities in <stem>.con beside)")
             ->check(CLI::IsMember({"labels", "simnibs", "duneuro"}))
             ->capture_default_str();
-        app.add_option("--tissue-tags", tissue_tags, "simnibs: JSON of SimNIBS tags for tissues it has no name for "
-                                                     "({\"air cavities\": 13})")->type_name("FILE");
-        app.add_option("--conductivity", conductivity, "duneuro: conductivity table (S/m, tm-solve's format; head "
-                                                       "defaults by name)")->type_name("FILE");
-        app.add_option("--duneuro-offset", duneuro_offset, "duneuro: tag of the first tissue (DUNEuro's tensors.offset)")
+        app.add_option("--tissue-tags", tissue_tags,
+                       "simnibs: JSON of SimNIBS tags for tissues it has no name for "
+                       "({\"air cavities\": 13})")
+            ->type_name("FILE");
+        app.add_option("--conductivity", conductivity,
+                       "duneuro: conductivity table (S/m, tm-solve's format; head "
+                       "defaults by name)")
+            ->type_name("FILE");
+        app.add_option("--duneuro-offset", duneuro_offset,
+                       "duneuro: tag of the first tissue (DUNEuro's tensors.offset)")
             ->check(CLI::NonNegativeNumber)
             ->capture_default_str();
     }
@@ -57,7 +63,8 @@ struct MeshFormatFlags {
         if (!conductivity.empty() && numbering != "duneuro")
             throw InputError("--conductivity gives DUNEuro its conductivity file; add --tissue-numbering duneuro");
         if (numbering != "labels" && msh_version == "4.1")
-            throw InputError(concat("--tissue-numbering ", numbering, " writes Gmsh 2.2, as ", numbering == "simnibs" ? "SimNIBS" : "DUNEuro",
+            throw InputError(concat("--tissue-numbering ", numbering, " writes Gmsh 2.2, as ",
+                                    numbering == "simnibs" ? "SimNIBS" : "DUNEuro",
                                     " reads it; drop --msh-version 4.1"));
         if (numbering == "duneuro" && binary)
             throw InputError("--tissue-numbering duneuro writes ASCII (dune-grid reads no binary .msh); drop --binary");
@@ -80,12 +87,15 @@ struct MeshFormatFlags {
         if (numbering == "duneuro") {
             options.numbering = io::TissueNumbering::duneuro;
             options.duneuro_tag_offset = duneuro_offset;
-            const fem::ConductivityTable table = conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(conductivity);
-            const fem::Conductivities resolved = with_source(conductivity.empty() ? "the default conductivities" : conductivity,
-                                                             [&] { return fem::resolve_conductivities(mesh, table); });
+            const fem::ConductivityTable table =
+                conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(conductivity);
+            const fem::Conductivities resolved =
+                with_source(conductivity.empty() ? "the default conductivities" : conductivity,
+                            [&] { return fem::resolve_conductivities(mesh, table); });
             for (const auto& [label, tensor] : resolved.by_label) {
                 if (tensor != fem::isotropic(tensor[0]))
-                    throw InputError(concat(conductivity, ": tissue ", label, " has an anisotropic conductivity; DUNEuro's "
+                    throw InputError(concat(conductivity, ": tissue ", label,
+                                            " has an anisotropic conductivity; DUNEuro's "
                                             "conductivity file holds one number per tissue"));
                 options.duneuro_conductivities_s_per_m[label] = tensor[0];
             }

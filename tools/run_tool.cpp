@@ -78,7 +78,7 @@ double peak_memory_mb()
     rusage self{}, children{};
     ::getrusage(RUSAGE_SELF, &self);
     ::getrusage(RUSAGE_CHILDREN, &children);
-    return static_cast<double>(std::max(self.ru_maxrss, children.ru_maxrss)) / 1024.0;  // ru_maxrss is in KiB on Linux
+    return static_cast<double>(std::max(self.ru_maxrss, children.ru_maxrss)) / 1024.0; // ru_maxrss is in KiB on Linux
 }
 
 /// Why the --json summary cannot be written at `path`, or "" when its folder exists and takes files. Checked
@@ -122,14 +122,14 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
     std::string json_path;
     bool verbose = false;
     bool quiet = false;
-    app.add_option("--json", json_path, "Write a JSON summary (counts, measures, timings) to FILE")
-        ->type_name("FILE");
+    app.add_option("--json", json_path, "Write a JSON summary (counts, measures, timings) to FILE")->type_name("FILE");
     app.add_flag("-v,--verbose", verbose, "More detail on stderr");
     app.add_flag("-q,--quiet", quiet, "Only errors on stderr");
     double max_memory_mib = 0;
     app.add_option("--max-memory", max_memory_mib,
                    "Refuse inputs that would need more than MIB MiB (default: the memory available at the start)")
-        ->type_name("MIB")->check(CLI::PositiveNumber);
+        ->type_name("MIB")
+        ->check(CLI::PositiveNumber);
     // Hidden: the test of every tool's --help examples parses them with the tool's own options (tests/help_cli).
     bool parse_only = false;
     app.add_flag("--parse-only", parse_only, "Check the command line, then exit without reading or writing")->group("");
@@ -165,11 +165,11 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
                          ? MemoryLimit{static_cast<std::uint64_t>(max_memory_mib * 1048576.0), true, program_bytes}
                          : MemoryLimit{available > 0 ? available + program_bytes : 0, false, program_bytes};
     auto printer = std::make_shared<StderrProgress>(context.verbosity);
-    context.progress = Progress(
-        [printer](std::string_view stage, double fraction) { printer->fraction(stage, fraction); },
-        [printer](LogLevel level, std::string_view stage, std::string_view text) {
-            printer->message(level, stage, text);
-        });
+    context.progress =
+        Progress([printer](std::string_view stage, double fraction) { printer->fraction(stage, fraction); },
+                 [printer](LogLevel level, std::string_view stage, std::string_view text) {
+                     printer->message(level, stage, text);
+                 });
 
     const auto start = std::chrono::steady_clock::now();
     int code = 0;
@@ -193,7 +193,7 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
 
     if (!json_path.empty()) {
         nlohmann::json summary = {{"tool", spec.name}, {"version", TM_VERSION}, {"status", code == 0 ? "ok" : "failed"},
-                                  {"exit_code", code}, {"seconds", seconds}, {"peak_memory_mb", peak_memory_mb()}};
+                                  {"exit_code", code}, {"seconds", seconds},    {"peak_memory_mb", peak_memory_mb()}};
         if (!message.empty()) summary["error"] = message;
         summary.update(context.summary);
         if (!write_summary(json_path, summary, spec.name) && code == 0) code = 2;

@@ -20,7 +20,7 @@ namespace tissuemesh::tools {
 struct ToolContext {
     Progress progress;
     nlohmann::json summary = nlohmann::json::object();
-    int verbosity = 1;  ///< 0 with -q, 1 by default, 2 with -v
+    int verbosity = 1; ///< 0 with -q, 1 by default, 2 with -v
     std::string tool;
     /// A checker that ran to the end but found the input unfit sets 1 here (errors still throw).
     int exit_code = 0;
@@ -45,10 +45,10 @@ auto with_source(const std::string& source, Step&& step) -> decltype(step())
 }
 
 struct ToolSpec {
-    std::string name;         ///< "tm-info"
-    std::string description;  ///< one paragraph for --help
-    std::string examples;     ///< shown at the end of --help; every command in it (a line "  tm-...") must parse
-                              ///< (tests/help_cli)
+    std::string name;        ///< "tm-info"
+    std::string description; ///< one paragraph for --help
+    std::string examples;    ///< shown at the end of --help; every command in it (a line "  tm-...") must parse
+                             ///< (tests/help_cli)
 };
 
 /// Parses the command line (adding -v/-q/--json/--version/--max-memory, and the hidden --parse-only that stops

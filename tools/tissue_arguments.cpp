@@ -31,7 +31,8 @@ std::string known_tissues(const TissueTable& table)
     std::string text;
     for (std::size_t i = 0; i < labels.size() && i < listed_tissues; ++i) {
         const auto named = table.names.find(labels[i]);
-        text += concat(i > 0 ? ", " : "", labels[i], named != table.names.end() && !named->second.empty() ? " " + named->second : "");
+        text += concat(i > 0 ? ", " : "", labels[i],
+                       named != table.names.end() && !named->second.empty() ? " " + named->second : "");
     }
     if (labels.size() > listed_tissues) text += concat(" and ", labels.size() - listed_tissues, " more");
     return text;
@@ -91,13 +92,13 @@ Label parse_tissue(std::string_view text, const TissueTable& table, std::string_
     unsigned long long number = largest_label + 1;
     const bool negative = text.starts_with('-');
     const std::string_view digits = text.starts_with('+') || negative ? text.substr(1) : text;
-    std::from_chars(digits.data(), digits.data() + digits.size(), number);  // overflow leaves it out of range
+    std::from_chars(digits.data(), digits.data() + digits.size(), number); // overflow leaves it out of range
     if (negative || number > largest_label)
         throw InputError(concat(option, ": tissue ", text, " is not a label number; labels are 0..", largest_label));
     const Label label = static_cast<Label>(number);
     if (!table.present.empty() && table.present.count(label) == 0)
-        throw InputError(concat(option, ": ", where(table), " has no tissue ", label, "; its tissues are ",
-                                known_tissues(table)));
+        throw InputError(
+            concat(option, ": ", where(table), " has no tissue ", label, "; its tissues are ", known_tissues(table)));
     return label;
 }
 
@@ -117,9 +118,11 @@ TissueSetting parse_tissue_setting(std::string_view item, const TissueTable& tab
 {
     const std::size_t equals = item.find('=');
     if (equals == std::string_view::npos)
-        throw InputError(concat(option, " ", item, ": expected TISSUE=VALUE with TISSUE a name or a label number (e.g. ",
-                                option, " ", example, ")"));
-    return {parse_tissue(item.substr(0, equals), table, concat(option, " ", item)), std::string(item.substr(equals + 1))};
+        throw InputError(concat(option, " ", item,
+                                ": expected TISSUE=VALUE with TISSUE a name or a label number (e.g. ", option, " ",
+                                example, ")"));
+    return {parse_tissue(item.substr(0, equals), table, concat(option, " ", item)),
+            std::string(item.substr(equals + 1))};
 }
 
 } // namespace tissuemesh::tools

@@ -16,9 +16,9 @@ namespace tissuemesh::tools {
 
 /// The tissues a tool's tissue arguments may name.
 struct TissueTable {
-    TissueNames names;        ///< names by label, matched in any case (an exact match wins over others)
-    std::set<Label> present;  ///< labels the input holds; empty: unknown, any label 0..65535 is taken
-    std::string source;       ///< the input's file name, for the messages ("" when none)
+    TissueNames names;       ///< names by label, matched in any case (an exact match wins over others)
+    std::set<Label> present; ///< labels the input holds; empty: unknown, any label 0..65535 is taken
+    std::string source;      ///< the input's file name, for the messages ("" when none)
 };
 
 /// The tissues of a label image: its names (from the file or --labels) and the labels of its voxels.

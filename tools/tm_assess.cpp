@@ -50,20 +50,32 @@ nlohmann::json summarize(const TetMesh& mesh, const volume::Assessment& a, std::
 {
     nlohmann::json tissues = nlohmann::json::object(), worst = nlohmann::json::array();
     for (const auto& [label, t] : a.tissues)
-        tissues[std::to_string(label)] = {{"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
-                                          {"dice", t.dice}, {"image_voxels", t.image_voxels}, {"mesh_voxels", t.mesh_voxels},
-                                          {"mesh_volume_mm3", t.mesh_volume_mm3}, {"voxel_volume_mm3", t.voxel_volume_mm3},
-                                          {"volume_error_mm3", t.volume_error_mm3}, {"error_volume_mm3", t.error_volume_mm3}};
+        tissues[std::to_string(label)] = {
+            {"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
+            {"dice", t.dice},
+            {"image_voxels", t.image_voxels},
+            {"mesh_voxels", t.mesh_voxels},
+            {"mesh_volume_mm3", t.mesh_volume_mm3},
+            {"voxel_volume_mm3", t.voxel_volume_mm3},
+            {"volume_error_mm3", t.volume_error_mm3},
+            {"error_volume_mm3", t.error_volume_mm3}};
     for (std::size_t r = 0; r < std::min<std::size_t>(10, a.worst_first.size()); ++r) {
         const std::uint32_t t = a.worst_first[r];
-        worst.push_back({{"tet", t}, {"quality_key", a.quality_key[t]}, {"error_volume_mm3", a.error_volume_mm3[t]},
+        worst.push_back({{"tet", t},
+                         {"quality_key", a.quality_key[t]},
+                         {"error_volume_mm3", a.error_volume_mm3[t]},
                          {"radius_edge_ratio", a.radius_edge_ratio[t]}});
     }
-    return {{"tets", mesh.tets.size()}, {"nodes", mesh.vertices.size()}, {"voxels_inside", a.voxels_inside},
-            {"sampled_tets", a.sampled_tets}, {"total_error_volume_mm3", a.total_error_volume_mm3},
+    return {{"tets", mesh.tets.size()},
+            {"nodes", mesh.vertices.size()},
+            {"voxels_inside", a.voxels_inside},
+            {"sampled_tets", a.sampled_tets},
+            {"total_error_volume_mm3", a.total_error_volume_mm3},
             {"total_majority_error_volume_mm3", a.total_majority_error_volume_mm3},
-            {"sampled_error_volume_mm3", a.sampled_error_volume_mm3}, {"relabelled_tets", relabelled},
-            {"tissues", tissues}, {"worst", worst}};
+            {"sampled_error_volume_mm3", a.sampled_error_volume_mm3},
+            {"relabelled_tets", relabelled},
+            {"tissues", tissues},
+            {"worst", worst}};
 }
 
 /// The assessment's per-tet fields as .vtu cell arrays (after "tissue").
@@ -92,11 +104,14 @@ int main(int argc, char** argv)
     return tools::run_tool(
         argc, argv,
         {"tm-assess",
-         "Assesses every tet of a labelled mesh against a label image (Mueller & Sachse): the voxel centres in each tet "
-         "(tissue histogram), its majority tissue (with --priority weights), its error volume (mm^3 of voxels not of its "
+         "Assesses every tet of a labelled mesh against a label image (Mueller & Sachse): the voxel centres in each "
+         "tet "
+         "(tissue histogram), its majority tissue (with --priority weights), its error volume (mm^3 of voxels not of "
+         "its "
          "tissue), its shape, and a quality key (larger = worse: misclassified voxels + shape weight x (radius-edge / "
          "regular - 1)). OUT .vtu gets every field as cell data; OUT .msh/.mesh gets the mesh itself (with --relabel: "
-         "each tet set to its majority tissue and the interface faces rebuilt). The summary has per-tissue Dice, volume "
+         "each tet set to its majority tissue and the interface faces rebuilt). The summary has per-tissue Dice, "
+         "volume "
          "error and error volume.",
          "Examples:\n  tm-assess -i head.msh --image head.nii.gz -o head-assessed.vtu --json assess.json\n"
          "  tm-assess -i head.msh --image head.nii.gz -o relabelled.msh --relabel --priority skull=2,csf=1.5"},
@@ -106,44 +121,52 @@ int main(int argc, char** argv)
             app.add_option("-o,--output", output, "Output: .vtu (assessment fields) or .msh/.mesh (mesh)")->required();
             app.add_flag("--relabel", relabel, "Set each tet's tissue to its majority (interfaces rebuilt)");
             app.add_option("--priority", priority, "Majority weights: tissue=weight,... (name or label; default 1)");
-            app.add_option("--error-weight", options.error_weight, "Quality key weight of misclassified voxels")->capture_default_str();
-            app.add_option("--shape-weight", options.shape_weight, "Quality key weight of the shape term")->capture_default_str();
+            app.add_option("--error-weight", options.error_weight, "Quality key weight of misclassified voxels")
+                ->capture_default_str();
+            app.add_option("--shape-weight", options.shape_weight, "Quality key weight of the shape term")
+                ->capture_default_str();
             format_flags.add_to(app);
         },
         [&](tools::ToolContext& context) {
             const std::string extension = full_extension(output);
             if (extension != ".vtu" && extension != ".msh" && extension != ".mesh")
-                throw InputError(concat(output, ": unknown output format \"", extension, "\"; use .vtu, .msh or .mesh"));
+                throw InputError(
+                    concat(output, ": unknown output format \"", extension, "\"; use .vtu, .msh or .mesh"));
             format_flags.check();
             TetMesh mesh = io::read_tet_mesh(input);
             const LabelImage image = io::read_label_image(image_path);
-            if (!priority.empty()) parse_priority(priority, mesh_and_image_tissues(mesh, image, input, image_path), options);
+            if (!priority.empty())
+                parse_priority(priority, mesh_and_image_tissues(mesh, image, input, image_path), options);
             const auto start = std::chrono::steady_clock::now();
             volume::Assessment assessment = volume::assess_elements(mesh, image, options, context.progress);
             const std::chrono::duration<double> assess_seconds = std::chrono::steady_clock::now() - start;
             std::size_t relabelled = 0;
             if (relabel) {
-                for (std::size_t t = 0; t < mesh.tets.size(); ++t) relabelled += mesh.tet_labels[t] != assessment.majority[t];
+                for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+                    relabelled += mesh.tet_labels[t] != assessment.majority[t];
                 volume::relabel_by_majority(mesh, assessment);
                 volume::mark_interfaces(mesh);
-                assessment = volume::assess_elements(mesh, image, options, context.progress);  // fields of the new labels
+                assessment =
+                    volume::assess_elements(mesh, image, options, context.progress); // fields of the new labels
             }
             if (extension == ".vtu")
                 io::write_vtu(mesh, output, {}, assessment_arrays(assessment),
                               format_flags.vtu_ascii ? io::VtuEncoding::ascii : io::VtuEncoding::compressed);
             else io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
             if (assessment.voxels_inside == 0)
-                context.progress.warn("assess", "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");
+                context.progress.warn("assess",
+                                      "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");
             context.summary = summarize(mesh, assessment, relabelled);
             context.summary["assess_seconds"] = assess_seconds.count();
             context.summary["image_voxels"] = image.voxel_count();
-            std::printf("%s: %zu tets, %zu voxel centres inside, %zu tets sampled, error volume %.1f mm^3 (majority %.1f)\n",
-                        input.c_str(), mesh.tets.size(), assessment.voxels_inside, assessment.sampled_tets,
-                        assessment.total_error_volume_mm3, assessment.total_majority_error_volume_mm3);
+            std::printf(
+                "%s: %zu tets, %zu voxel centres inside, %zu tets sampled, error volume %.1f mm^3 (majority %.1f)\n",
+                input.c_str(), mesh.tets.size(), assessment.voxels_inside, assessment.sampled_tets,
+                assessment.total_error_volume_mm3, assessment.total_majority_error_volume_mm3);
             std::printf("%-20s %8s %14s %14s %14s\n", "tissue", "Dice", "mesh mm^3", "voxels mm^3", "error mm^3");
             for (const auto& [label, t] : assessment.tissues)
                 std::printf("%-20s %8.4f %14.1f %14.1f %14.1f\n",
-                            (mesh.names.count(label) ? mesh.names.at(label) : image.name_of(label)).c_str(), t.dice, t.mesh_volume_mm3,
-                            t.voxel_volume_mm3, t.error_volume_mm3);
+                            (mesh.names.count(label) ? mesh.names.at(label) : image.name_of(label)).c_str(), t.dice,
+                            t.mesh_volume_mm3, t.voxel_volume_mm3, t.error_volume_mm3);
         });
 }

@@ -18,74 +18,106 @@ int main(int argc, char** argv)
     return tools::run_tool(
         argc, argv,
         {"tm-check-mesh",
-         "Checks a labelled tet mesh: conformity (faces shared by two tets on opposite sides), no inverted or flat tets "
+         "Checks a labelled tet mesh: conformity (faces shared by two tets on opposite sides), no inverted or flat "
+         "tets "
          "(volume under 1e-9 of the longest edge cubed: four coplanar nodes), closed "
          "outer boundary, every interface face a tet face with the right tissues on both sides, per-tissue volumes and "
-         "connected pieces, quality (dihedral angles, radius-edge ratio), and with --image the voxel agreement per tissue "
-         "(Dice), and with --surface how far its interfaces lie from the complex it was made from. Exit 0 when fit for FEM, 1 when defects were found, 2 when the input cannot be read.",
+         "connected pieces, quality (dihedral angles, radius-edge ratio), and with --image the voxel agreement per "
+         "tissue "
+         "(Dice), and with --surface how far its interfaces lie from the complex it was made from. Exit 0 when fit for "
+         "FEM, 1 when defects were found, 2 when the input cannot be read.",
          "Examples:\n  tm-check-mesh head.msh\n  tm-check-mesh -i head.msh --image head.nii.gz --json check.json\n"
          "  tm-check-mesh -i head.msh --image head.nii.gz --surface remeshed.ply"},
         [&](CLI::App& app) {
             app.add_option("-i,--input,mesh", input, "Tet mesh (.msh 2.2 or .mesh)")->required();
             app.add_option("--image", image_path, "Label image to compare against (Dice per tissue)");
-            app.add_option("--surface", surface_path, "Interface complex the mesh was made from (.ply): distance of the mesh's "
-                                                      "interfaces to it (mm; in voxels with --image)")->check(CLI::ExistingFile);
+            app.add_option("--surface", surface_path,
+                           "Interface complex the mesh was made from (.ply): distance of the mesh's "
+                           "interfaces to it (mm; in voxels with --image)")
+                ->check(CLI::ExistingFile);
         },
         [&](tools::ToolContext& context) {
             const TetMesh mesh = io::read_tet_mesh(input);
             LabelImage image;
             if (!image_path.empty()) image = io::read_label_image(image_path);
-            const volume::MeshCheckReport report = volume::check_mesh(mesh, image_path.empty() ? nullptr : &image, context.progress);
-            std::printf("%s: %zu nodes, %zu tets, %zu interface faces\n", input.c_str(), report.nodes, report.tets, report.faces);
+            const volume::MeshCheckReport report =
+                volume::check_mesh(mesh, image_path.empty() ? nullptr : &image, context.progress);
+            std::printf("%s: %zu nodes, %zu tets, %zu interface faces\n", input.c_str(), report.nodes, report.tets,
+                        report.faces);
             const auto& histogram = report.quality.min_dihedral_histogram;
-            std::printf("quality: min dihedral %.2f deg (1st percentile of the tets' smallest %.2f deg; %zu tets under 10 deg, %zu "
+            std::printf("quality: min dihedral %.2f deg (1st percentile of the tets' smallest %.2f deg; %zu tets under "
+                        "10 deg, %zu "
                         "under 20), max dihedral %.2f deg, radius-edge max %.2f mean %.3f\n",
-                        report.quality.min_dihedral_deg, report.quality.p1_min_dihedral_deg, histogram[0], histogram[0] + histogram[1],
-                        report.quality.max_dihedral_deg, report.quality.max_radius_edge_ratio, report.quality.mean_radius_edge_ratio);
-            std::printf("%-20s %10s %14s %10s %14s %8s\n", "tissue", "tets", "volume mm^3", "pieces", "voxels mm^3", "Dice");
+                        report.quality.min_dihedral_deg, report.quality.p1_min_dihedral_deg, histogram[0],
+                        histogram[0] + histogram[1], report.quality.max_dihedral_deg,
+                        report.quality.max_radius_edge_ratio, report.quality.mean_radius_edge_ratio);
+            std::printf("%-20s %10s %14s %10s %14s %8s\n", "tissue", "tets", "volume mm^3", "pieces", "voxels mm^3",
+                        "Dice");
             nlohmann::json tissues = nlohmann::json::object();
             for (const auto& [label, stats] : report.tissues) {
                 const std::string name = mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label);
-                std::printf("%-20s %10zu %14.1f %10zu %14.1f %8.4f\n", name.c_str(), stats.tets, stats.volume_mm3, stats.components,
-                            stats.voxel_volume_mm3, stats.dice);
-                tissues[std::to_string(label)] = {{"name", name}, {"tets", stats.tets}, {"volume_mm3", stats.volume_mm3},
-                                                  {"components", stats.components}, {"voxel_volume_mm3", stats.voxel_volume_mm3},
+                std::printf("%-20s %10zu %14.1f %10zu %14.1f %8.4f\n", name.c_str(), stats.tets, stats.volume_mm3,
+                            stats.components, stats.voxel_volume_mm3, stats.dice);
+                tissues[std::to_string(label)] = {{"name", name},
+                                                  {"tets", stats.tets},
+                                                  {"volume_mm3", stats.volume_mm3},
+                                                  {"components", stats.components},
+                                                  {"voxel_volume_mm3", stats.voxel_volume_mm3},
                                                   {"dice", stats.dice}};
             }
             nlohmann::json distance_json;
             if (!surface_path.empty()) {
                 const InterfaceComplex complex = io::read_surface(surface_path);
-                const volume::InterfaceDistance d = tools::with_source(input, [&] { return volume::interface_distance(mesh, complex); });
+                const volume::InterfaceDistance d =
+                    tools::with_source(input, [&] { return volume::interface_distance(mesh, complex); });
                 // In voxels of the image's finest axis, when there is an image.
-                const double voxel_mm = image.empty() ? 0 : std::min({image.spacing_mm()[0], image.spacing_mm()[1], image.spacing_mm()[2]});
-                std::printf("interfaces vs %s: nodes max %.4f mean %.4f mm, faces max %.4f mean %.4f mm", surface_path.c_str(), d.max_node_mm,
-                            d.mean_node_mm, d.max_face_mm, d.mean_face_mm);
+                const double voxel_mm =
+                    image.empty() ? 0 : std::min({image.spacing_mm()[0], image.spacing_mm()[1], image.spacing_mm()[2]});
+                std::printf("interfaces vs %s: nodes max %.4f mean %.4f mm, faces max %.4f mean %.4f mm",
+                            surface_path.c_str(), d.max_node_mm, d.mean_node_mm, d.max_face_mm, d.mean_face_mm);
                 if (voxel_mm > 0)
-                    std::printf(" (nodes max %.4f mean %.4f, faces max %.4f mean %.4f voxels)", d.max_node_mm / voxel_mm,
-                                d.mean_node_mm / voxel_mm, d.max_face_mm / voxel_mm, d.mean_face_mm / voxel_mm);
-                std::printf("%s\n", d.unmatched_faces > 0 ? concat("; ", d.unmatched_faces, " faces of tissue pairs the surface lacks").c_str() : "");
-                distance_json = {{"nodes", d.nodes}, {"max_node_mm", d.max_node_mm}, {"mean_node_mm", d.mean_node_mm},
-                                 {"faces", d.faces}, {"max_face_mm", d.max_face_mm}, {"mean_face_mm", d.mean_face_mm},
+                    std::printf(" (nodes max %.4f mean %.4f, faces max %.4f mean %.4f voxels)",
+                                d.max_node_mm / voxel_mm, d.mean_node_mm / voxel_mm, d.max_face_mm / voxel_mm,
+                                d.mean_face_mm / voxel_mm);
+                std::printf("%s\n",
+                            d.unmatched_faces > 0
+                                ? concat("; ", d.unmatched_faces, " faces of tissue pairs the surface lacks").c_str()
+                                : "");
+                distance_json = {{"nodes", d.nodes},
+                                 {"max_node_mm", d.max_node_mm},
+                                 {"mean_node_mm", d.mean_node_mm},
+                                 {"faces", d.faces},
+                                 {"max_face_mm", d.max_face_mm},
+                                 {"mean_face_mm", d.mean_face_mm},
                                  {"unmatched_faces", d.unmatched_faces}};
                 if (voxel_mm > 0) {
                     distance_json["voxel_mm"] = voxel_mm;
-                    distance_json["max_node_voxels"] = d.max_node_mm / voxel_mm, distance_json["mean_node_voxels"] = d.mean_node_mm / voxel_mm;
-                    distance_json["max_face_voxels"] = d.max_face_mm / voxel_mm, distance_json["mean_face_voxels"] = d.mean_face_mm / voxel_mm;
+                    distance_json["max_node_voxels"] = d.max_node_mm / voxel_mm,
+                    distance_json["mean_node_voxels"] = d.mean_node_mm / voxel_mm;
+                    distance_json["max_face_voxels"] = d.max_face_mm / voxel_mm,
+                    distance_json["mean_face_voxels"] = d.mean_face_mm / voxel_mm;
                 }
             }
             for (const std::string& problem : report.problems) std::printf("defect: %s\n", problem.c_str());
             std::printf("%s\n", report.ok() ? "fit for FEM" : "NOT fit for FEM: see the defects above");
-            context.summary = {{"ok", report.ok()}, {"nodes", report.nodes}, {"tets", report.tets}, {"faces", report.faces},
-                               {"inverted_tets", report.inverted_tets}, {"flat_tets", report.flat_tets},
+            context.summary = {{"ok", report.ok()},
+                               {"nodes", report.nodes},
+                               {"tets", report.tets},
+                               {"faces", report.faces},
+                               {"inverted_tets", report.inverted_tets},
+                               {"flat_tets", report.flat_tets},
                                {"nonconforming_faces", report.nonconforming_faces},
-                               {"open_boundary_edges", report.open_boundary_edges}, {"unused_nodes", report.unused_nodes},
+                               {"open_boundary_edges", report.open_boundary_edges},
+                               {"unused_nodes", report.unused_nodes},
                                {"missing_interface_faces", report.missing_interface_faces},
                                {"mislabelled_interface_faces", report.mislabelled_interface_faces},
                                {"unmarked_interfaces", report.unmarked_interfaces},
                                {"min_dihedral_deg", report.quality.min_dihedral_deg},
                                {"max_radius_edge_ratio", report.quality.max_radius_edge_ratio},
-                               {"min_dihedral_histogram_10deg", report.quality.min_dihedral_histogram}, {"tissues", tissues},
-                               {"p1_min_dihedral_deg", report.quality.p1_min_dihedral_deg}, {"max_dihedral_deg", report.quality.max_dihedral_deg}};
+                               {"min_dihedral_histogram_10deg", report.quality.min_dihedral_histogram},
+                               {"tissues", tissues},
+                               {"p1_min_dihedral_deg", report.quality.p1_min_dihedral_deg},
+                               {"max_dihedral_deg", report.quality.max_dihedral_deg}};
             if (!distance_json.is_null()) context.summary["interface_distance"] = distance_json;
             context.exit_code = report.ok() ? 0 : 1;
         });

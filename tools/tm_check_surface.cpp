@@ -39,9 +39,8 @@ std::vector<const Defect*> defects_to_show(const CheckReport& report, std::size_
 void print_report(const std::string& path, const InterfaceComplex& complex, const CheckReport& report,
                   std::size_t max_report)
 {
-    std::printf("%s: %zu triangles, %zu vertices, %zu edges (%zu on junction curves), %zu tissues\n\n",
-                path.c_str(), report.triangles, report.vertices, report.edges, report.junction_edges,
-                report.tissues.size());
+    std::printf("%s: %zu triangles, %zu vertices, %zu edges (%zu on junction curves), %zu tissues\n\n", path.c_str(),
+                report.triangles, report.vertices, report.edges, report.junction_edges, report.tissues.size());
     std::printf("%5s  %-16s %10s  %-6s  %-8s  %10s  %15s\n", "label", "tissue", "triangles", "closed", "oriented",
                 "components", "volume_mm3");
     for (const auto& [label, t] : report.tissues)
@@ -62,32 +61,46 @@ void print_report(const std::string& path, const InterfaceComplex& complex, cons
     if (shown.size() < report.error_count() + report.warning_count())
         std::printf("  ... %zu more (--max-report N shows more)\n",
                     report.error_count() + report.warning_count() - shown.size());
-    std::printf("\n%s\n", !report.ok()                    ? "NOT fit for tetrahedralization"
-                           : report.intersections_checked ? "fit for tetrahedralization"
-                                                          : "fit for tetrahedralization unless it self-intersects "
-                                                            "(intersections not checked)");
+    std::printf("\n%s\n", !report.ok()                   ? "NOT fit for tetrahedralization"
+                          : report.intersections_checked ? "fit for tetrahedralization"
+                                                         : "fit for tetrahedralization unless it self-intersects "
+                                                           "(intersections not checked)");
 }
 
 nlohmann::json to_json(const InterfaceComplex& complex, const CheckReport& report, std::size_t max_report)
 {
     nlohmann::json tissues = nlohmann::json::array();
     for (const auto& [label, t] : report.tissues)
-        tissues.push_back({{"label", label}, {"name", tissue_name(complex, label)}, {"triangles", t.triangles},
-                           {"closed", t.closed}, {"oriented", t.oriented}, {"open_edges", t.open_edges},
+        tissues.push_back({{"label", label},
+                           {"name", tissue_name(complex, label)},
+                           {"triangles", t.triangles},
+                           {"closed", t.closed},
+                           {"oriented", t.oriented},
+                           {"open_edges", t.open_edges},
                            {"orientation_conflicts", t.orientation_conflicts},
-                           {"non_manifold_edges", t.non_manifold_edges}, {"components", t.components},
+                           {"non_manifold_edges", t.non_manifold_edges},
+                           {"components", t.components},
                            {"volume_mm3", t.volume_mm3}});
     nlohmann::json counts = nlohmann::json::object();
     for (std::size_t k = 0; k < surface::defect_kind_count; ++k)
         counts[std::string(surface::to_string(DefectKind(k)))] = report.counts[k];
     nlohmann::json defects = nlohmann::json::array();
     for (const Defect* d : defects_to_show(report, max_report))
-        defects.push_back({{"kind", surface::to_string(d->kind)}, {"description", d->description},
-                           {"location_mm", d->location_mm}, {"tissues", d->tissues}, {"triangles", d->triangles}});
-    return {{"fit_for_tetrahedralization", report.ok()}, {"triangles", report.triangles},
-            {"vertices", report.vertices}, {"edges", report.edges}, {"junction_edges", report.junction_edges},
-            {"intersections_checked", report.intersections_checked}, {"errors", report.error_count()},
-            {"warnings", report.warning_count()}, {"defect_counts", counts}, {"tissues", tissues},
+        defects.push_back({{"kind", surface::to_string(d->kind)},
+                           {"description", d->description},
+                           {"location_mm", d->location_mm},
+                           {"tissues", d->tissues},
+                           {"triangles", d->triangles}});
+    return {{"fit_for_tetrahedralization", report.ok()},
+            {"triangles", report.triangles},
+            {"vertices", report.vertices},
+            {"edges", report.edges},
+            {"junction_edges", report.junction_edges},
+            {"intersections_checked", report.intersections_checked},
+            {"errors", report.error_count()},
+            {"warnings", report.warning_count()},
+            {"defect_counts", counts},
+            {"tissues", tissues},
             {"defects", defects}};
 }
 
@@ -121,7 +134,9 @@ int main(int argc, char** argv)
             app.add_option("-i,--input,surface", input, "Interface complex (.ply with label pairs)")
                 ->required()
                 ->type_name("SURFACE");
-            app.add_option("--max-report", max_report, "Print at most N defects")->check(CLI::NonNegativeNumber)->capture_default_str();
+            app.add_option("--max-report", max_report, "Print at most N defects")
+                ->check(CLI::NonNegativeNumber)
+                ->capture_default_str();
             app.add_option("--needle-angle-deg", options.needle_angle_deg, "Warn about angles below this")
                 ->capture_default_str();
             app.add_flag("--skip-intersections", skip_intersections, "Skip the intersection test (faster)");
@@ -138,8 +153,8 @@ int main(int argc, char** argv)
             ctx.summary["min_tissue_sector_deg"] = sector;
             if (!report.ok())
                 throw AlgorithmError(concat(input, ": not fit for tetrahedralization: ", error_summary(report),
-                                            "; first: ", report.first_error()->description,
-                                            "; ", surface::repair_hint(report)));
+                                            "; first: ", report.first_error()->description, "; ",
+                                            surface::repair_hint(report)));
             ctx.log(concat(input, ": fit for tetrahedralization (", report.triangles, " triangles, ",
                            report.warning_count(), " warnings); smallest angle a tissue fills about an edge ",
                            format_mm(sector, 2), " deg (no tet there can have all its dihedral angles above it)"));

@@ -21,18 +21,21 @@ int main(int argc, char** argv)
          "size, which also splits longer edges). Vertices on junction curves collapse only along their curve; "
          "every input vertex stays within --max-distance-mm of the output; no collapse may fold, cross or come "
          "closer than --min-gap-mm to another patch. The output passes tm-check-surface whenever the input does "
-         "(both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does not check it again).",
+         "(both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does "
+         "not check it again).",
          "Examples:\n  tm-decimate -i smooth.ply -o coarse.ply --max-distance-mm 0.5\n"
          "  tm-decimate -i smooth.ply -o coarse.ply --target-triangles 200000\n"
          "  tm-decimate -i smooth.ply -o sized.ply --mode size --target-edge-mm 3\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("-o,--output", output, "Decimated interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
+            app.add_flag("--check-input", check_input,
+                         "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--mode", mode, "What goes first: curvature (quadric error) or size (edge length)")
                 ->check(CLI::IsMember({"curvature", "size"}))
                 ->capture_default_str();
-            app.add_option("--target-triangles", options.target_triangles, "Stop at this many (0: only the limits)")->check(CLI::NonNegativeNumber)
+            app.add_option("--target-triangles", options.target_triangles, "Stop at this many (0: only the limits)")
+                ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
             app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
                 ->capture_default_str();
@@ -51,11 +54,13 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--target-edge-mm", options.target_edge_mm, "Size mode: target edge length")
                 ->capture_default_str();
-            app.add_option("--slabs", options.slabs,
-                           "Slabs decimated side by side (in parallel), then their seams in slabs cut halfway between them, then "
-                           "one pass over what is left; 0: one per "
-                           "400 000 triangles, at most 8; 64 at most (the result depends on it, not on the thread count; one "
-                           "with --target-triangles)")
+            app.add_option(
+                   "--slabs", options.slabs,
+                   "Slabs decimated side by side (in parallel), then their seams in slabs cut halfway between them, "
+                   "then "
+                   "one pass over what is left; 0: one per "
+                   "400 000 triangles, at most 8; 64 at most (the result depends on it, not on the thread count; one "
+                   "with --target-triangles)")
                 ->check(CLI::Range(0, 64))
                 ->capture_default_str();
         },
@@ -65,8 +70,8 @@ int main(int argc, char** argv)
             tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
             InterfaceComplex& complex = in.complex;
             surface::DecimateReport report;
-            const double seconds = tools::run_checked_step(complex, output, "decimated",
-                                                           [&] { report = surface::decimate(complex, options, ctx.progress); });
+            const double seconds = tools::run_checked_step(
+                complex, output, "decimated", [&] { report = surface::decimate(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
                            format_mm(seconds, 2), " s)"));
             tools::write_checked(complex, output);

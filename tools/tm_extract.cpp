@@ -38,8 +38,7 @@ fs::path tissue_path(const fs::path& dir, const InterfaceComplex& complex, Label
     const auto named = complex.names.find(label);
     if (named != complex.names.end()) {
         name += "_";
-        for (const char c : named->second)
-            name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+        for (const char c : named->second) name += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
     }
     return dir / (name + "." + format);
 }
@@ -66,7 +65,8 @@ std::map<Label, int> parse_priority(const std::vector<std::string>& items, const
     for (const std::string& item : items) {
         const tools::TissueSetting setting = tools::parse_tissue_setting(item, tissues, "--priority", "csf=2,3=1");
         int number = 0;
-        const auto [end, error] = std::from_chars(setting.value.data(), setting.value.data() + setting.value.size(), number);
+        const auto [end, error] =
+            std::from_chars(setting.value.data(), setting.value.data() + setting.value.size(), number);
         if (setting.value.empty() || error != std::errc{} || end != setting.value.data() + setting.value.size())
             throw InputError(concat("--priority ", item, ": expected TISSUE=INTEGER (e.g. --priority csf=2,3=1)"));
         priority[setting.tissue] = number;
@@ -97,8 +97,8 @@ nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceS
 
 // Memory of an extraction, measured on spheres4 at 1 and 2 mm, the thin phantom and the 1 mm usc19-5 head
 // (docs/robustness.md): reading holds the file's voxels and 4 B more per voxel (the 1 mm head, streamed to
-// .ply: 46 MiB in all, 6 B per voxel); extracting holds the labels and about 65 B per triangle, and marching cubes on Freudenthal's tets makes 6-8 triangles per voxel
-// face between two labels, so about 500 B per such face.
+// .ply: 46 MiB in all, 6 B per voxel); extracting holds the labels and about 65 B per triangle, and marching cubes on
+// Freudenthal's tets makes 6-8 triangles per voxel face between two labels, so about 500 B per such face.
 constexpr double read_bytes_per_voxel = 4;
 constexpr double bytes_per_voxel = 3;
 constexpr double bytes_per_label_face = 500;
@@ -112,21 +112,25 @@ double label_faces(const LabelImage& image, Label background)
         for (std::size_t j = 0; j < d[1]; ++j)
             for (std::size_t i = 0; i < d[0]; ++i) {
                 const Label label = image.at(i, j, k);
-                faces += (i + 1 < d[0] ? label != image.at(i + 1, j, k) : label != background) + (i == 0 && label != background);
-                faces += (j + 1 < d[1] ? label != image.at(i, j + 1, k) : label != background) + (j == 0 && label != background);
-                faces += (k + 1 < d[2] ? label != image.at(i, j, k + 1) : label != background) + (k == 0 && label != background);
+                faces += (i + 1 < d[0] ? label != image.at(i + 1, j, k) : label != background) +
+                         (i == 0 && label != background);
+                faces += (j + 1 < d[1] ? label != image.at(i, j + 1, k) : label != background) +
+                         (j == 0 && label != background);
+                faces += (k + 1 < d[2] ? label != image.at(i, j, k + 1) : label != background) +
+                         (k == 0 && label != background);
             }
     return static_cast<double>(faces);
 }
 
 /// Refuses an extraction that would need more memory than --max-memory allows, before it starts. A streamed
 /// extraction (a lone .ply) holds the triangles of two slabs at a time, not all of them.
-void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image, Label background,
-                  bool streamed)
+void check_memory(const tools::ToolContext& context, const std::string& input, const LabelImage& image,
+                  Label background, bool streamed)
 {
-    if (context.memory.bytes == 0) return;  // no limit: spare the pass over the voxels
+    if (context.memory.bytes == 0) return; // no limit: spare the pass over the voxels
     const double voxels = static_cast<double>(image.voxel_count()), faces = label_faces(image, background);
-    const double held_faces = streamed ? 2 * faces / static_cast<double>(std::max<std::size_t>(image.dims()[2], 1)) : faces;
+    const double held_faces =
+        streamed ? 2 * faces / static_cast<double>(std::max<std::size_t>(image.dims()[2], 1)) : faces;
     tools::require_memory(context.memory, input, voxels * bytes_per_voxel + held_faces * bytes_per_label_face,
                           concat(tools::format_count(held_faces), " voxel faces between tissues",
                                  streamed ? " in two slabs" : "", " x ", tools::format_bytes(bytes_per_label_face),
@@ -160,7 +164,8 @@ int main(int argc, char** argv)
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
             app.add_option("--tissues", tissues, "Keep only these tissues, names or labels (others become background)")
                 ->delimiter(',');
-            app.add_option("--background", options.background, "Background label (also outside the image)")->check(CLI::Range(0, 65535))
+            app.add_option("--background", options.background, "Background label (also outside the image)")
+                ->check(CLI::Range(0, 65535))
                 ->capture_default_str();
             app.add_option("--priority", priority,
                            "Thin-tissue priority TISSUE=N (name or label; higher wins ambiguous cubes, keeping a "
@@ -175,14 +180,18 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--smooth-iterations", smoothing.iterations,
                            "surface-nets: Taubin lambda|mu pairs (0: vertices at the cube centres)")
-                ->check(CLI::Range(0, 10000))->capture_default_str();
+                ->check(CLI::Range(0, 10000))
+                ->capture_default_str();
             app.add_option("--margin-voxels", smoothing.margin_voxels,
                            "surface-nets: distance a vertex keeps from its cube's faces (voxels)")
-                ->check(CLI::Range(0.01, 0.4))->capture_default_str();
+                ->check(CLI::Range(0.01, 0.4))
+                ->capture_default_str();
             app.add_option("--max-depth-voxels", smoothing.max_depth_voxels,
                            "surface-nets: a vertex stays within this distance of the voxels of each of its tissues")
-                ->check(CLI::Range(0.01, 1.0))->capture_default_str();
-            app.add_option("--labels", read_options.names_json, "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+                ->check(CLI::Range(0.01, 1.0))
+                ->capture_default_str();
+            app.add_option("--labels", read_options.names_json,
+                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
             app.add_option("--per-tissue-format", per_tissue_format, "Format of the per-tissue surfaces")
@@ -193,10 +202,10 @@ int main(int argc, char** argv)
             const std::string extension = full_extension(output);
             if (extension != ".ply" && extension != ".vtp")
                 throw InputError(concat(output, ": the interface complex is written as .ply or .vtp (label pairs "
-                                        "per triangle); use --per-tissue for .stl/.off"));
+                                                "per triangle); use --per-tissue for .stl/.off"));
             auto start = std::chrono::steady_clock::now();
-            read_options.before_voxels = tools::image_memory_check(ctx.memory, input, read_bytes_per_voxel,
-                                                                   "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
+            read_options.before_voxels = tools::image_memory_check(
+                ctx.memory, input, read_bytes_per_voxel, "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
             const double read_seconds = seconds_since(start);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
@@ -205,7 +214,8 @@ int main(int argc, char** argv)
             const bool streamed = !nets && extension == ".ply" && per_tissue_dir.empty();
             check_memory(ctx, input, image, options.background, streamed);
             const tools::TissueTable table = tools::tissue_table(image, input);
-            for (const std::string& tissue : tissues) options.tissues.push_back(tools::parse_tissue(tissue, table, "--tissues"));
+            for (const std::string& tissue : tissues)
+                options.tissues.push_back(tools::parse_tissue(tissue, table, "--tissues"));
             if (priority.size() > 1 && std::find(priority.begin(), priority.end(), "auto") != priority.end())
                 throw InputError("--priority auto ranks every tissue itself: give it alone (--priority auto) or give "
                                  "TISSUE=N pairs (--priority csf=2,3=1)");
@@ -214,7 +224,8 @@ int main(int argc, char** argv)
                 options.priority = surface::thin_first_priority(image, options.background);
                 if (!options.tissues.empty())
                     std::erase_if(options.priority, [&](const auto& entry) {
-                        return std::find(options.tissues.begin(), options.tissues.end(), entry.first) == options.tissues.end();
+                        return std::find(options.tissues.begin(), options.tissues.end(), entry.first) ==
+                               options.tissues.end();
                     });
             } else {
                 options.priority = parse_priority(priority, table);
@@ -226,8 +237,8 @@ int main(int argc, char** argv)
                 TeeSink both(sink, counter);
                 tools::with_source(input, [&] {
                     if (!nets) return surface::extract_interfaces(image, options, both, ctx.progress);
-                    InterfaceComplex complex = surface::extract_surface_nets(image, options, smoothing, ctx.progress,
-                                                                             &nets_report);
+                    InterfaceComplex complex =
+                        surface::extract_surface_nets(image, options, smoothing, ctx.progress, &nets_report);
                     both.start(complex.names, complex.background);
                     both.add({0, complex.vertices, complex.triangles, complex.sides});
                 });
@@ -250,14 +261,21 @@ int main(int argc, char** argv)
                 per_tissue = write_tissue_surfaces(collector.complex(), counts, per_tissue_dir, per_tissue_format);
             ctx.log(concat(image.voxel_count(), " voxels -> ", counts.triangles, " triangles, ", counts.vertices,
                            " vertices (", format_mm(extract_seconds, 2), " s)"));
-            ctx.summary = {{"input", input},       {"output", output},
-                           {"dims", image.dims()}, {"voxels", image.voxel_count()},
-                           {"triangles", counts.triangles}, {"vertices", counts.vertices},
-                           {"background", options.background},      {"tissues", tissue_summary(image, counts)},
+            ctx.summary = {{"input", input},
+                           {"output", output},
+                           {"dims", image.dims()},
+                           {"voxels", image.voxel_count()},
+                           {"triangles", counts.triangles},
+                           {"vertices", counts.vertices},
+                           {"background", options.background},
+                           {"tissues", tissue_summary(image, counts)},
                            {"priority", priority_summary(options.priority)},
-                           {"per_tissue", per_tissue},              {"streamed", streamed},
-                           {"seconds_read", read_seconds},          {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start) - extract_seconds}, {"method", method}};
+                           {"per_tissue", per_tissue},
+                           {"streamed", streamed},
+                           {"seconds_read", read_seconds},
+                           {"seconds_extract", extract_seconds},
+                           {"seconds_write", seconds_since(start) - extract_seconds},
+                           {"method", method}};
             if (nets)
                 ctx.summary["surface_nets"] = {{"mixed_cubes", nets_report.mixed_cubes},
                                                {"fallback_cubes", nets_report.fallback_cubes},

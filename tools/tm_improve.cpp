@@ -18,19 +18,25 @@ int main(int argc, char** argv)
     return tools::run_tool(
         argc, argv,
         {"tm-improve",
-         "Improves the shape of a labelled tet mesh where its tets are worst (what tm-tetra and tm-refine run by default): "
+         "Improves the shape of a labelled tet mesh where its tets are worst (what tm-tetra and tm-refine run by "
+         "default): "
          "worst tets first, nodes moved to raise the smallest sine of the dihedral angles around them, edge and "
          "multi-face removal (3-2, 4-4, 2-3 flips), and new nodes inside tissues and, for slivers between close "
          "interfaces, on the interfaces. No tet changes tissue; interface nodes slide on the interface surface (the "
          "complex given with --surface, else the mesh's own interface faces as read) and new ones lie on it; every "
-         "step raises the worst quality where it acts. A mesh without interface faces (.vtu) gets them from its tissues.",
+         "step raises the worst quality where it acts. A mesh without interface faces (.vtu) gets them from its "
+         "tissues.",
          "Examples:\n  tm-improve -i head.msh -o better.msh --surface remeshed.ply\n"
          "  tm-improve -i refined.msh -o better.msh --improve-target-deg 25 --json improve.json"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Tet mesh (.msh, .mesh, .vtu, ...)")->required()->check(CLI::ExistingFile);
+            app.add_option("-i,--input", input, "Tet mesh (.msh, .mesh, .vtu, ...)")
+                ->required()
+                ->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "Improved tet mesh: .msh, .mesh, .vtu, .node, .inp")->required();
-            app.add_option("--surface", surface, "The interface complex the mesh was made from (.ply from tm-remesh): interface "
-                                                 "nodes stay on it")->check(CLI::ExistingFile);
+            app.add_option("--surface", surface,
+                           "The interface complex the mesh was made from (.ply from tm-remesh): interface "
+                           "nodes stay on it")
+                ->check(CLI::ExistingFile);
             format_flags.add_to(app);
             improve_flags.add_to(app, false);
         },

@@ -59,19 +59,33 @@ nlohmann::json to_json(const image::LabelStatistics& stats)
 {
     nlohmann::json labels = nlohmann::json::array();
     for (const auto& s : stats.labels)
-        labels.push_back({{"label", s.label}, {"name", s.name}, {"voxels", s.voxels}, {"volume_mm3", s.volume_mm3},
-                          {"bbox_index_min", s.index_min}, {"bbox_index_max", s.index_max},
-                          {"bbox_mm_min", s.bounds_mm[0]}, {"bbox_mm_max", s.bounds_mm[1]},
-                          {"components6", s.components6}, {"components26", s.components26},
-                          {"touches", s.touches}, {"border_voxels", s.border_voxels},
-                          {"thin_voxels", s.thin_voxels}, {"islands", s.islands},
-                          {"island_voxels", s.island_voxels}, {"warnings", s.warnings}});
+        labels.push_back({{"label", s.label},
+                          {"name", s.name},
+                          {"voxels", s.voxels},
+                          {"volume_mm3", s.volume_mm3},
+                          {"bbox_index_min", s.index_min},
+                          {"bbox_index_max", s.index_max},
+                          {"bbox_mm_min", s.bounds_mm[0]},
+                          {"bbox_mm_max", s.bounds_mm[1]},
+                          {"components6", s.components6},
+                          {"components26", s.components26},
+                          {"touches", s.touches},
+                          {"border_voxels", s.border_voxels},
+                          {"thin_voxels", s.thin_voxels},
+                          {"islands", s.islands},
+                          {"island_voxels", s.island_voxels},
+                          {"warnings", s.warnings}});
     nlohmann::json counts = nlohmann::json::object();
     for (const auto& s : stats.labels) counts[std::to_string(s.label)] = s.voxels;
-    return {{"dims", stats.dims},          {"spacing_mm", stats.spacing_mm}, {"origin_mm", stats.origin_mm},
-            {"direction", stats.direction}, {"orientation", stats.orientation},
-            {"bounds_mm", {stats.bounds_mm[0], stats.bounds_mm[1]}}, {"voxel_count", stats.voxel_count},
-            {"voxel_counts", counts},      {"labels", labels}};
+    return {{"dims", stats.dims},
+            {"spacing_mm", stats.spacing_mm},
+            {"origin_mm", stats.origin_mm},
+            {"direction", stats.direction},
+            {"orientation", stats.orientation},
+            {"bounds_mm", {stats.bounds_mm[0], stats.bounds_mm[1]}},
+            {"voxel_count", stats.voxel_count},
+            {"voxel_counts", counts},
+            {"labels", labels}};
 }
 
 // Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head
@@ -94,15 +108,19 @@ int main(int argc, char** argv)
          "  tm-info aseg.mgz --labels FreeSurferColorLUT.txt\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input,input", input, "Label image")->required()->type_name("IMAGE");
-            app.add_option("--labels", names, "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")->type_name("FILE");
-            app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")->check(CLI::NonNegativeNumber)
+            app.add_option("--labels", names,
+                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")
+                ->type_name("FILE");
+            app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")
+                ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
-            const LabelImage image = io::read_label_image(
-                input, {.names_json = names,
-                        .before_voxels = tools::image_memory_check(ctx.memory, input, bytes_per_voxel,
-                                                                   "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)")});
+            const LabelImage image =
+                io::read_label_image(input, {.names_json = names,
+                                             .before_voxels = tools::image_memory_check(
+                                                 ctx.memory, input, bytes_per_voxel,
+                                                 "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)")});
             const image::LabelStatistics stats = image::analyze_labels(image, options, ctx.progress);
             print_report(input, stats);
             ctx.summary = to_json(stats);

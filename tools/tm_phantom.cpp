@@ -70,14 +70,20 @@ int main(int argc, char** argv)
                 const auto found = counts.find(label);
                 const std::size_t voxels = found == counts.end() ? 0 : found->second;
                 tissues[std::to_string(label)] = {
-                    {"name", tissue}, {"voxels", voxels}, {"volume_exact_mm3", phantom.geometry.volume_mm3(label)},
+                    {"name", tissue},
+                    {"voxels", voxels},
+                    {"volume_exact_mm3", phantom.geometry.volume_mm3(label)},
                     {"volume_voxels_mm3", static_cast<double>(voxels) * phantom.image.voxel_volume_mm3()}};
             }
             const auto& dims = phantom.image.dims();
-            ctx.summary = {{"phantom", name},       {"voxel_mm", options.voxel_mm},
-                           {"dims", dims},          {"spacing_mm", phantom.image.spacing_mm()},
-                           {"output", output},      {"geometry", geometry_path.string()},
-                           {"labels", labels_path.string()}, {"tissues", tissues}};
+            ctx.summary = {{"phantom", name},
+                           {"voxel_mm", options.voxel_mm},
+                           {"dims", dims},
+                           {"spacing_mm", phantom.image.spacing_mm()},
+                           {"output", output},
+                           {"geometry", geometry_path.string()},
+                           {"labels", labels_path.string()},
+                           {"tissues", tissues}};
             ctx.log(concat(name, ": ", dims[0], " x ", dims[1], " x ", dims[2], " voxels of ",
                            format_mm(options.voxel_mm), " mm -> ", output));
         });

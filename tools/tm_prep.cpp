@@ -41,7 +41,8 @@ void parse_spacing(const std::string& spacing, image::PrepOptions& options)
 {
     if (spacing.empty()) return;
     const auto parts = split(spacing, ',');
-    if (parts.size() != 1 && parts.size() != 3) throw InputError(concat("--spacing-mm: '", spacing, "' must be X or X,Y,Z in mm"));
+    if (parts.size() != 1 && parts.size() != 3)
+        throw InputError(concat("--spacing-mm: '", spacing, "' must be X or X,Y,Z in mm"));
     Vec3 s;
     for (int a = 0; a < 3; ++a) s[a] = parse_number<double>(parts[parts.size() == 1 ? 0 : a], "--spacing-mm");
     options.spacing_mm = s;
@@ -51,8 +52,8 @@ void parse_spacing(const std::string& spacing, image::PrepOptions& options)
 /// --relabel's FROM must be one of them, its TO may be any label (a new one too), and the later steps may name
 /// the TO labels as well.
 void parse_tissue_options(const std::string& relabel, const std::vector<std::string>& merges,
-                          const std::string& keep_largest, const std::string& fill_holes_in,
-                          tools::TissueTable tissues, image::PrepOptions& options)
+                          const std::string& keep_largest, const std::string& fill_holes_in, tools::TissueTable tissues,
+                          image::PrepOptions& options)
 {
     const tools::TissueTable any_label{tissues.names, {}, tissues.source};
     if (!relabel.empty())
@@ -63,10 +64,12 @@ void parse_tissue_options(const std::string& relabel, const std::vector<std::str
             options.relabel[tools::parse_tissue(ends[0], tissues, "--relabel")] = to;
         }
     for (const auto& [from, to] : options.relabel) tissues.present.insert(to);
-    for (const std::string& group : merges) options.merge.push_back(tools::parse_tissue_list(group, tissues, "--merge"));
+    for (const std::string& group : merges)
+        options.merge.push_back(tools::parse_tissue_list(group, tissues, "--merge"));
     if (!keep_largest.empty()) options.keep_largest = tools::parse_tissue_list(keep_largest, tissues, "--keep-largest");
     if (!fill_holes_in.empty())
-        options.fill_holes = true, options.fill_holes_tissues = tools::parse_tissue_list(fill_holes_in, tissues, "--fill-holes-in");
+        options.fill_holes = true,
+        options.fill_holes_tissues = tools::parse_tissue_list(fill_holes_in, tissues, "--fill-holes-in");
 }
 
 /// OUT.labels.json for OUT.nii.gz: the tissue names after relabelling, readable by --labels.
@@ -83,9 +86,12 @@ nlohmann::json to_json(const image::PrepReport& report)
         for (const auto& [label, count] : voxels) object[std::to_string(label)] = count;
         return object;
     };
-    return {{"step", report.step},           {"detail", report.detail},
-            {"dims_before", report.dims_before}, {"dims_after", report.dims_after},
-            {"voxels_before", counts(report.voxels_before)}, {"voxels_after", counts(report.voxels_after)},
+    return {{"step", report.step},
+            {"detail", report.detail},
+            {"dims_before", report.dims_before},
+            {"dims_after", report.dims_after},
+            {"voxels_before", counts(report.voxels_before)},
+            {"voxels_after", counts(report.voxels_after)},
             {"changed_voxels", report.changed_voxels}};
 }
 
@@ -100,11 +106,12 @@ constexpr double bytes_per_resampled_voxel = 4;
 /// Refuses an image, or a resampling of it, that would need more memory than --max-memory allows: checked
 /// when the header is read, before the voxels are.
 /// `cleans`: --keep-largest, --remove-islands or --fill-holes(-in) is given.
-tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::string& input, const image::PrepOptions& options,
-                                   bool cleans)
+tools::ImageSizeCheck memory_check(const tools::MemoryLimit& limit, const std::string& input,
+                                   const image::PrepOptions& options, bool cleans)
 {
     return [=](const Dims& dims, const Vec3& spacing_mm, std::size_t file_bytes_per_voxel) {
-        const double voxels = static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
+        const double voxels =
+            static_cast<double>(dims[0]) * static_cast<double>(dims[1]) * static_cast<double>(dims[2]);
         // A bad --spacing-mm (0, negative, not finite) is left to prepare_image() and its message.
         double scale = 1;
         if (options.spacing_mm)
@@ -146,31 +153,44 @@ int main(int argc, char** argv)
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Input label image")->required()->type_name("IMAGE");
             app.add_option("-o,--output", output, "Output label image")->required()->type_name("IMAGE");
-            app.add_option("--labels", names, "Tissue names for the input: JSON, FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")->type_name("FILE");
-            app.add_option("--relabel", relabel, "FROM:TO pairs of tissues, applied at once (5:4,6:0; names or labels)")->type_name("MAP");
-            app.add_option("--merge", merges, "Merge tissues into the first (4,5 or names); repeatable")->type_name("LABELS");
+            app.add_option("--labels", names,
+                           "Tissue names for the input: JSON, FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")
+                ->type_name("FILE");
+            app.add_option("--relabel", relabel, "FROM:TO pairs of tissues, applied at once (5:4,6:0; names or labels)")
+                ->type_name("MAP");
+            app.add_option("--merge", merges, "Merge tissues into the first (4,5 or names); repeatable")
+                ->type_name("LABELS");
             app.add_option("--spacing-mm", spacing, "Resample to X or X,Y,Z mm (majority of the overlap)")
                 ->type_name("MM");
             app.add_flag("--nearest", nearest, "Resample by nearest neighbour instead of majority");
-            app.add_option("--keep-largest", keep_largest, "Keep only the largest piece of these tissues (1,2 or names)")
+            app.add_option("--keep-largest", keep_largest,
+                           "Keep only the largest piece of these tissues (1,2 or names)")
                 ->type_name("LABELS");
             app.add_option("--remove-islands", options.remove_islands_voxels,
-                           "Give pieces under N voxels to their surrounding tissue")->check(CLI::NonNegativeNumber)->type_name("N");
-            app.add_flag("--fill-holes", options.fill_holes, "Fill background cavities enclosed in tissue");
-            app.add_option("--fill-holes-in", fill_holes_in, "Fill only cavities enclosed by these tissues (labels or names)")
-                ->type_name("LABELS");
-            crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")->check(CLI::NonNegativeNumber)
+                           "Give pieces under N voxels to their surrounding tissue")
+                ->check(CLI::NonNegativeNumber)
                 ->type_name("N");
-            app.add_option("--background", options.background, "The label outside the tissues")->check(CLI::Range(0, 65535))->capture_default_str();
+            app.add_flag("--fill-holes", options.fill_holes, "Fill background cavities enclosed in tissue");
+            app.add_option("--fill-holes-in", fill_holes_in,
+                           "Fill only cavities enclosed by these tissues (labels or names)")
+                ->type_name("LABELS");
+            crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")
+                              ->check(CLI::NonNegativeNumber)
+                              ->type_name("N");
+            app.add_option("--background", options.background, "The label outside the tissues")
+                ->check(CLI::Range(0, 65535))
+                ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
             parse_spacing(spacing, options);
             if (nearest) options.resample_method = image::ResampleMethod::nearest;
             if (crop_option->count() > 0) options.crop_pad_voxels = crop_pad;
-            const bool cleans = !keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes || !fill_holes_in.empty();
-            LabelImage image = io::read_label_image(input, {.names_json = names,
-                                                            .before_voxels = memory_check(ctx.memory, input, options, cleans)});
-            parse_tissue_options(relabel, merges, keep_largest, fill_holes_in, tools::tissue_table(image, input), options);
+            const bool cleans = !keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes ||
+                                !fill_holes_in.empty();
+            LabelImage image = io::read_label_image(
+                input, {.names_json = names, .before_voxels = memory_check(ctx.memory, input, options, cleans)});
+            parse_tissue_options(relabel, merges, keep_largest, fill_holes_in, tools::tissue_table(image, input),
+                                 options);
             const auto reports = image::prepare_image(image, options, ctx.progress);
             io::write_label_image(image, output);
             if (!image.names().empty()) {

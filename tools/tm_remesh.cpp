@@ -28,7 +28,8 @@ std::map<std::pair<Label, Label>, double> parse_pair_lengths(const std::vector<s
             }
         }
         if (!(length > 0))
-            throw InputError(concat("--edge-mm-pair ", item, ": expected TISSUE:TISSUE=MM with tissues as labels or "
+            throw InputError(concat("--edge-mm-pair ", item,
+                                    ": expected TISSUE:TISSUE=MM with tissues as labels or "
                                     "names in the surface (e.g. --edge-mm-pair 1:0=4,skull:scalp=2)"));
         const std::string option = concat("--edge-mm-pair ", item);
         const Label a = tools::parse_tissue(std::string_view(item).substr(0, colon), tissues, option);
@@ -52,28 +53,33 @@ int main(int argc, char** argv)
          "Remeshes an interface complex towards edges of a target length (split long edges, collapse short ones, "
          "flip towards valence 6, relax vertices and project them back onto the input surface; junction curves "
          "are remeshed as curves). Every edit is checked, so the output passes tm-check-surface whenever the "
-         "input does (both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does not check it again): well-shaped triangles for tm-tetra.",
+         "input does (both are checked; the .ply output carries the stamp of its passed check, so the next of these "
+         "tools does not check it again): well-shaped triangles for tm-tetra.",
          "Examples:\n  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 2\n"
          "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --edge-mm-pair csf:skull=1.5,4:3=1.5\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("-o,--output", output, "Remeshed interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
+            app.add_flag("--check-input", check_input,
+                         "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--edge-mm", options.target_edge_mm, "Target edge length")->capture_default_str();
             app.add_option("--edge-mm-pair", pair_lengths, "Target edge length per tissue pair, TISSUE:TISSUE=MM")
                 ->delimiter(',');
-            app.add_option("--iterations", options.iterations, "Rounds of split/collapse/flip/relax")->check(CLI::NonNegativeNumber)
+            app.add_option("--iterations", options.iterations, "Rounds of split/collapse/flip/relax")
+                ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle an edit may create")
                 ->capture_default_str();
             app.add_option("--min-gap-mm", options.min_gap_mm, "Distance kept between patches")->capture_default_str();
-            app.add_option("--min-sector-deg", options.min_sector_deg,
-                           "Smallest angle an edit may leave between neighbouring triangles around an edge, on the side "
-                           "of a tissue (it bounds the dihedral angles of tm-tetra's tets there; 0: no rule)")
+            app.add_option(
+                   "--min-sector-deg", options.min_sector_deg,
+                   "Smallest angle an edit may leave between neighbouring triangles around an edge, on the side "
+                   "of a tissue (it bounds the dihedral angles of tm-tetra's tets there; 0: no rule)")
                 ->capture_default_str();
-            app.add_option("--slabs", options.slabs,
-                           "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
-                           "triangles, at most 8; 64 at most (the result depends on it, not on the thread count)")
+            app.add_option(
+                   "--slabs", options.slabs,
+                   "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
+                   "triangles, at most 8; 64 at most (the result depends on it, not on the thread count)")
                 ->check(CLI::Range(0, 64))
                 ->capture_default_str();
         },
@@ -83,8 +89,8 @@ int main(int argc, char** argv)
             InterfaceComplex& complex = in.complex;
             options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, tools::tissue_table(complex, input));
             surface::RemeshReport report;
-            const double seconds = tools::run_checked_step(complex, output, "remeshed",
-                                                           [&] { report = surface::remesh(complex, options, ctx.progress); });
+            const double seconds = tools::run_checked_step(
+                complex, output, "remeshed", [&] { report = surface::remesh(complex, options, ctx.progress); });
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles, smallest angle ",
                            format_mm(report.min_angle_before_deg, 3), " -> ", format_mm(report.min_angle_after_deg, 3),
                            " deg, smallest tissue sector ", format_mm(report.min_sector_before_deg, 3), " -> ",

@@ -49,7 +49,8 @@ nlohmann::json labels_json(const std::set<Label>& labels)
     return list;
 }
 
-render::Canvas surface_view(const std::string& input, const render::SurfaceViewOptions& options, nlohmann::json& summary)
+render::Canvas surface_view(const std::string& input, const render::SurfaceViewOptions& options,
+                            nlohmann::json& summary)
 {
     const InterfaceComplex complex = io::read_surface(input);
     render::SurfaceViewReport report;
@@ -58,14 +59,17 @@ render::Canvas surface_view(const std::string& input, const render::SurfaceViewO
     for (const LabelPair& pair : complex.sides)
         for (const Label label : {pair.from, pair.to})
             if (label != complex.background) tissues.insert(label);
-    summary.update({{"tissues_shown", labels_json(tissues)}, {"triangles_drawn", report.triangles_drawn},
-                    {"triangles_cut", report.triangles_cut}, {"pixels_covered", report.pixels_covered}});
+    summary.update({{"tissues_shown", labels_json(tissues)},
+                    {"triangles_drawn", report.triangles_drawn},
+                    {"triangles_cut", report.triangles_cut},
+                    {"pixels_covered", report.pixels_covered}});
     return picture;
 }
 
 /// With an image: its slice under the mesh, and every tet's error volume from assess_elements().
-render::Canvas section_view(const std::string& input, const std::string& image_path, const render::SectionViewOptions& options,
-                            const Progress& progress, nlohmann::json& summary)
+render::Canvas section_view(const std::string& input, const std::string& image_path,
+                            const render::SectionViewOptions& options, const Progress& progress,
+                            nlohmann::json& summary)
 {
     const TetMesh mesh = io::read_tet_mesh(input);
     std::optional<LabelImage> image;
@@ -76,23 +80,28 @@ render::Canvas section_view(const std::string& input, const std::string& image_p
         summary["total_error_volume_mm3"] = assessment->total_error_volume_mm3;
     }
     render::SectionViewReport report;
-    render::Canvas picture = render::render_section(mesh, image ? &*image : nullptr, assessment ? &assessment->error_volume_mm3 : nullptr,
-                                                    options, &report);
-    summary.update({{"position_mm", report.position_mm}, {"tets_cut", report.tets_cut}, {"tets_highlighted", report.tets_highlighted}});
+    render::Canvas picture = render::render_section(
+        mesh, image ? &*image : nullptr, assessment ? &assessment->error_volume_mm3 : nullptr, options, &report);
+    summary.update({{"position_mm", report.position_mm},
+                    {"tets_cut", report.tets_cut},
+                    {"tets_highlighted", report.tets_highlighted}});
     return picture;
 }
 
 /// The histograms, and per tissue the tets, smallest dihedral and largest radius-edge ratio (for tm-report).
-render::Canvas quality_view(const std::string& input, std::size_t width, std::size_t height, const std::string& title, nlohmann::json& summary)
+render::Canvas quality_view(const std::string& input, std::size_t width, std::size_t height, const std::string& title,
+                            nlohmann::json& summary)
 {
     const TetMesh mesh = io::read_tet_mesh(input);
     const render::QualityHistograms histograms = render::quality_histograms(mesh);
     nlohmann::json tissues = nlohmann::json::object();
     for (std::size_t s = 0; s < histograms.tissues.size(); ++s) {
         const Label label = histograms.tissues[s];
-        tissues[std::to_string(label)] = {{"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
-                                          {"tets", histograms.tets[s]}, {"min_dihedral_deg", histograms.min_dihedral_deg[s]},
-                                          {"max_radius_edge_ratio", histograms.max_radius_edge_ratio[s]}};
+        tissues[std::to_string(label)] = {
+            {"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
+            {"tets", histograms.tets[s]},
+            {"min_dihedral_deg", histograms.min_dihedral_deg[s]},
+            {"max_radius_edge_ratio", histograms.max_radius_edge_ratio[s]}};
     }
     summary["tissues"] = tissues;
     summary["tets"] = mesh.tets.size();
@@ -116,17 +125,20 @@ Field pick_field(const io::VtuContent& content, const std::string& input, const 
         const io::VtuArray* array = content.point_array(name) ? content.point_array(name) : content.cell_array(name);
         if (!array) continue;
         Field field{name, name, "", {}};
-        for (const auto& [suffix, unit] : std::vector<std::pair<std::string, std::string>>{{"_V_per_m", "V/m"}, {"_A_per_m2", "A/m^2"}, {"_V", "V"}})
+        for (const auto& [suffix, unit] :
+             std::vector<std::pair<std::string, std::string>>{{"_V_per_m", "V/m"}, {"_A_per_m2", "A/m^2"}, {"_V", "V"}})
             if (name.size() > suffix.size() && name.ends_with(suffix)) {
                 field.quantity = name.substr(0, name.size() - suffix.size()), field.unit = unit;
                 break;
             }
         if (field.quantity == "E_magnitude") field.quantity = "|E|";
         const auto components = static_cast<std::size_t>(array->components);
-        if (components > 1 && field.quantity.find('|') == std::string::npos) field.quantity = "|" + field.quantity + "|";
+        if (components > 1 && field.quantity.find('|') == std::string::npos)
+            field.quantity = "|" + field.quantity + "|";
         for (std::size_t i = 0; i < array->values.size() / components; ++i) {
             double sum = 0;
-            for (std::size_t c = 0; c < components; ++c) sum += array->values[components * i + c] * array->values[components * i + c];
+            for (std::size_t c = 0; c < components; ++c)
+                sum += array->values[components * i + c] * array->values[components * i + c];
             field.values.push_back(components == 1 ? array->values[i] : std::sqrt(sum));
         }
         return field;
@@ -134,22 +146,32 @@ Field pick_field(const io::VtuContent& content, const std::string& input, const 
     std::string present;
     for (const auto* arrays : {&content.point_arrays, &content.cell_arrays})
         for (const io::VtuArray& array : *arrays) present += (present.empty() ? "" : ", ") + array.name;
-    throw InputError(concat(input, ": no point or cell array \"", names.front(), "\" (the file has ", present.empty() ? "none" : present,
+    throw InputError(concat(input, ": no point or cell array \"", names.front(), "\" (the file has ",
+                            present.empty() ? "none" : present,
                             "); give --field NAME, or solve first: tm-solve -i mesh.msh -o solution.vtu ..."));
 }
 
-render::Canvas field_view(const std::string& input, const std::string& wanted, render::FieldSectionOptions options, nlohmann::json& summary)
+render::Canvas field_view(const std::string& input, const std::string& wanted, render::FieldSectionOptions options,
+                          nlohmann::json& summary)
 {
-    if (full_extension(input) != ".vtu") throw InputError(concat(input, ": the field view reads a .vtu (tm-solve's output)"));
+    if (full_extension(input) != ".vtu")
+        throw InputError(concat(input, ": the field view reads a .vtu (tm-solve's output)"));
     const io::VtuContent content = io::read_vtu(input);
     const Field field = pick_field(content, input, wanted);
     options.quantity = field.quantity, options.unit = field.unit;
     render::FieldSectionReport report;
     render::Canvas picture = render::render_field_section(content.mesh, field.values, options, &report);
-    summary.update({{"field", field.name}, {"quantity", field.quantity}, {"unit", field.unit},
-                    {"per", field.values.size() == content.mesh.vertices.size() ? "node" : "tet"}, {"position_mm", report.position_mm},
-                    {"tets_cut", report.tets_cut}, {"outline_segments", report.outline_segments}, {"field_min", report.field_min},
-                    {"field_max", report.field_max}, {"colour_min", report.colour_min}, {"colour_max", report.colour_max}});
+    summary.update({{"field", field.name},
+                    {"quantity", field.quantity},
+                    {"unit", field.unit},
+                    {"per", field.values.size() == content.mesh.vertices.size() ? "node" : "tet"},
+                    {"position_mm", report.position_mm},
+                    {"tets_cut", report.tets_cut},
+                    {"outline_segments", report.outline_segments},
+                    {"field_min", report.field_min},
+                    {"field_max", report.field_max},
+                    {"colour_min", report.colour_min},
+                    {"colour_max", report.colour_max}});
     return picture;
 }
 
@@ -169,37 +191,54 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-render",
          "Draws a picture as PNG, headless (a software rasteriser with a depth buffer). Views: surface (an interface "
-         "complex, shaded, colour per tissue, a half or a wedge cut away to show the nested layers), section (a tet mesh "
-         "cut by an axis plane over the slice of the label image: element edges, tets by tissue, tets with error volume "
-         "in red, computed against --image), field (a section of tm-solve's .vtu coloured by the potential or |E|, perceptual "
-         "colour map, colour bar in the field's unit, tissue outlines in black), quality (histograms of smallest dihedral angle and radius-edge ratio, bars "
+         "complex, shaded, colour per tissue, a half or a wedge cut away to show the nested layers), section (a tet "
+         "mesh "
+         "cut by an axis plane over the slice of the label image: element edges, tets by tissue, tets with error "
+         "volume "
+         "in red, computed against --image), field (a section of tm-solve's .vtu coloured by the potential or |E|, "
+         "perceptual "
+         "colour map, colour bar in the field's unit, tissue outlines in black), quality (histograms of smallest "
+         "dihedral angle and radius-edge ratio, bars "
          "split by tissue), convergence (tm-refine's --log CSV: error volume and worst quality key against nodes). "
          "Colours are a fixed table by label (render/tissue_colours.h): 1 skin, 2 bone, 3 blue, 4 pink, ...",
          "Examples:\n  tm-render --view surface -i remeshed.ply -o surface.png --cut wedge --azimuth-deg 45\n"
          "  tm-render --view section -i head.msh --image head.nii.gz -o section.png --axis z --position-mm 30\n"
          "  tm-render --view field -i solution.vtu -o potential.png --field potential --axis z --position-mm 31.5\n"
          "  tm-render --view field -i solution.vtu -o field.png --field E --clip-percent 1\n"
-         "  tm-render --view quality -i head.msh -o quality.png\n  tm-render --view convergence -i refine.csv -o refine.png"},
+         "  tm-render --view quality -i head.msh -o quality.png\n  tm-render --view convergence -i refine.csv -o "
+         "refine.png"},
         [&](CLI::App& app) {
-            app.add_option("--view", view, "surface, section, field, quality or convergence")->required()
+            app.add_option("--view", view, "surface, section, field, quality or convergence")
+                ->required()
                 ->check(CLI::IsMember({"surface", "section", "field", "quality", "convergence"}));
-            app.add_option("-i,--input", input, "Interface complex (surface), tet mesh (section, quality), .vtu (field) or CSV log")
-                ->required()->check(CLI::ExistingFile);
+            app.add_option("-i,--input", input,
+                           "Interface complex (surface), tet mesh (section, quality), .vtu (field) or CSV log")
+                ->required()
+                ->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "PNG picture")->required();
-            app.add_option("--image", image_path, "section: the label image (slice shown, error volume computed)")->check(CLI::ExistingFile);
+            app.add_option("--image", image_path, "section: the label image (slice shown, error volume computed)")
+                ->check(CLI::ExistingFile);
             app.add_option("--width", width, "Picture width in px (default per view)");
             app.add_option("--height", height, "Picture height in px (default per view)");
-            app.add_option("--azimuth-deg", surface.azimuth_deg, "surface: camera direction around +z, from +x")->capture_default_str();
-            app.add_option("--elevation-deg", surface.elevation_deg, "surface: camera height above the xy-plane")->capture_default_str();
-            app.add_option("--cut", cut, "surface: none, half (x > c) or wedge (x > c and y > c)")->capture_default_str();
-            app.add_option("--cut-point-mm", cut_point, "surface: X,Y,Z of the cut (default: centre of the bounding box)");
+            app.add_option("--azimuth-deg", surface.azimuth_deg, "surface: camera direction around +z, from +x")
+                ->capture_default_str();
+            app.add_option("--elevation-deg", surface.elevation_deg, "surface: camera height above the xy-plane")
+                ->capture_default_str();
+            app.add_option("--cut", cut, "surface: none, half (x > c) or wedge (x > c and y > c)")
+                ->capture_default_str();
+            app.add_option("--cut-point-mm", cut_point,
+                           "surface: X,Y,Z of the cut (default: centre of the bounding box)");
             app.add_option("--axis", axis, "section, field: plane normal x, y or z")->capture_default_str();
-            position_option = app.add_option("--position-mm", position_mm, "section, field: plane position along the axis (default: mesh centre)");
-            app.add_option("--min-error-voxels", section.min_error_voxels, "section: tets with this error volume (voxels) or more in red")
+            position_option = app.add_option("--position-mm", position_mm,
+                                             "section, field: plane position along the axis (default: mesh centre)");
+            app.add_option("--min-error-voxels", section.min_error_voxels,
+                           "section: tets with this error volume (voxels) or more in red")
                 ->capture_default_str();
-            app.add_option("--field", field_name, "field: array of the .vtu: potential (potential_V), E (|E|), J (|J|) or any array name")
+            app.add_option("--field", field_name,
+                           "field: array of the .vtu: potential (potential_V), E (|E|), J (|J|) or any array name")
                 ->capture_default_str();
-            app.add_option("--clip-percent", field.clip_percent, "field: percent of the values at each end left out of the colour range")
+            app.add_option("--clip-percent", field.clip_percent,
+                           "field: percent of the values at each end left out of the colour range")
                 ->capture_default_str();
             app.add_option("--title", title, "Caption drawn on the picture");
             app.add_flag("--no-legend", no_legend, "Leave out the tissue legend");

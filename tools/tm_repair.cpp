@@ -19,8 +19,10 @@ nlohmann::json to_json(const surface::RepairReport& report)
 {
     nlohmann::json actions = nlohmann::json::array();
     for (const surface::RepairAction& action : report.actions)
-        actions.push_back({{"kind", surface::to_string(action.kind)}, {"location_mm", action.location_mm},
-                           {"tissues", action.tissues}, {"description", action.description}});
+        actions.push_back({{"kind", surface::to_string(action.kind)},
+                           {"location_mm", action.location_mm},
+                           {"tissues", action.tissues},
+                           {"description", action.description}});
     return {{"triangles_before", report.triangles_before},
             {"triangles_after", report.triangles_after},
             {"merged_vertices", report.merged_vertices},
@@ -77,8 +79,8 @@ int main(int argc, char** argv)
             const auto start = std::chrono::steady_clock::now();
             report = surface::repair(complex, options, image ? &*image : nullptr, ctx.progress);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (", format_mm(seconds, 2),
-                           " s): ", report.merged_vertices, " vertices merged, ",
+            ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
+                           format_mm(seconds, 2), " s): ", report.merged_vertices, " vertices merged, ",
                            report.removed_duplicates + report.removed_degenerate + report.collapsed_degenerate,
                            " triangles removed, ", report.flipped_triangles, " turned, ",
                            report.self_intersections_before + report.patch_intersections_before,

@@ -22,7 +22,8 @@ int main(int argc, char** argv)
          "their neighbours, vertices on a junction curve along the curve, corners stay (Taubin lambda|mu, so "
          "volumes keep). No vertex leaves the voxels of its tissues by more than --max-depth-voxels, and no move "
          "may fold or cross a triangle or close the gap between layers: the output passes tm-check-surface "
-         "whenever the input does (both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does not check it again). Optionally (--fit-passes N, off by default) every patch vertex "
+         "whenever the input does (both are checked; the .ply output carries the stamp of its passed check, so the "
+         "next of these tools does not check it again). Optionally (--fit-passes N, off by default) every patch vertex "
          "is then pulled onto the image's own sub-voxel estimate of its interface (the zero level of its two "
          "tissues' blurred indicators), which removes the voxel terraces Taubin's filter keeps on smooth shapes "
          "(spheres at 1 mm); on folded anatomy at 2 mm it lowered the Dice against the voxels.",
@@ -32,8 +33,11 @@ int main(int argc, char** argv)
             app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
             app.add_option("--image", image_path, "The label image the complex was extracted from")->required();
             app.add_option("-o,--output", output, "Smoothed interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input, "Check the input in full even when it carries the stamp of a passed check");
-            app.add_option("--iterations", options.iterations, "Taubin step pairs")->check(CLI::NonNegativeNumber)->capture_default_str();
+            app.add_flag("--check-input", check_input,
+                         "Check the input in full even when it carries the stamp of a passed check");
+            app.add_option("--iterations", options.iterations, "Taubin step pairs")
+                ->check(CLI::NonNegativeNumber)
+                ->capture_default_str();
             app.add_option("--pairs-per-check", options.pairs_per_check,
                            "Taubin pairs run between two checks against the complex (0: all, checked once)")
                 ->check(CLI::NonNegativeNumber)
@@ -41,7 +45,8 @@ int main(int argc, char** argv)
             app.add_option("--max-depth-voxels", options.max_depth_voxels,
                            "How far (voxels) a vertex may sit from the voxels of each of its tissues")
                 ->capture_default_str();
-            app.add_option("--fit-passes", options.fit_passes, "Passes pulling vertices onto the image's interface (0: none)")
+            app.add_option("--fit-passes", options.fit_passes,
+                           "Passes pulling vertices onto the image's interface (0: none)")
                 ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
             app.add_option("--fit-sigma-voxels", options.fit_sigma_voxels,
@@ -57,8 +62,8 @@ int main(int argc, char** argv)
             InterfaceComplex& complex = in.complex;
             const LabelImage image = io::read_label_image(image_path);
             surface::SmoothReport report;
-            const double seconds = tools::run_checked_step(complex, output, "smoothed",
-                                                           [&] { report = surface::smooth(complex, image, options, ctx.progress); });
+            const double seconds = tools::run_checked_step(
+                complex, output, "smoothed", [&] { report = surface::smooth(complex, image, options, ctx.progress); });
             ctx.log(concat(report.moves, " moves in ", report.iterations, " iterations (", format_mm(seconds, 2),
                            " s); mean displacement ", format_mm(report.mean_displacement_mm, 3), " mm"));
             tools::write_checked(complex, output);

@@ -31,12 +31,13 @@ InterfaceComplex start_surface(const Start& start, const std::vector<surface::Sn
         const bool sphere = start.init == "sphere";
         if (targets.size() != 1 || start.centre_mm.size() != 3 || start.radii_mm.size() != (sphere ? 1u : 3u))
             throw InputError(concat("--init ", start.init, " needs one snake, --centre X,Y,Z and ",
-                                    sphere ? "--radius R" : "--radii A,B,C", " (mm); nested snakes start from "
+                                    sphere ? "--radius R" : "--radii A,B,C",
+                                    " (mm); nested snakes start from "
                                     "--init auto or a surface file"));
         const Vec3 radii = sphere ? Vec3{start.radii_mm[0], start.radii_mm[0], start.radii_mm[0]}
                                   : Vec3{start.radii_mm[0], start.radii_mm[1], start.radii_mm[2]};
-        return surface::ellipsoid_surface({start.centre_mm[0], start.centre_mm[1], start.centre_mm[2]}, radii,
-                                          edge_mm, targets.front().pair);
+        return surface::ellipsoid_surface({start.centre_mm[0], start.centre_mm[1], start.centre_mm[2]}, radii, edge_mm,
+                                          targets.front().pair);
     }
     InterfaceComplex complex = io::read_surface(start.init);
     surface::label_start_surface(complex, targets, start.init);
@@ -60,41 +61,55 @@ int main(int argc, char** argv)
          "Active contours: closed triangle surfaces move under tension, rigidity and an image force until they "
          "settle on a boundary. Label images: the boundary of a tissue and everything it encloses (--tissue), or "
          "of several nested tissues at once (--nested, outermost first), from the tissue indicator smoothed by a "
-         "Gaussian. Grey images (--grey: CT, MRI values in NIfTI-1, NRRD, MetaImage or Inrimage): the iso-surface at --iso. The surfaces are refined and "
+         "Gaussian. Grey images (--grey: CT, MRI values in NIfTI-1, NRRD, MetaImage or Inrimage): the iso-surface at "
+         "--iso. The surfaces are refined and "
          "coarsened as they move, never intersect, and nested ones keep --min-separation-voxels apart; the output "
          "is one interface complex fit for tm-tetra.",
          "Examples:\n  tm-snake -i head.nii.gz --labels head.json --tissue brain -o brain.ply\n"
          "  tm-snake -i head.nii.gz --nested scalp,skull,csf,brain -o head.ply --json snake.json\n"
-         "  tm-snake -i skull_2.9.inr --grey --iso 2.9 --tension 0.5 --rigidity 0.2 --max-step-voxels 0.25 -o skull.ply\n"
+         "  tm-snake -i skull_2.9.inr --grey --iso 2.9 --tension 0.5 --rigidity 0.2 --max-step-voxels 0.25 -o "
+         "skull.ply\n"
          "  tm-snake -i head.nii.gz --tissue 4 --init sphere --centre 0,0,10 --radius 60 -o brain.vtp\n"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Label image, or grey image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .inr, .inr.gz) with --grey")->required();
+            app.add_option(
+                   "-i,--input", input,
+                   "Label image, or grey image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .inr, .inr.gz) with --grey")
+                ->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
-            app.add_option("--labels", names_json, "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+            app.add_option("--labels", names_json,
+                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
             app.add_option("--tissue", tissue, "One snake: this tissue (name or label) and what it encloses");
             app.add_option("--nested", nested, "Nested snakes, outermost first (names or labels)")->delimiter(',');
             app.add_flag("--grey", grey, "The input holds grey values; the snake seeks the --iso surface");
             app.add_option("--iso", iso, "Grey value of the boundary (with --grey)");
             app.add_flag("--dark-inside", dark_inside, "With --grey: inside is below the iso value (default above)");
             app.add_option("--sigma-mm", sigma_mm, "Gaussian smoothing of the field (default 1 voxel; grey: 0)");
-            app.add_option("--init", start.init, "auto (ellipsoids around each region), sphere, ellipsoid or a "
-                                                 "surface file")->capture_default_str();
+            app.add_option("--init", start.init,
+                           "auto (ellipsoids around each region), sphere, ellipsoid or a "
+                           "surface file")
+                ->capture_default_str();
             app.add_option("--centre", start.centre_mm, "Start centre X,Y,Z (mm)")->delimiter(',');
             app.add_option("--radius", start.radii_mm, "Start sphere radius (mm)");
             app.add_option("--radii", start.radii_mm, "Start ellipsoid semi-axes A,B,C (mm)")->delimiter(',');
             app.add_option("--start-scale", start.scale, "--init auto: semi-axes over the region's half extents")
                 ->capture_default_str();
-            app.add_option("--image-weight", options.image_weight, "Fraction of the distance to the boundary moved "
-                                                                   "per iteration")->capture_default_str();
+            app.add_option("--image-weight", options.image_weight,
+                           "Fraction of the distance to the boundary moved "
+                           "per iteration")
+                ->capture_default_str();
             app.add_option("--tension", options.tension, "Umbrella Laplacian weight")->capture_default_str();
             app.add_option("--rigidity", options.rigidity, "Bi-Laplacian weight")->capture_default_str();
-            app.add_option("--balloon-voxels", options.balloon_voxels, "Outward motion per iteration (negative "
-                                                                      "deflates)")->capture_default_str();
+            app.add_option("--balloon-voxels", options.balloon_voxels,
+                           "Outward motion per iteration (negative "
+                           "deflates)")
+                ->capture_default_str();
             app.add_option("--max-step-voxels", options.max_step_voxels, "Largest motion per iteration")
                 ->capture_default_str();
-            app.add_option("--edge-mm", options.target_edge_mm, "Target edge length (0: 2 voxels)")->capture_default_str();
+            app.add_option("--edge-mm", options.target_edge_mm, "Target edge length (0: 2 voxels)")
+                ->capture_default_str();
             app.add_option("--max-chord-error-mm", options.max_chord_error_mm,
-                           "Curvature-adapted edges: chord error bound (0: off)")->capture_default_str();
+                           "Curvature-adapted edges: chord error bound (0: off)")
+                ->capture_default_str();
             app.add_option("--resolution-every", options.resolution_every, "Split/collapse/flip every N iterations")
                 ->capture_default_str();
             app.add_option("--min-separation-voxels", options.min_separation_voxels, "Gap kept between snakes")
@@ -111,8 +126,9 @@ int main(int argc, char** argv)
             LabelImage image;
             if (grey) {
                 const io::GreyImage grey_image = io::read_grey_image(input);
-                targets.push_back({{1, 0}, surface::grey_potential(grey_image.grid, grey_image.values, iso,
-                                                                   sigma_mm.value_or(0.0), !dark_inside)});
+                targets.push_back({{1, 0},
+                                   surface::grey_potential(grey_image.grid, grey_image.values, iso,
+                                                           sigma_mm.value_or(0.0), !dark_inside)});
                 image = grey_image.grid;
                 image.names() = {{0, "outside"}, {1, "inside"}};
             } else {
@@ -126,8 +142,8 @@ int main(int argc, char** argv)
                 targets = surface::nested_label_targets(image, tissues, sigma);
             }
             const double voxel = targets.front().field.smallest_spacing_mm();
-            InterfaceComplex complex = start_surface(start, targets, options.target_edge_mm > 0 ? options.target_edge_mm
-                                                                                             : 2 * voxel);
+            InterfaceComplex complex =
+                start_surface(start, targets, options.target_edge_mm > 0 ? options.target_edge_mm : 2 * voxel);
             complex.names = image.names();
             surface::SnakeReport report;
             const double seconds = tools::run_checked_step(complex, output, "snakes", [&] {

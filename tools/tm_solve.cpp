@@ -24,7 +24,8 @@ using namespace tissuemesh;
 namespace {
 
 /// "1,2,3" -> {1, 2, 3}; exactly `count` finite numbers or InputError naming the flag.
-std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& flag, const std::string& form)
+std::vector<double> parse_numbers(const std::string& text, std::size_t count, const std::string& flag,
+                                  const std::string& form)
 {
     std::vector<double> values;
     std::stringstream items(text);
@@ -36,7 +37,8 @@ std::vector<double> parse_numbers(const std::string& text, std::size_t count, co
         values.push_back(value);
     }
     if (values.size() != count)
-        throw InputError(concat(flag, " \"", text, "\" has ", values.size(), " numbers, not ", count, "; write ", form));
+        throw InputError(
+            concat(flag, " \"", text, "\" has ", values.size(), " numbers, not ", count, "; write ", form));
     return values;
 }
 
@@ -65,8 +67,11 @@ nlohmann::json field_statistics(const TetMesh& mesh, const fem::SolutionAnalysis
     nlohmann::json tissues = nlohmann::json::object();
     for (const auto& [label, t] : analysis.tissues) {
         const auto name = mesh.names.find(label);
-        tissues[std::to_string(label)] = {{"tets", t.tets}, {"volume_mm3", t.volume_mm3}, {"mean_E_V_per_m", t.mean_e_v_per_m},
-                                          {"max_E_V_per_m", t.max_e_v_per_m}, {"mean_J_A_per_m2", t.mean_j_a_per_m2},
+        tissues[std::to_string(label)] = {{"tets", t.tets},
+                                          {"volume_mm3", t.volume_mm3},
+                                          {"mean_E_V_per_m", t.mean_e_v_per_m},
+                                          {"max_E_V_per_m", t.max_e_v_per_m},
+                                          {"mean_J_A_per_m2", t.mean_j_a_per_m2},
                                           {"name", name == mesh.names.end() ? std::to_string(label) : name->second}};
     }
     return tissues;
@@ -121,17 +126,23 @@ fem::PotentialProblem parse_problem(const std::vector<std::string>& dipoles, con
     for (const std::string& text : electrodes) {
         const auto v = parse_numbers(text, 5, "--electrode", "X,Y,Z,RADIUS,CURRENT_A (mm, A)");
         if (!(v[3] > 0))
-            throw InputError(concat("--electrode ", text, ": RADIUS ", v[3], " mm is not a positive length; write X,Y,Z,RADIUS,CURRENT_A (mm, A)"));
-        problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]}, .radius_mm = v[3], .current_a = v[4],
+            throw InputError(concat("--electrode ", text, ": RADIUS ", v[3],
+                                    " mm is not a positive length; write X,Y,Z,RADIUS,CURRENT_A (mm, A)"));
+        problem.electrodes.push_back({.centre_mm = {v[0], v[1], v[2]},
+                                      .radius_mm = v[3],
+                                      .current_a = v[4],
                                       .name = concat("--electrode ", text)});
     }
     for (const io::ElectrodeRow& row : montage_rows)
-        problem.electrodes.push_back({.centre_mm = row.centre_mm, .radius_mm = row.radius_mm, .current_a = row.current_a,
-                                      .name = concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ",
-                                                     row.line, ")")});
+        problem.electrodes.push_back(
+            {.centre_mm = row.centre_mm,
+             .radius_mm = row.radius_mm,
+             .current_a = row.current_a,
+             .name = concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ", row.line, ")")});
     if (problem.dipoles.empty() && problem.electrodes.empty())
-        throw InputError("no source: without --dipole, --electrode or --electrodes no current flows and the potential is "
-                         "zero everywhere; give at least one");
+        throw InputError(
+            "no source: without --dipole, --electrode or --electrodes no current flows and the potential is "
+            "zero everywhere; give at least one");
     return problem;
 }
 
@@ -168,17 +179,20 @@ std::vector<double> potential_from_lead_field(const std::string& path, const Tet
     const tools::TdcsLeadFieldFile file = tools::read_tdcs_lead_field(path, mesh);
     std::vector<double> currents(file.names.size(), 0.0);
     for (const io::ElectrodeRow& row : rows) {
-        const std::string where = concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ", row.line, ")");
+        const std::string where =
+            concat(row.name.empty() ? "electrode" : row.name, " (", montage, " line ", row.line, ")");
         const auto found = std::find(file.names.begin(), file.names.end(), row.name);
         if (row.name.empty() || found == file.names.end())
-            throw InputError(concat(where, ": not an electrode of the lead field ", path, "; name montage electrodes as ",
-                                    "the lead field's (", file.names.size(), " of them, e.g. ", file.names.front(), ")"));
+            throw InputError(concat(where, ": not an electrode of the lead field ", path,
+                                    "; name montage electrodes as ", "the lead field's (", file.names.size(),
+                                    " of them, e.g. ", file.names.front(), ")"));
         const auto k = static_cast<std::size_t>(found - file.names.begin());
         // 1 micrometre: the same numbers written and read back, not another patch.
         if (distance(row.centre_mm, file.centres_mm[k]) > 1e-3 || std::abs(row.radius_mm - file.radii_mm[k]) > 1e-3)
-            throw InputError(concat(where, ": a patch of ", format_mm(row.radius_mm), " mm at (", format_mm(row.centre_mm[0]), ", ",
-                                    format_mm(row.centre_mm[1]), ", ", format_mm(row.centre_mm[2]), ") mm, but the lead field's ",
-                                    row.name, " is ", format_mm(file.radii_mm[k]), " mm at (", format_mm(file.centres_mm[k][0]), ", ",
+            throw InputError(concat(where, ": a patch of ", format_mm(row.radius_mm), " mm at (",
+                                    format_mm(row.centre_mm[0]), ", ", format_mm(row.centre_mm[1]), ", ",
+                                    format_mm(row.centre_mm[2]), ") mm, but the lead field's ", row.name, " is ",
+                                    format_mm(file.radii_mm[k]), " mm at (", format_mm(file.centres_mm[k][0]), ", ",
                                     format_mm(file.centres_mm[k][1]), ", ", format_mm(file.centres_mm[k][2]),
                                     ") mm; use its patches or compute the lead field again"));
         currents[k] = row.current_a;
@@ -189,7 +203,7 @@ std::vector<double> potential_from_lead_field(const std::string& path, const Tet
 /// tm-solve's command line.
 struct SolveFlags {
     std::string input, output, conductivity, sensors_path, sensor_output, montage, lead_field, solver = "amg",
-        dipole_model = "venant";
+                                                                                               dipole_model = "venant";
     std::vector<std::string> dipoles, electrodes;
     double tolerance = 1e-10;
     int processes = 0;
@@ -201,25 +215,31 @@ struct SolveFlags {
         app.add_option("-o,--output", output, "Solution .vtu: potential per node, E and J per tet")->required();
         app.add_option("--conductivity", conductivity, "JSON {tissue name or label: S/m or 3x3 tensor}");
         app.add_option("--dipole", dipoles, "X,Y,Z,PX,PY,PZ: position mm, moment A*m (repeatable)");
-        app.add_option("--electrode", electrodes, "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
+        app.add_option("--electrode", electrodes,
+                       "X,Y,Z,RADIUS,CURRENT_A: scalp patch, current into the body (repeatable)");
         app.add_option("--electrodes", montage, "Montage CSV: x,y,z,radius_mm,current_a[,name] per electrode (mm, A)")
             ->type_name("FILE");
-        app.add_option("--leadfield", lead_field,
-                       "tDCS lead field of tm-leadfield (--tdcs-output): the --electrodes montage's field is summed from "
-                       "it without a solve (electrodes by name)")
-            ->type_name("FILE")->check(CLI::ExistingFile);
+        app.add_option(
+               "--leadfield", lead_field,
+               "tDCS lead field of tm-leadfield (--tdcs-output): the --electrodes montage's field is summed from "
+               "it without a solve (electrodes by name)")
+            ->type_name("FILE")
+            ->check(CLI::ExistingFile);
         app.add_option("--sensors", sensors_path, "CSV with header x,y,z[,name] (mm)")->type_name("FILE");
         app.add_option("--sensor-potentials", sensor_output,
-                       "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")->type_name("FILE");
-        app.add_option("--dipole-model", dipole_model,
-                       "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
-                       "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
-                       "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
-                       "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
-                       "load of the one tet that holds the dipole: several times less accurate, its error depends on "
-                       "that tet)")
+                       "CSV out: [name,]x,y,z,potential (V) at the nearest surface node")
+            ->type_name("FILE");
+        app.add_option(
+               "--dipole-model", dipole_model,
+               "Dipole singularity: venant (the default: monopoles on the nearest node and its neighbours with the "
+               "dipole's moments; any tissue, accurate up to the interfaces), subtraction (exact "
+               "unbounded-medium potential plus a smooth correction; as accurate away from interfaces, needs "
+               "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
+               "load of the one tet that holds the dipole: several times less accurate, its error depends on "
+               "that tet)")
             ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
-        app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")->check(CLI::IsMember({"amg", "jacobi"}));
+        app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")
+            ->check(CLI::IsMember({"amg", "jacobi"}));
         app.add_option("--processes", processes,
                        "MPI processes for the AMG-CG (mpiexec; hypre has no threads here): 0 = one per available "
                        "core, 1 = none; fewer when each would get under 100 000 unknowns. The iteration count, and "
@@ -253,7 +273,8 @@ std::vector<double> potential(const SolveFlags& flags, const TetMesh& mesh, cons
     std::vector<double> phi = fem::solve_potential(
         mesh, sigma, problem,
         {.preconditioner = flags.solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
-         .relative_tolerance = flags.tolerance, .processes = flags.processes},
+         .relative_tolerance = flags.tolerance,
+         .processes = flags.processes},
         context.progress, &report);
     clock.lap("solve");
     record_solver_phases(report, clock);
@@ -277,13 +298,21 @@ void summarize(const TetMesh& mesh, const fem::PotentialReport& report, const fe
                std::size_t sensors, bool error_indicator, const PhaseClock& clock, nlohmann::json& summary)
 {
     if (error_indicator) summary["error_indicator_total"] = analysis.error_indicator_total;
-    summary.update({{"tissues", field_statistics(mesh, analysis)}, {"min_dihedral_deg", analysis.min_dihedral_deg},
-                    {"nodes", mesh.vertex_count()}, {"tets", mesh.tet_count()}, {"unknowns", report.unknowns},
-                    {"preconditioner", report.solver.preconditioner}, {"processes", report.solver.processes},
-                    {"iterations", report.solver.iterations}, {"relative_residual", report.solver.relative_residual},
-                    {"solve_seconds", report.solver.seconds}, {"electrode_nodes", report.electrode_nodes},
-                    {"electrode_area_mm2", report.electrode_area_mm2}, {"sensors", sensors},
-                    {"phase_seconds", clock.phases()}, {"phase_cpu_seconds", clock.cpu_phases()}});
+    summary.update({{"tissues", field_statistics(mesh, analysis)},
+                    {"min_dihedral_deg", analysis.min_dihedral_deg},
+                    {"nodes", mesh.vertex_count()},
+                    {"tets", mesh.tet_count()},
+                    {"unknowns", report.unknowns},
+                    {"preconditioner", report.solver.preconditioner},
+                    {"processes", report.solver.processes},
+                    {"iterations", report.solver.iterations},
+                    {"relative_residual", report.solver.relative_residual},
+                    {"solve_seconds", report.solver.seconds},
+                    {"electrode_nodes", report.electrode_nodes},
+                    {"electrode_area_mm2", report.electrode_area_mm2},
+                    {"sensors", sensors},
+                    {"phase_seconds", clock.phases()},
+                    {"phase_cpu_seconds", clock.cpu_phases()}});
 }
 
 void run(const SolveFlags& flags, tools::ToolContext& context)
@@ -292,9 +321,12 @@ void run(const SolveFlags& flags, tools::ToolContext& context)
         throw InputError("--sensors and --sensor-potentials go together; give both or neither");
     PhaseClock clock;
     // The small files first: a mistake in them is reported before the mesh is read.
-    const fem::ConductivityTable table = flags.conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(flags.conductivity);
-    const auto montage_rows = flags.montage.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrodes(flags.montage);
-    const auto sensors = flags.sensors_path.empty() ? std::vector<io::SensorRow>{} : io::read_sensors(flags.sensors_path);
+    const fem::ConductivityTable table =
+        flags.conductivity.empty() ? fem::ConductivityTable{} : io::read_conductivity_table(flags.conductivity);
+    const auto montage_rows =
+        flags.montage.empty() ? std::vector<io::ElectrodeRow>{} : io::read_electrodes(flags.montage);
+    const auto sensors =
+        flags.sensors_path.empty() ? std::vector<io::SensorRow>{} : io::read_sensors(flags.sensors_path);
     clock.lap("inputs");
     const TetMesh mesh = io::read_tet_mesh(flags.input);
     clock.lap("read");
@@ -302,28 +334,32 @@ void run(const SolveFlags& flags, tools::ToolContext& context)
     const fem::Conductivities sigma = resolve_from_file(mesh, table, flags.conductivity);
     fem::PotentialReport report;
     const std::vector<double> phi = potential(flags, mesh, sigma, montage_rows, context, clock, report);
-    const fem::SolutionAnalysis analysis = fem::analyse_solution(mesh, sigma, phi, {.error_indicator = flags.error_indicator});
-    clock.lap("statistics");  // restarts the clock; the parts' own times follow
+    const fem::SolutionAnalysis analysis =
+        fem::analyse_solution(mesh, sigma, phi, {.error_indicator = flags.error_indicator});
+    clock.lap("statistics"); // restarts the clock; the parts' own times follow
     clock.set("fields", analysis.fields_time);
     if (flags.error_indicator) clock.set("error_indicator", analysis.error_indicator_time);
     clock.set("statistics", analysis.statistics_time);
     write_solution(flags, mesh, phi, analysis);
     if (!flags.sensor_output.empty()) write_text_atomically(flags.sensor_output, sensor_csv(mesh, sensors, phi));
     clock.lap("write");
-    context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner, "-CG ",
-                       report.solver.iterations, " iterations, relative residual ", report.solver.relative_residual));
+    context.log(concat(mesh.vertex_count(), " nodes, ", mesh.tet_count(), " tets: ", report.solver.preconditioner,
+                       "-CG ", report.solver.iterations, " iterations, relative residual ",
+                       report.solver.relative_residual));
     summarize(mesh, report, analysis, sensors.size(), flags.error_indicator, clock, context.summary);
 }
 
 constexpr const char* description =
     "Solves div(sigma grad phi) = div(j_primary) on a labelled tet mesh with linear finite elements: current "
-    "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer boundary, zero-mean "
+    "dipoles (St. Venant, subtraction or partial integration), scalp electrodes injecting currents, insulated outer "
+    "boundary, zero-mean "
     "potential. Units: mm for positions, A*m for dipole moments, A for currents, S/m for conductivities, V for "
     "potentials. Tissues missing from the conductivity file take documented head defaults by name.";
 
 constexpr const char* files_and_examples =
     "Files: --conductivity is JSON {\"scalp\": 0.43, \"3\": 1.79, \"white\": [9 numbers or 3 rows of 3]} (S/m; names "
-    "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV with "
+    "or labels, each tissue once; at most 1 MiB). --sensors is CSV with the header x,y,z (mm) and --electrodes CSV "
+    "with "
     "x,y,z,radius_mm,current_a (mm, mm, A), both optionally with a name column, columns in any order, '#' lines "
     "comments; at most 100 000 sensors and 10 000 electrodes. --electrodes and --electrode add up; with no fixed "
     "potential the currents must sum to zero. Before the solve, a mesh that would need more than --max-memory "

@@ -32,19 +32,19 @@ void parse_sizes(const std::string& text, const tools::TissueTable& tissues, con
         const double value = std::strtod(number.c_str(), &end);
         if (number.empty() || *end != '\0' || !(value > 0))
             throw InputError(concat("size \"", item, "\" is not a positive number; write e.g. 8 or scalp=8,brain=4"));
-        if (equals == std::string::npos)
-            options.max_volume_mm3 = to_volume(value);
+        if (equals == std::string::npos) options.max_volume_mm3 = to_volume(value);
         else
-            options.max_volume_per_tissue_mm3[tools::parse_tissue_setting(item, tissues, option, "scalp=8,4=2.5").tissue] =
+            options
+                .max_volume_per_tissue_mm3[tools::parse_tissue_setting(item, tissues, option, "scalp=8,4=2.5").tissue] =
                 to_volume(value);
     }
 }
 
 /// A tissue's extent, from the interfaces around it.
 struct TissueExtent {
-    double volume_mm3 = 0;   ///< enclosed volume (divergence theorem over the oriented interfaces)
-    double area_mm2 = 0;     ///< area of its interfaces
-    double triangles = 0;    ///< interface triangles around it
+    double volume_mm3 = 0; ///< enclosed volume (divergence theorem over the oriented interfaces)
+    double area_mm2 = 0;   ///< area of its interfaces
+    double triangles = 0;  ///< interface triangles around it
 };
 
 /// Extent per tissue, the background left out (its volume is negative).
@@ -56,9 +56,10 @@ std::map<Label, TissueExtent> tissue_extents(const InterfaceComplex& complex)
         const Vec3& b = complex.vertices[complex.triangles[t][1]];
         const Vec3& c = complex.vertices[complex.triangles[t][2]];
         const double six_v = dot(a, cross(b, c)), area = 0.5 * norm(cross(b - a, c - a));
-        for (const auto& [label, sign] : {std::pair{complex.sides[t].from, 1.0}, std::pair{complex.sides[t].to, -1.0}}) {
+        for (const auto& [label, sign] :
+             {std::pair{complex.sides[t].from, 1.0}, std::pair{complex.sides[t].to, -1.0}}) {
             TissueExtent& extent = extents[label];
-            extent.volume_mm3 += sign * six_v / 6;  // the normal points out of `from`
+            extent.volume_mm3 += sign * six_v / 6; // the normal points out of `from`
             extent.area_mm2 += area;
             extent.triangles += 1;
         }
@@ -89,7 +90,8 @@ double expected_tets(const InterfaceComplex& complex, const volume::Tetrahedrali
         if (!(bound > 0) || !(extent.volume_mm3 > 0)) continue;
         // The edge of an equilateral triangle of the tissue's mean triangle area.
         const double edge_mm = std::sqrt(4 / std::sqrt(3.0) * extent.area_mm2 / extent.triangles);
-        const double refinable = options.preserve_interfaces ? extent.volume_mm3 - extent.area_mm2 * edge_mm : extent.volume_mm3;
+        const double refinable =
+            options.preserve_interfaces ? extent.volume_mm3 - extent.area_mm2 * edge_mm : extent.volume_mm3;
         bounded += tets_per_bound * std::max(refinable, 0.0) / bound;
     }
     return std::max(tets_per_triangle * static_cast<double>(complex.triangle_count()), bounded);
@@ -100,10 +102,11 @@ void check_memory(const tools::ToolContext& context, const std::string& input, c
                   const volume::TetrahedralizeOptions& options)
 {
     const double tets = expected_tets(complex, options), triangles = static_cast<double>(complex.triangle_count());
-    tools::require_memory(context.memory, input, tets * bytes_per_tet + bytes_per_triangle * triangles,
-                          concat(tools::format_count(triangles), " triangles x ", tools::format_bytes(bytes_per_triangle),
-                                 " and about ", tools::format_count(tets), " tets x ", tools::format_bytes(bytes_per_tet)),
-                          "give larger tets (--max-volume, --max-edge-mm) or fewer triangles (tm-decimate, tm-remesh --edge-mm)");
+    tools::require_memory(
+        context.memory, input, tets * bytes_per_tet + bytes_per_triangle * triangles,
+        concat(tools::format_count(triangles), " triangles x ", tools::format_bytes(bytes_per_triangle), " and about ",
+               tools::format_count(tets), " tets x ", tools::format_bytes(bytes_per_tet)),
+        "give larger tets (--max-volume, --max-edge-mm) or fewer triangles (tm-decimate, tm-remesh --edge-mm)");
 }
 
 } // namespace
@@ -121,24 +124,31 @@ int main(int argc, char** argv)
          "Tetrahedralizes an interface complex (from tm-extract and the surface tools) with TetGen's constrained "
          "Delaunay mesher, then improves the tets (tm-improve's improver: slivers and flat tets next to the interfaces "
          "smoothed, flipped or split; interface nodes stay on the input surface). Every interface is kept; each tet's "
-         "tissue comes from the interfaces around it. The output format follows the extension: .msh (Gmsh 2.2, SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
+         "tissue comes from the interfaces around it. The output format follows the extension: .msh (Gmsh 2.2, "
+         "SimNIBS/DUNEuro), .mesh (Medit), .vtu (ParaView).",
          "Examples:\n  tm-tetra -i head.ply -o head.msh\n  tm-tetra -i head.ply -o head.msh --max-volume 8,brain=2\n"
          "  tm-tetra -i head.ply -o head.vtu --max-edge-mm scalp=4,brain=2 --radius-edge 1.5"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Interface complex (.ply from tm-extract)")->required()->check(CLI::ExistingFile);
+            app.add_option("-i,--input", input, "Interface complex (.ply from tm-extract)")
+                ->required()
+                ->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "Tet mesh: .msh, .mesh, .vtu, .node, .inp")->required();
             format_flags.add_to(app);
             app.add_option("--max-volume", max_volume, "Largest tet volume in mm^3: a number, or tissue=value,...");
             app.add_option("--max-edge-mm", max_edge, "Like --max-volume, as the edge length in mm of a regular tet");
-            app.add_option("--radius-edge", options.max_radius_edge_ratio, "Bound on circumradius / shortest edge (>= 1)")
+            app.add_option("--radius-edge", options.max_radius_edge_ratio,
+                           "Bound on circumradius / shortest edge (>= 1)")
                 ->capture_default_str();
-            app.add_option("--min-dihedral-deg", options.min_dihedral_deg, "Bound on the smallest dihedral angle")->capture_default_str();
-            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")->check(CLI::Range(0, 10))
+            app.add_option("--min-dihedral-deg", options.min_dihedral_deg, "Bound on the smallest dihedral angle")
+                ->capture_default_str();
+            app.add_option("--optimise", options.optimisation_level, "Mesh optimisation level 0..10")
+                ->check(CLI::Range(0, 10))
                 ->capture_default_str();
             app.add_flag("--no-quality", no_quality, "Do not refine for the radius-edge and dihedral bounds");
-            app.add_flag("--allow-steiner", allow_steiner, "Let TetGen split interface triangles for the bounds (it still "
-                                                           "misses them next to small input angles); interfaces kept "
-                                                           "as surfaces, not as the input triangles");
+            app.add_flag("--allow-steiner", allow_steiner,
+                         "Let TetGen split interface triangles for the bounds (it still "
+                         "misses them next to small input angles); interfaces kept "
+                         "as surfaces, not as the input triangles");
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
             improve_flags.add_to(app, true);
         },
@@ -155,24 +165,34 @@ int main(int argc, char** argv)
             if (!max_edge.empty()) parse_sizes(max_edge, tissues, "--max-edge-mm", true, options);
             check_memory(context, input, complex, options);
             volume::TetrahedralizeReport report;
-            const TetMesh mesh =
-                tools::with_source(input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
+            const TetMesh mesh = tools::with_source(
+                input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
             io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
-            context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes, " nodes (",
-                               report.steiner_points, " added) in ", format_mm(report.seconds, 2), " s; min dihedral ",
-                               format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ", format_mm(report.max_radius_edge_ratio, 2)));
+            context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes,
+                               " nodes (", report.steiner_points, " added) in ", format_mm(report.seconds, 2),
+                               " s; min dihedral ", format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ",
+                               format_mm(report.max_radius_edge_ratio, 2)));
             if (report.improved) context.log(tools::improve_line(report.improvement));
             if (report.split_interface_triangles > 0 && options.preserve_interfaces)
-                context.progress.warn("tm-tetra", concat("TetGen split ", report.split_interface_triangles, " interface triangles "
-                                                         "despite -Y (the interfaces are unchanged: the parts cover them)"));
+                context.progress.warn("tm-tetra",
+                                      concat("TetGen split ", report.split_interface_triangles,
+                                             " interface triangles "
+                                             "despite -Y (the interfaces are unchanged: the parts cover them)"));
             if (report.tets_over_volume_bound > 0)
-                context.progress.warn("tm-tetra", concat(report.tets_over_volume_bound, " tets exceed their volume bound (interface "
-                                                         "triangles too large for it: remesh finer, or --allow-steiner)"));
-            context.summary = {{"input_triangles", report.input_triangles}, {"tets", report.tets}, {"nodes", report.nodes},
-                               {"steiner_points", report.steiner_points}, {"interface_faces", report.interface_faces},
+                context.progress.warn("tm-tetra",
+                                      concat(report.tets_over_volume_bound,
+                                             " tets exceed their volume bound (interface "
+                                             "triangles too large for it: remesh finer, or --allow-steiner)"));
+            context.summary = {{"input_triangles", report.input_triangles},
+                               {"tets", report.tets},
+                               {"nodes", report.nodes},
+                               {"steiner_points", report.steiner_points},
+                               {"interface_faces", report.interface_faces},
                                {"split_interface_triangles", report.split_interface_triangles},
-                               {"min_dihedral_deg", report.min_dihedral_deg}, {"max_radius_edge_ratio", report.max_radius_edge_ratio},
-                               {"tets_over_volume_bound", report.tets_over_volume_bound}, {"tetgen_switches", report.switches},
+                               {"min_dihedral_deg", report.min_dihedral_deg},
+                               {"max_radius_edge_ratio", report.max_radius_edge_ratio},
+                               {"tets_over_volume_bound", report.tets_over_volume_bound},
+                               {"tetgen_switches", report.switches},
                                {"tetrahedralize_seconds", report.seconds}};
             if (report.improved) context.summary["improvement"] = tools::improve_json(report.improvement);
         });

@@ -127,7 +127,8 @@ void assess_tissues(const TetMesh& mesh, const LabelImage& image, const LabelsBy
     out.histogram.reserve(tets * 2);
     std::vector<Vec3> index_points(mesh.vertices.size());
     for (std::size_t v = 0; v < index_points.size(); ++v) index_points[v] = image.world_to_index(mesh.vertices[v]);
-    const surface::ExtractedTissue extracted(image, {.background = options.background, .priority = options.extract_priority});
+    const surface::ExtractedTissue extracted(image,
+                                             {.background = options.background, .priority = options.extract_priority});
     for (std::size_t t = 0; t < tets; ++t) {
         const std::size_t held = sorted.offsets[t + 1] - sorted.offsets[t];
         out.voxel_count[t] = static_cast<std::uint32_t>(held);
@@ -244,8 +245,8 @@ Assessment assess_elements(const TetMesh& mesh, const LabelImage& image, const A
 void relabel_by_majority(TetMesh& mesh, const Assessment& assessment)
 {
     if (assessment.majority.size() != mesh.tets.size())
-        throw InputError(concat("assessment has ", assessment.majority.size(), " tets but the mesh has ", mesh.tets.size(),
-                                "; assess this mesh before relabelling it"));
+        throw InputError(concat("assessment has ", assessment.majority.size(), " tets but the mesh has ",
+                                mesh.tets.size(), "; assess this mesh before relabelling it"));
     mesh.tet_labels = assessment.majority;
 }
 

@@ -47,7 +47,8 @@ double longest_edge(const TetMesh& mesh, const Tet& tet)
 {
     double longest = 0;
     for (int i = 0; i < 4; ++i)
-        for (int j = i + 1; j < 4; ++j) longest = std::max(longest, distance(mesh.vertices[tet[i]], mesh.vertices[tet[j]]));
+        for (int j = i + 1; j < 4; ++j)
+            longest = std::max(longest, distance(mesh.vertices[tet[i]], mesh.vertices[tet[j]]));
     return longest;
 }
 
@@ -71,15 +72,16 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         TissueMeshStats& tissue = report.tissues[mesh.tet_labels[t]];
         ++tissue.tets, tissue.volume_mm3 += volume;
         const std::string tissue_name = mesh.names.count(mesh.tet_labels[t]) ? mesh.names.at(mesh.tet_labels[t])
-                                                                               : std::to_string(mesh.tet_labels[t]);
+                                                                             : std::to_string(mesh.tet_labels[t]);
         if (!(volume > 0)) {
             ++report.inverted_tets;
             note(report, concat("tetrahedron ", t, " (", tissue_name, ") has volume ", volume, " mm^3 at ",
                                 where(mesh.vertices[tet[0]])));
         } else if (const double edge = longest_edge(mesh, tet); volume < flat_volume_ratio * edge * edge * edge) {
             ++report.flat_tets;
-            note(report, concat("tetrahedron ", t, " (", tissue_name, ") is flat: volume ", volume, " mm^3 with edges up to ",
-                                edge, " mm at ", where(mesh.vertices[tet[0]]), "; its four nodes are coplanar"));
+            note(report,
+                 concat("tetrahedron ", t, " (", tissue_name, ") is flat: volume ", volume, " mm^3 with edges up to ",
+                        edge, " mm at ", where(mesh.vertices[tet[0]]), "; its four nodes are coplanar"));
         }
         const TetShape shape = tet_shape(mesh, t);
         smallest[t] = static_cast<float>(shape.min_dihedral_deg);
@@ -87,7 +89,8 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         report.quality.max_dihedral_deg = std::max(report.quality.max_dihedral_deg, shape.max_dihedral_deg);
         report.quality.max_radius_edge_ratio = std::max(report.quality.max_radius_edge_ratio, shape.radius_edge_ratio);
         ratio_sum += shape.radius_edge_ratio;
-        ++report.quality.min_dihedral_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(shape.min_dihedral_deg / 10))];
+        ++report.quality
+              .min_dihedral_histogram[std::min<std::size_t>(17, static_cast<std::size_t>(shape.min_dihedral_deg / 10))];
     }
     report.quality.mean_radius_edge_ratio = mesh.tets.empty() ? 0 : ratio_sum / static_cast<double>(mesh.tets.size());
     if (mesh.tets.empty()) report.quality.min_dihedral_deg = 0;
@@ -117,13 +120,14 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         for (const std::uint32_t t : found.tets) {
             if (t == no_tet) continue;
             Vec3 centroid{0, 0, 0};
-            for (const std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)]) centroid = centroid + 0.25 * mesh.vertices[v];
+            for (const std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)])
+                centroid = centroid + 0.25 * mesh.vertices[v];
             const Label expected = dot(centroid - a, normal) > 0 ? mesh.face_sides[f].to : mesh.face_sides[f].from;
             if (mesh.tet_labels[static_cast<std::size_t>(t)] != expected) {
                 ++report.mislabelled_interface_faces;
-                note(report, concat("interface face ", f, " (", mesh.face_sides[f].from, "|", mesh.face_sides[f].to, ") near ",
-                                    where(a), " has a tetrahedron of tissue ", mesh.tet_labels[static_cast<std::size_t>(t)],
-                                    " on the side of tissue ", expected));
+                note(report, concat("interface face ", f, " (", mesh.face_sides[f].from, "|", mesh.face_sides[f].to,
+                                    ") near ", where(a), " has a tetrahedron of tissue ",
+                                    mesh.tet_labels[static_cast<std::size_t>(t)], " on the side of tissue ", expected));
                 break;
             }
         }
@@ -136,18 +140,22 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         const detail::FaceKey key{face.vertices};
         if (face.holders > 2) {
             ++report.nonconforming_faces;
-            note(report, concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", face.holders, " tetrahedra"));
+            note(report,
+                 concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", face.holders, " tetrahedra"));
         } else if (face.holders == 2) {
             const std::size_t t0 = face.tets[0], t1 = face.tets[1];
             if (!on_opposite_sides(mesh, key, t0, t1)) {
                 ++report.nonconforming_faces;
-                note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ", where(mesh.vertices[key.v[0]])));
+                note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ",
+                                    where(mesh.vertices[key.v[0]])));
             }
-            if (mesh.tet_labels[t0] == mesh.tet_labels[t1]) pieces.unite(static_cast<std::uint32_t>(t0), static_cast<std::uint32_t>(t1));
+            if (mesh.tet_labels[t0] == mesh.tet_labels[t1])
+                pieces.unite(static_cast<std::uint32_t>(t0), static_cast<std::uint32_t>(t1));
             else if (!marked.count(key)) {
                 ++report.unmarked_interfaces;
-                note(report, concat("tissues ", mesh.tet_labels[t0], " and ", mesh.tet_labels[t1], " meet near ",
-                                    where(mesh.vertices[key.v[0]]), " across a face that is not marked as an interface"));
+                note(report,
+                     concat("tissues ", mesh.tet_labels[t0], " and ", mesh.tet_labels[t1], " meet near ",
+                            where(mesh.vertices[key.v[0]]), " across a face that is not marked as an interface"));
             }
         } else {
             // An outer-boundary face: count its directed edges (all faces are oriented alike, inward), so a
@@ -165,8 +173,9 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     }
     for (const auto& [edge, balance] : boundary_edges)
         if (balance != 0) ++report.open_boundary_edges;
-    report.open_boundary_edges /= 2;  // each unmatched edge was counted in both directions
-    if (report.open_boundary_edges > 0) note(report, concat(report.open_boundary_edges, " edges of the outer boundary are open"));
+    report.open_boundary_edges /= 2; // each unmatched edge was counted in both directions
+    if (report.open_boundary_edges > 0)
+        note(report, concat(report.open_boundary_edges, " edges of the outer boundary are open"));
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         if (pieces.find(static_cast<std::uint32_t>(t)) == t) ++report.tissues[mesh.tet_labels[t]].components;
     progress.update("check-mesh", 0.6);

@@ -16,35 +16,35 @@ namespace tissuemesh::volume {
 struct TissueMeshStats {
     std::size_t tets = 0;
     double volume_mm3 = 0;
-    std::size_t components = 0;      ///< face-connected pieces of this tissue's tets
-    double voxel_volume_mm3 = -1;    ///< with an image: the tissue's voxel volume, else -1
-    double dice = -1;                ///< with an image: Dice of (voxel centres in this tissue's tets) vs voxels
+    std::size_t components = 0;   ///< face-connected pieces of this tissue's tets
+    double voxel_volume_mm3 = -1; ///< with an image: the tissue's voxel volume, else -1
+    double dice = -1;             ///< with an image: Dice of (voxel centres in this tissue's tets) vs voxels
 };
 
 struct QualityStats {
-    double min_dihedral_deg = 0;     ///< smallest dihedral angle over all tets
+    double min_dihedral_deg = 0; ///< smallest dihedral angle over all tets
     double max_dihedral_deg = 0;
-    double max_radius_edge_ratio = 0;  ///< circumradius / shortest edge (regular tet: 0.612)
+    double max_radius_edge_ratio = 0; ///< circumradius / shortest edge (regular tet: 0.612)
     double mean_radius_edge_ratio = 0;
-    std::array<std::size_t, 18> min_dihedral_histogram{};  ///< tets by their smallest dihedral, 10 deg bins
-    double p1_min_dihedral_deg = 0;  ///< 1st percentile of the tets' smallest dihedral angles
+    std::array<std::size_t, 18> min_dihedral_histogram{}; ///< tets by their smallest dihedral, 10 deg bins
+    double p1_min_dihedral_deg = 0;                       ///< 1st percentile of the tets' smallest dihedral angles
 };
 
 struct MeshCheckReport {
     std::size_t nodes = 0, tets = 0, faces = 0;
-    std::size_t inverted_tets = 0;          ///< signed volume <= 0
+    std::size_t inverted_tets = 0; ///< signed volume <= 0
     /// Positive volume under flat_volume_ratio times the cube of the longest edge: four (nearly) coplanar
     /// nodes. Such a tet's P1 gradients grow as 1/volume and its stiffness entries swamp the rest.
     std::size_t flat_tets = 0;
-    std::size_t nonconforming_faces = 0;    ///< faces shared by more than two tets
-    std::size_t open_boundary_edges = 0;    ///< edges of the outer boundary not matched by a reverse edge
+    std::size_t nonconforming_faces = 0; ///< faces shared by more than two tets
+    std::size_t open_boundary_edges = 0; ///< edges of the outer boundary not matched by a reverse edge
     std::size_t unused_nodes = 0;
-    std::size_t missing_interface_faces = 0;  ///< marked faces that are not tet faces
-    std::size_t mislabelled_interface_faces = 0;  ///< marked faces whose tets disagree with the face's tissues
-    std::size_t unmarked_interfaces = 0;    ///< faces between tets of different tissues that are not marked
+    std::size_t missing_interface_faces = 0;     ///< marked faces that are not tet faces
+    std::size_t mislabelled_interface_faces = 0; ///< marked faces whose tets disagree with the face's tissues
+    std::size_t unmarked_interfaces = 0;         ///< faces between tets of different tissues that are not marked
     std::map<Label, TissueMeshStats> tissues;
     QualityStats quality;
-    std::vector<std::string> problems;      ///< one line each, with a location in mm (capped)
+    std::vector<std::string> problems; ///< one line each, with a location in mm (capped)
 
     /// How many defects of the tets and their faces there are: inverted or flat tets, non-conforming faces, open
     /// boundary edges, missing, mislabelled or unmarked interface faces (unused nodes are not counted).

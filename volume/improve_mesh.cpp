@@ -26,7 +26,10 @@ using detail::WorkMesh;
 struct Waiting {
     double quality;
     std::uint32_t tet, stamp;
-    bool operator>(const Waiting& other) const { return quality > other.quality || (quality == other.quality && tet > other.tet); }
+    bool operator>(const Waiting& other) const
+    {
+        return quality > other.quality || (quality == other.quality && tet > other.tet);
+    }
 };
 using Queue = std::priority_queue<Waiting, std::vector<Waiting>, std::greater<>>;
 constexpr std::uint32_t never = ~0u;
@@ -39,12 +42,14 @@ enum class Change { none, edge_removal, face_removal, interface_flip, move, inse
 /// change that raises the local minimum is kept; tets it makes or reshapes below the target join the queue.
 class Improver {
 public:
-    Improver(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options, ImproveReport& report)
+    Improver(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
+             ImproveReport& report)
         : mesh_(mesh), work_(mesh), reference_(reference), options_(options), report_(report),
           target_(detail::sine_of_deg(options.target_dihedral_deg)),
           insert_bar_(detail::sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
           // Never quite zero: a node moving in a flat patch leaves its faces there up to rounding.
-          face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()), start_volumes_(work_.tissue_volumes())
+          face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
+          start_volumes_(work_.tissue_volumes())
     {
     }
 
@@ -57,7 +62,8 @@ public:
             progress.update("improve", static_cast<double>(pass + 1) / static_cast<double>(options_.max_passes));
             std::size_t below = 0;
             for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) below += work_.alive(t) && work_.quality(t) < target_;
-            progress.debug("improve", concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target"));
+            progress.debug("improve",
+                           concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target"));
             if (changes == 0 && (insert || !options_.insert)) break;
         }
         mesh_ = work_.result();
@@ -114,7 +120,8 @@ private:
                 if (detail::remove_edge(work_, tet[e[0]], tet[e[1]])) return Change::edge_removal;
             if (options_.move_interface_nodes)
                 for (const auto& e : detail::edge_corners)
-                    if (detail::flip_interface_edge(work_, tet[e[0]], tet[e[1]], reference_, face_tolerance_mm_)) return Change::interface_flip;
+                    if (detail::flip_interface_edge(work_, tet[e[0]], tet[e[1]], reference_, face_tolerance_mm_))
+                        return Change::interface_flip;
             for (int i = 0; i < 4; ++i)
                 if (detail::remove_faces(work_, t, i)) return Change::face_removal;
         }
@@ -143,7 +150,8 @@ private:
         case Change::move: ++report_.smoothed_nodes; break;
         case Change::insertion:
             for (auto v = static_cast<std::uint32_t>(nodes_before); v < work_.node_count(); ++v)
-                ++(work_.kind(v) == detail::NodeKind::interior ? report_.nodes_inserted : report_.nodes_inserted_on_interfaces);
+                ++(work_.kind(v) == detail::NodeKind::interior ? report_.nodes_inserted
+                                                               : report_.nodes_inserted_on_interfaces);
             break;
         case Change::none: break;
         }
@@ -161,7 +169,8 @@ private:
         }
         if (kept)
             for (const auto& [label, volume] : work_.tissue_volumes())
-                committed_drift_[label] = std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
+                committed_drift_[label] =
+                    std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
         return kept;
     }
 
@@ -180,7 +189,9 @@ private:
     {
         if (t >= failed_.size() || failed_[t].birth != work_.birth(t) || failed_[t].level < level) return false;
         const Tet& tet = work_.tet(t);
-        return std::all_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v >= node_changed_.size() || node_changed_[v] <= failed_[t].clock; });
+        return std::all_of(tet.begin(), tet.end(), [&](std::uint32_t v) {
+            return v >= node_changed_.size() || node_changed_[v] <= failed_[t].clock;
+        });
     }
 
     TetMesh& mesh_;
@@ -190,9 +201,9 @@ private:
     ImproveReport& report_;
     double target_, insert_bar_, face_tolerance_mm_;
     std::map<Label, double> start_volumes_, committed_drift_;
-    std::int64_t clock_ = 0;                       ///< commits so far
-    std::vector<std::int64_t> node_changed_;       ///< per node: the commit that last changed a tet around it
-    std::vector<std::int64_t> node_tried_;         ///< per node: the clock of its last failed smoothing (-1: none)
+    std::int64_t clock_ = 0;                 ///< commits so far
+    std::vector<std::int64_t> node_changed_; ///< per node: the commit that last changed a tet around it
+    std::vector<std::int64_t> node_tried_;   ///< per node: the clock of its last failed smoothing (-1: none)
     /// Per tet slot: the tet (birth) on which every operation of a level (1: flips and smoothing, 2: also
     /// insertion) failed, and when.
     struct Failure {
@@ -201,20 +212,23 @@ private:
         int level = 0;
     };
     std::vector<Failure> failed_;
-    std::vector<std::uint32_t> insertion_tried_;   ///< per tet slot: the birth insertion was tried for
+    std::vector<std::uint32_t> insertion_tried_; ///< per tet slot: the birth insertion was tried for
 };
 
 void validate(const TetMesh& mesh, const ImproveOptions& options)
 {
     validate_indices(mesh, "mesh");
     if (!(options.target_dihedral_deg > 0 && options.target_dihedral_deg <= 70))
-        throw InputError(concat("target dihedral angle ", options.target_dihedral_deg, " deg is outside (0, 70]; a regular "
+        throw InputError(concat("target dihedral angle ", options.target_dihedral_deg,
+                                " deg is outside (0, 70]; a regular "
                                 "tetrahedron has 70.5 deg; the default is 18"));
     if (!(options.max_face_deviation >= 0 && options.max_face_deviation <= 1))
-        throw InputError(concat("face deviation ", options.max_face_deviation, " is outside [0, 1]; it is a fraction of the "
+        throw InputError(concat("face deviation ", options.max_face_deviation,
+                                " is outside [0, 1]; it is a fraction of the "
                                 "reference surface's mean edge (0.01 is the default)"));
     if (!(options.max_volume_change >= 0 && options.max_volume_change <= 1))
-        throw InputError(concat("volume change ", options.max_volume_change, " is outside [0, 1]; it is a fraction of each "
+        throw InputError(concat("volume change ", options.max_volume_change,
+                                " is outside [0, 1]; it is a fraction of each "
                                 "tissue's volume (2e-4 is the default)"));
 }
 
@@ -257,16 +271,19 @@ ShapeFigures shape_figures(const TetMesh& mesh)
     return figures;
 }
 
-ImproveReport improve_mesh(TetMesh& mesh, const InterfaceComplex& surface, const ImproveOptions& options, const Progress& progress)
+ImproveReport improve_mesh(TetMesh& mesh, const InterfaceComplex& surface, const ImproveOptions& options,
+                           const Progress& progress)
 {
     validate(mesh, options);
-    return run(mesh, [&] { return detail::SurfaceReference(surface); }, options, progress);
+    return run(
+        mesh, [&] { return detail::SurfaceReference(surface); }, options, progress);
 }
 
 ImproveReport improve_mesh(TetMesh& mesh, const ImproveOptions& options, const Progress& progress)
 {
     validate(mesh, options);
-    return run(mesh, [&] { return detail::SurfaceReference(mesh.vertices, mesh.faces, mesh.face_sides); }, options, progress);
+    return run(
+        mesh, [&] { return detail::SurfaceReference(mesh.vertices, mesh.faces, mesh.face_sides); }, options, progress);
 }
 
 } // namespace tissuemesh::volume

@@ -13,33 +13,33 @@ namespace tissuemesh::volume {
 
 /// Options for improve_mesh(). Angles in degrees.
 struct ImproveOptions {
-    double target_dihedral_deg = 18;     ///< tets whose smallest dihedral angle (or 180 minus the largest) is below
-                                         ///< this are worked on, worst first
-    std::size_t max_passes = 3;          ///< rounds over the tets below the target
-    bool smooth = true;                  ///< move nodes (interior nodes anywhere; see move_interface_nodes)
-    bool flip = true;                    ///< edge removal (3-2, 4-4, ... flips) and multi-face removal (2-3 flips)
-    bool insert = true;                  ///< new nodes inside tissues (splits and Delaunay cavities)
-    double insert_below_deg = 15;        ///< only for tets whose smallest dihedral angle is below this (insertion
-                                         ///< costs a dozen trials a tet; smoothing and flips mend most tets)
-    bool move_interface_nodes = true;    ///< interface nodes slide on their interface, junction nodes along their
-                                         ///< junction curve (of the reference surface), corners never move; and
-                                         ///< interface edges flip where the four nodes lie (nearly) in the surface
-    bool insert_on_interfaces = true;    ///< new nodes on interfaces (splitting interface triangles, at points of
-                                         ///< the reference surface)
-    double max_face_deviation = 0.01;    ///< an interface face a move or a split makes stays this close to the
-                                         ///< reference surface (centroid and edge midpoints), as a fraction of the
-                                         ///< reference's mean edge length: nodes slide freely on flat interfaces,
-                                         ///< on curved or creased ones only as far as their faces follow
-    double max_volume_change = 2e-4;     ///< each tissue's volume stays within this fraction of its start (moves
-                                         ///< and splits on curved interfaces that would take it further are refused)
+    double target_dihedral_deg = 18;  ///< tets whose smallest dihedral angle (or 180 minus the largest) is below
+                                      ///< this are worked on, worst first
+    std::size_t max_passes = 3;       ///< rounds over the tets below the target
+    bool smooth = true;               ///< move nodes (interior nodes anywhere; see move_interface_nodes)
+    bool flip = true;                 ///< edge removal (3-2, 4-4, ... flips) and multi-face removal (2-3 flips)
+    bool insert = true;               ///< new nodes inside tissues (splits and Delaunay cavities)
+    double insert_below_deg = 15;     ///< only for tets whose smallest dihedral angle is below this (insertion
+                                      ///< costs a dozen trials a tet; smoothing and flips mend most tets)
+    bool move_interface_nodes = true; ///< interface nodes slide on their interface, junction nodes along their
+                                      ///< junction curve (of the reference surface), corners never move; and
+                                      ///< interface edges flip where the four nodes lie (nearly) in the surface
+    bool insert_on_interfaces = true; ///< new nodes on interfaces (splitting interface triangles, at points of
+                                      ///< the reference surface)
+    double max_face_deviation = 0.01; ///< an interface face a move or a split makes stays this close to the
+                                      ///< reference surface (centroid and edge midpoints), as a fraction of the
+                                      ///< reference's mean edge length: nodes slide freely on flat interfaces,
+                                      ///< on curved or creased ones only as far as their faces follow
+    double max_volume_change = 2e-4;  ///< each tissue's volume stays within this fraction of its start (moves
+                                      ///< and splits on curved interfaces that would take it further are refused)
 };
 
 /// Shape figures of a mesh. A tet's smallest dihedral angle is its quality here.
 struct ShapeFigures {
-    double min_dihedral_deg = 0;         ///< smallest dihedral angle of any tet
-    double max_dihedral_deg = 0;         ///< largest dihedral angle of any tet
-    double p1_min_dihedral_deg = 0;      ///< 1st percentile of the tets' smallest dihedral angles
-    std::size_t tets_under_10_deg = 0;   ///< tets with a dihedral angle below 10 degrees
+    double min_dihedral_deg = 0;       ///< smallest dihedral angle of any tet
+    double max_dihedral_deg = 0;       ///< largest dihedral angle of any tet
+    double p1_min_dihedral_deg = 0;    ///< 1st percentile of the tets' smallest dihedral angles
+    std::size_t tets_under_10_deg = 0; ///< tets with a dihedral angle below 10 degrees
     std::size_t tets_under_20_deg = 0;
     std::size_t tets = 0;
 };
@@ -50,15 +50,15 @@ ShapeFigures shape_figures(const TetMesh& mesh);
 /// What improve_mesh() did.
 struct ImproveReport {
     ShapeFigures before, after;
-    std::size_t smoothed_nodes = 0;      ///< node moves kept
-    std::size_t edges_removed = 0;       ///< edge removals (3-2 and 4-4 flips among them)
-    std::size_t faces_removed = 0;       ///< multi-face removals (2-3 flips among them)
-    std::size_t interface_edges_flipped = 0;  ///< 2-2 flips of interface triangles (their tets remade on both sides)
-    std::size_t nodes_inserted = 0;      ///< inside tissues
+    std::size_t smoothed_nodes = 0;          ///< node moves kept
+    std::size_t edges_removed = 0;           ///< edge removals (3-2 and 4-4 flips among them)
+    std::size_t faces_removed = 0;           ///< multi-face removals (2-3 flips among them)
+    std::size_t interface_edges_flipped = 0; ///< 2-2 flips of interface triangles (their tets remade on both sides)
+    std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
     std::size_t passes = 0;
     double seconds = 0;
-    double cpu_seconds = 0;              ///< processor time of the calling process meanwhile
+    double cpu_seconds = 0; ///< processor time of the calling process meanwhile
 };
 
 /// Improves the shape of `mesh`'s tets where they are below the target, worst first: smoothing that maximises

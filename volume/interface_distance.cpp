@@ -14,7 +14,8 @@ InterfaceDistance interface_distance(const TetMesh& mesh, const InterfaceComplex
 {
     validate_indices(mesh, "mesh");
     if (mesh.faces.empty())
-        throw InputError("mesh: has no interface faces to compare with the surface (a .vtu stores none: use .msh or .mesh)");
+        throw InputError(
+            "mesh: has no interface faces to compare with the surface (a .vtu stores none: use .msh or .mesh)");
     const detail::SurfaceReference reference(surface);
     std::set<std::pair<Label, Label>> pairs;
     for (const LabelPair& side : surface.sides) pairs.insert(std::minmax(side.from, side.to));
@@ -40,7 +41,8 @@ InterfaceDistance interface_distance(const TetMesh& mesh, const InterfaceComplex
         const double centre = far((1.0 / 3) * (a + b + c));
         const double area = 0.5 * norm(cross(b - a, c - a));
         area_sum += area, weighted += area * centre;
-        result.max_face_mm = std::max({result.max_face_mm, centre, far(0.5 * (a + b)), far(0.5 * (b + c)), far(0.5 * (c + a))});
+        result.max_face_mm =
+            std::max({result.max_face_mm, centre, far(0.5 * (a + b)), far(0.5 * (b + c)), far(0.5 * (c + a))});
         ++result.faces;
     }
     result.mean_face_mm = area_sum > 0 ? weighted / area_sum : 0;

@@ -31,7 +31,7 @@ void mark_interfaces(TetMesh& mesh, Label background)
             }
             const std::size_t other = adjacency.across(t, k);
             const Label theirs = mesh.tet_labels[other];
-            if (theirs == mine || other < t) continue;  // no interface, or emitted with the other tet
+            if (theirs == mine || other < t) continue; // no interface, or emitted with the other tet
             const bool mine_is_from = theirs == background || (mine != background && mine > theirs);
             if (mine_is_from) marked.push_back(outward), sides.push_back({mine, theirs});
             else marked.push_back({outward[0], outward[2], outward[1]}), sides.push_back({theirs, mine});

@@ -55,9 +55,11 @@ std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& 
         std::array<std::int64_t, 3> lo, hi;
         for (int axis = 0; axis < 3; ++axis) {
             double min = points[tet[0]][axis], max = min;
-            for (int c = 1; c < 4; ++c) min = std::min(min, points[tet[c]][axis]), max = std::max(max, points[tet[c]][axis]);
+            for (int c = 1; c < 4; ++c)
+                min = std::min(min, points[tet[c]][axis]), max = std::max(max, points[tet[c]][axis]);
             lo[axis] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(min)));
-            hi[axis] = std::min<std::int64_t>(static_cast<std::int64_t>(dims[axis]) - 1, static_cast<std::int64_t>(std::floor(max)));
+            hi[axis] = std::min<std::int64_t>(static_cast<std::int64_t>(dims[axis]) - 1,
+                                              static_cast<std::int64_t>(std::floor(max)));
         }
         for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
             for (std::int64_t j = lo[1]; j <= hi[1]; ++j)

@@ -18,9 +18,9 @@ namespace {
 
 /// What refine() keeps of a tet's assessment between rounds.
 struct TetState {
-    double error_mm3 = 0;   ///< error volume for the tet's tissue (an estimate when sampled)
-    double key = 0;         ///< quality key, larger = worse
-    bool sampled = false;   ///< holds no voxel centre: error_mm3 is not in the totals
+    double error_mm3 = 0; ///< error volume for the tet's tissue (an estimate when sampled)
+    double key = 0;       ///< quality key, larger = worse
+    bool sampled = false; ///< holds no voxel centre: error_mm3 is not in the totals
 };
 
 /// A tet by its sorted node indices, to recognise the tets a rebuild left unchanged.
@@ -44,7 +44,7 @@ struct Refinement {
     const RefineOptions& options;
     bool constrained;
     TetMesh mesh;
-    std::vector<TetState> state;  ///< #T, like mesh.tets
+    std::vector<TetState> state; ///< #T, like mesh.tets
 };
 
 /// Constrained mode: the interface faces of `mesh` (they never change, nor do their nodes), to keep new nodes
@@ -61,7 +61,8 @@ public:
         for (const Triangle& face : mesh.faces) {
             const surface::detail::Box3 box = surface::detail::bounding_box(corners(face));
             for (int a = 0; a < 3; ++a)
-                bounds.low[a] = std::min(bounds.low[a], box.low[a]), bounds.high[a] = std::max(bounds.high[a], box.high[a]);
+                bounds.low[a] = std::min(bounds.low[a], box.low[a]),
+                bounds.high[a] = std::max(bounds.high[a], box.high[a]);
         }
         grid_ = surface::detail::TriangleGrid(bounds, 2 * clearance_mm, mesh.faces.size());
         for (std::size_t f = 0; f < mesh.faces.size(); ++f)
@@ -98,7 +99,8 @@ void assess_tets(Refinement& r, const std::vector<std::uint32_t>& which)
     if (which.empty()) return;
     TetMesh part;
     part.vertices = r.mesh.vertices;
-    for (const std::uint32_t t : which) part.tets.push_back(r.mesh.tets[t]), part.tet_labels.push_back(r.mesh.tet_labels[t]);
+    for (const std::uint32_t t : which)
+        part.tets.push_back(r.mesh.tets[t]), part.tet_labels.push_back(r.mesh.tet_labels[t]);
     const Assessment a = assess_elements(part, r.image, r.options.assess);
     const double per_voxel = r.options.assess.error_weight / r.image.voxel_volume_mm3();
     for (std::size_t k = 0; k < which.size(); ++k) {
@@ -120,7 +122,8 @@ std::size_t reassess(Refinement& r, const TetMesh& old, const std::vector<TetSta
 {
     std::unordered_map<Tet, std::uint32_t, TetKeyHash> before;
     before.reserve(old.tets.size());
-    for (std::size_t t = 0; t < old.tets.size(); ++t) before.emplace(sorted(old.tets[t]), static_cast<std::uint32_t>(t));
+    for (std::size_t t = 0; t < old.tets.size(); ++t)
+        before.emplace(sorted(old.tets[t]), static_cast<std::uint32_t>(t));
     r.state.assign(r.mesh.tets.size(), {});
     std::vector<std::uint32_t> changed;
     for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) {
@@ -153,10 +156,14 @@ std::vector<std::uint32_t> select_batch(const Refinement& r, std::size_t budget)
     std::vector<std::uint32_t> candidates;
     for (std::size_t t = 0; t < r.state.size(); ++t)
         if (r.constrained || r.state[t].error_mm3 > 0) candidates.push_back(static_cast<std::uint32_t>(t));
-    const auto wanted = std::max(r.options.min_batch, static_cast<std::size_t>(std::ceil(r.options.batch_fraction * static_cast<double>(r.state.size()))));
+    const auto wanted =
+        std::max(r.options.min_batch,
+                 static_cast<std::size_t>(std::ceil(r.options.batch_fraction * static_cast<double>(r.state.size()))));
     const std::size_t count = std::min({wanted, budget, candidates.size()});
     std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(count), candidates.end(),
-                      [&](std::uint32_t a, std::uint32_t b) { return r.state[a].key > r.state[b].key || (r.state[a].key == r.state[b].key && a < b); });
+                      [&](std::uint32_t a, std::uint32_t b) {
+                          return r.state[a].key > r.state[b].key || (r.state[a].key == r.state[b].key && a < b);
+                      });
     candidates.resize(count);
     return candidates;
 }
@@ -171,7 +178,7 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
                      InterfaceClearance* clearance)
 {
     NewNodes nodes;
-    std::unordered_map<Tet, std::vector<std::uint32_t>, TetKeyHash> grid;  // cell (x, y, z, 0) -> node numbers
+    std::unordered_map<Tet, std::vector<std::uint32_t>, TetKeyHash> grid; // cell (x, y, z, 0) -> node numbers
     auto cell = [&](const Vec3& p, int dx, int dy, int dz) {
         return Tet{static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[0] / min_distance)) + dx),
                    static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[1] / min_distance)) + dy),
@@ -181,17 +188,20 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
         std::array<Vec3, 4> corners;
         for (int c = 0; c < 4; ++c) corners[c] = r.mesh.vertices[r.mesh.tets[t][c]];
         auto is_free = [&](const Vec3& p) {
-            bool free = std::all_of(corners.begin(), corners.end(), [&](const Vec3& c) { return distance(c, p) >= min_distance; });
+            bool free = std::all_of(corners.begin(), corners.end(),
+                                    [&](const Vec3& c) { return distance(c, p) >= min_distance; });
             for (int d = 0; d < 27 && free; ++d) {
                 const auto found = grid.find(cell(p, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1));
                 if (found == grid.end()) continue;
-                for (const std::uint32_t other : found->second) free = free && distance(nodes.points[other], p) >= min_distance;
+                for (const std::uint32_t other : found->second)
+                    free = free && distance(nodes.points[other], p) >= min_distance;
             }
             return free && (clearance == nullptr || clearance->clear(p));
         };
         Vec3 p = detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
         // A tissue change too close to a node: the centroid instead, so that such tets still get refined.
-        if (!is_free(p) && fallback) p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
+        if (!is_free(p) && fallback)
+            p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
         if (!is_free(p)) continue;
         grid[cell(p, 0, 0, 0)].push_back(static_cast<std::uint32_t>(nodes.points.size()));
         nodes.points.push_back(p);
@@ -207,7 +217,8 @@ void start_delaunay(Refinement& r)
     const double extent = std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2]});
     const double spacing = r.options.initial_spacing_mm > 0 ? r.options.initial_spacing_mm : extent / 4;
     std::array<int, 3> steps;
-    for (int a = 0; a < 3; ++a) steps[a] = std::max(1, static_cast<int>(std::ceil((high[a] - low[a]) / spacing - 1e-9)));
+    for (int a = 0; a < 3; ++a)
+        steps[a] = std::max(1, static_cast<int>(std::ceil((high[a] - low[a]) / spacing - 1e-9)));
     for (int k = 0; k <= steps[2]; ++k)
         for (int j = 0; j <= steps[1]; ++j)
             for (int i = 0; i <= steps[0]; ++i) {
@@ -225,8 +236,10 @@ void validate(const LabelImage& image, const TetMesh* constrained, const RefineO
 {
     if (image.empty()) throw InputError("label image is empty; give the image to refine against");
     if (!(o.batch_fraction >= 0 && o.batch_fraction <= 1))
-        throw InputError(concat("batch fraction ", o.batch_fraction, " is outside 0..1; 0.05 refines the worst 5% per round"));
-    for (const double value : {o.target_error_mm3, o.target_error_percent, o.initial_spacing_mm, o.min_node_distance_mm})
+        throw InputError(
+            concat("batch fraction ", o.batch_fraction, " is outside 0..1; 0.05 refines the worst 5% per round"));
+    for (const double value :
+         {o.target_error_mm3, o.target_error_percent, o.initial_spacing_mm, o.min_node_distance_mm})
         if (!(value >= 0) || !std::isfinite(value))
             throw InputError(concat("refinement option value ", value, " is not a finite number >= 0"));
     if (constrained != nullptr) {
@@ -239,8 +252,9 @@ std::string stop_reason(const Refinement& r, const RefineReport& report, double 
 {
     const RefineOptions& o = r.options;
     const RefineIteration& it = report.iterations.back();
-    *target_reached = (o.target_error_mm3 > 0 && it.total_error_volume_mm3 <= o.target_error_mm3) ||
-                      (o.target_error_percent > 0 && it.total_error_volume_mm3 <= o.target_error_percent / 100 * mesh_volume);
+    *target_reached =
+        (o.target_error_mm3 > 0 && it.total_error_volume_mm3 <= o.target_error_mm3) ||
+        (o.target_error_percent > 0 && it.total_error_volume_mm3 <= o.target_error_percent / 100 * mesh_volume);
     if (*target_reached) return "target reached";
     if (it.iteration >= o.max_iterations) return "iteration cap";
     if (o.max_nodes > 0 && it.nodes >= o.max_nodes) return "node budget";
@@ -293,8 +307,8 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
 
 } // namespace
 
-TetMesh refine(const LabelImage& image, const TetMesh* constrained, const RefineOptions& options, const Progress& progress,
-               RefineReport* report)
+TetMesh refine(const LabelImage& image, const TetMesh* constrained, const RefineOptions& options,
+               const Progress& progress, RefineReport* report)
 {
     const auto start = std::chrono::steady_clock::now();
     validate(image, constrained, options);
@@ -320,8 +334,9 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     for (;;) {
         it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         rep.iterations.push_back(it);
-        progress.info("refine", concat("round ", it.iteration, ": ", it.nodes, " nodes, ", it.tets, " tets, error volume ",
-                                       format_mm(it.total_error_volume_mm3, 1), " mm^3, worst key ", format_mm(it.worst_quality_key, 2)));
+        progress.info("refine", concat("round ", it.iteration, ": ", it.nodes, " nodes, ", it.tets,
+                                       " tets, error volume ", format_mm(it.total_error_volume_mm3, 1),
+                                       " mm^3, worst key ", format_mm(it.worst_quality_key, 2)));
         rep.stop_reason = stop_reason(r, rep, rep.mesh_volume_mm3, &rep.target_reached);
         if (!rep.stop_reason.empty()) break;
         const std::size_t budget = options.max_nodes > 0 ? options.max_nodes - it.nodes : r.mesh.tets.size();
@@ -337,8 +352,9 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
         }
         if (round == RoundResult::rebuild_unfit) {
             rep.stop_reason = "the next round's rebuild was not fit for FEM (undone)";
-            progress.warn("refine", "TetGen's rebuild of the next round left tets disagreeing on their tissue between close "
-                                    "interfaces; that round is undone and the mesh of the round before is the result");
+            progress.warn("refine",
+                          "TetGen's rebuild of the next round left tets disagreeing on their tissue between close "
+                          "interfaces; that round is undone and the mesh of the round before is the result");
             break;
         }
     }
@@ -346,14 +362,16 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     if (!r.constrained) mark_interfaces(r.mesh, options.assess.background);
     if (options.improve) {
         ImproveOptions improvement = options.improvement;
-        if (options.max_nodes > 0) improvement.insert = improvement.insert_on_interfaces = false;  // the budget holds
+        if (options.max_nodes > 0) improvement.insert = improvement.insert_on_interfaces = false; // the budget holds
         // Delaunay-only: the interfaces are the labels' staircase faces, no surface worth sliding on; a box mesh of
         // majority tissues would also take nodes by the thousand. Flips and inner moves only.
-        if (!r.constrained) improvement.insert = improvement.insert_on_interfaces = improvement.move_interface_nodes = false;
+        if (!r.constrained)
+            improvement.insert = improvement.insert_on_interfaces = improvement.move_interface_nodes = false;
         rep.improvement = improve_mesh(r.mesh, improvement, progress);
         rep.improved = true;
         if (improvement.move_interface_nodes || improvement.insert || improvement.insert_on_interfaces)
-            rep.improved_error_volume_mm3 = assess_elements(r.mesh, image, options.assess, progress).total_error_volume_mm3;
+            rep.improved_error_volume_mm3 =
+                assess_elements(r.mesh, image, options.assess, progress).total_error_volume_mm3;
     }
     return std::move(r.mesh);
 }
@@ -372,10 +390,11 @@ std::string placement_name(Placement placement)
 
 Placement parse_placement(const std::string& name)
 {
-    for (const Placement p : {Placement::centroid, Placement::incentre, Placement::longest_edge, Placement::material_half_edges,
-                              Placement::material_centroid})
+    for (const Placement p : {Placement::centroid, Placement::incentre, Placement::longest_edge,
+                              Placement::material_half_edges, Placement::material_centroid})
         if (placement_name(p) == name) return p;
-    throw InputError(concat("unknown placement \"", name, "\"; use centroid, incentre, longest-edge, material-half-edges or "
+    throw InputError(concat("unknown placement \"", name,
+                            "\"; use centroid, incentre, longest-edge, material-half-edges or "
                             "material-centroid"));
 }
 

@@ -15,30 +15,30 @@ namespace tissuemesh::volume {
 
 /// Where a new node goes in a selected tet.
 enum class Placement {
-    centroid,              ///< the tet's centroid
-    incentre,              ///< the centre of its inscribed sphere
-    longest_edge,          ///< the midpoint of its longest edge
-    material_half_edges,   ///< first tissue change walking from each edge midpoint towards both vertices
-    material_centroid,     ///< first tissue change walking from the centroid towards each vertex
+    centroid,            ///< the tet's centroid
+    incentre,            ///< the centre of its inscribed sphere
+    longest_edge,        ///< the midpoint of its longest edge
+    material_half_edges, ///< first tissue change walking from each edge midpoint towards both vertices
+    material_centroid,   ///< first tissue change walking from the centroid towards each vertex
 };
 
 /// Options for refine(). Lengths in mm, volumes in mm^3.
 struct RefineOptions {
     Placement placement = Placement::material_centroid;
-    double batch_fraction = 0.05;      ///< share of the tets refined per round, worst quality keys first
-    std::size_t min_batch = 16;        ///< at least this many tets per round (when that many qualify)
-    double target_error_mm3 = 0;       ///< stop when the total error volume is at or below this (0: unused)
-    double target_error_percent = 0;   ///< ... or below this % of the mesh volume (0: unused)
-    std::size_t max_nodes = 0;         ///< node budget (0: none); the last batch is cut to fit it
-    std::size_t max_iterations = 50;   ///< rounds at most
-    std::size_t max_stalled_rounds = 3;  ///< Delaunay-only: stop when the error volume has not fallen over this
-                                         ///< many rounds (0: never)
-    double initial_spacing_mm = 0;     ///< Delaunay-only: lattice spacing of the start mesh (0: box size / 4)
-    double min_node_distance_mm = 0;   ///< no new node closer than this to another node, nor (constrained)
-                                       ///< to an interface face (0: half the smallest voxel spacing)
-    AssessOptions assess;              ///< priority weights and quality key weights
-    bool improve = true;               ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
-                                       ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
+    double batch_fraction = 0.05;       ///< share of the tets refined per round, worst quality keys first
+    std::size_t min_batch = 16;         ///< at least this many tets per round (when that many qualify)
+    double target_error_mm3 = 0;        ///< stop when the total error volume is at or below this (0: unused)
+    double target_error_percent = 0;    ///< ... or below this % of the mesh volume (0: unused)
+    std::size_t max_nodes = 0;          ///< node budget (0: none); the last batch is cut to fit it
+    std::size_t max_iterations = 50;    ///< rounds at most
+    std::size_t max_stalled_rounds = 3; ///< Delaunay-only: stop when the error volume has not fallen over this
+                                        ///< many rounds (0: never)
+    double initial_spacing_mm = 0;      ///< Delaunay-only: lattice spacing of the start mesh (0: box size / 4)
+    double min_node_distance_mm = 0;    ///< no new node closer than this to another node, nor (constrained)
+                                        ///< to an interface face (0: half the smallest voxel spacing)
+    AssessOptions assess;               ///< priority weights and quality key weights
+    bool improve = true;                ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
+                                        ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
     /// Its options: by default tm-tetra's (flips, moves, interface nodes sliding on their interfaces, new nodes),
     /// so the refined mesh is no worse shaped than the one tm-tetra made. Interface moves and new nodes change
     /// what the tets cover a little: the error volume is then measured again (RefineReport). With a node budget
@@ -51,21 +51,21 @@ struct RefineIteration {
     std::size_t iteration = 0;
     std::size_t nodes = 0;
     std::size_t tets = 0;
-    std::size_t added_nodes = 0;           ///< nodes placed in this round
-    std::size_t reassessed_tets = 0;       ///< tets that were new and so assessed in this round
-    double total_error_volume_mm3 = 0;     ///< voxel centres not of their tet's tissue x voxel volume
-    double worst_quality_key = 0;          ///< largest quality key (larger = worse)
-    double seconds = 0;                    ///< since refine() started
+    std::size_t added_nodes = 0;       ///< nodes placed in this round
+    std::size_t reassessed_tets = 0;   ///< tets that were new and so assessed in this round
+    double total_error_volume_mm3 = 0; ///< voxel centres not of their tet's tissue x voxel volume
+    double worst_quality_key = 0;      ///< largest quality key (larger = worse)
+    double seconds = 0;                ///< since refine() started
 };
 
 /// What refine() did.
 struct RefineReport {
     std::vector<RefineIteration> iterations;
-    std::string stop_reason;               ///< "target reached", "node budget", "iteration cap", "stalled",
-                                           ///< "no error left", "no node could be placed"
-    bool target_reached = false;           ///< a target was given and met
+    std::string stop_reason;     ///< "target reached", "node budget", "iteration cap", "stalled",
+                                 ///< "no error left", "no node could be placed"
+    bool target_reached = false; ///< a target was given and met
     double mesh_volume_mm3 = 0;
-    bool improved = false;                 ///< improve_mesh() ran on the result; `improvement` says what it did
+    bool improved = false; ///< improve_mesh() ran on the result; `improvement` says what it did
     ImproveReport improvement;
     double improved_error_volume_mm3 = -1; ///< the error volume of the improved mesh when the improver could change
                                            ///< it (interface moves, new nodes); -1: not measured (unchanged)

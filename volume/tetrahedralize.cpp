@@ -56,7 +56,8 @@ std::vector<detail::TetgenRegion> region_seeds(const InterfaceComplex& complex, 
             }
             // A point a small fraction of the triangle's size away from its centroid, on the tissue's side.
             const Triangle& tri = complex.triangles[best];
-            const Vec3 centroid = (1.0 / 3.0) * (complex.vertices[tri[0]] + complex.vertices[tri[1]] + complex.vertices[tri[2]]);
+            const Vec3 centroid =
+                (1.0 / 3.0) * (complex.vertices[tri[0]] + complex.vertices[tri[1]] + complex.vertices[tri[2]]);
             Vec3 normal = triangle_normal(complex, best);
             normal = (1.0 / norm(normal)) * normal;
             const double offset = 0.05 * std::sqrt(best_area);
@@ -95,7 +96,8 @@ int local_face(const std::array<int, 4>& tet, const std::array<int, 3>& face)
 /// The tissue of tet t on its face `local` that lies on input triangle `source`: the side of the
 /// triangle's plane its opposite vertex is on, decided exactly. (A centroid tested in doubles picks the
 /// wrong side of nearly flat tets, which TetGen makes between close interfaces.)
-Label tissue_on_side(const InterfaceComplex& complex, std::size_t source, const detail::TetgenOutput& out, int t, int local)
+Label tissue_on_side(const InterfaceComplex& complex, std::size_t source, const detail::TetgenOutput& out, int t,
+                     int local)
 {
     const Triangle& tri = complex.triangles[source];
     const int side = detail::exact_side(complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]],
@@ -122,11 +124,12 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
             throw AlgorithmError(concat("TetGen returned a boundary face without its input triangle (marker ", marker,
                                         "); please report this input"));
         const std::size_t source = static_cast<std::size_t>(marker - 1);
-        const TetAdjacency::Face found = adjacency.find(static_cast<std::uint32_t>(out.faces[f][0]),
-                                                        static_cast<std::uint32_t>(out.faces[f][1]),
-                                                        static_cast<std::uint32_t>(out.faces[f][2]));
+        const TetAdjacency::Face found =
+            adjacency.find(static_cast<std::uint32_t>(out.faces[f][0]), static_cast<std::uint32_t>(out.faces[f][1]),
+                           static_cast<std::uint32_t>(out.faces[f][2]));
         if (found.holders == 0)
-            throw AlgorithmError("TetGen returned an interface face that is no tetrahedron's face; please report this input");
+            throw AlgorithmError(
+                "TetGen returned an interface face that is no tetrahedron's face; please report this input");
         for (const std::uint32_t tet_index : found.tets) {
             if (tet_index == no_tet) continue;
             const int t = static_cast<int>(tet_index);
@@ -134,9 +137,12 @@ std::vector<Label> label_tets(const InterfaceComplex& complex, const detail::Tet
             interface_mask[t] |= static_cast<std::uint8_t>(1u << local);
             const Label side = tissue_on_side(complex, source, out, t, local);
             if (labels[t] != unlabelled && labels[t] != side)
-                throw AlgorithmError(concat("a tetrahedron near ", place(tet_centroid(out, t)), " lies between interfaces that "
-                                            "disagree on its tissue (", labels[t], " from one face, ", side, " from interface ",
-                                            complex.sides[source].from, "|", complex.sides[source].to, "); the surface "
+                throw AlgorithmError(concat("a tetrahedron near ", place(tet_centroid(out, t)),
+                                            " lies between interfaces that "
+                                            "disagree on its tissue (",
+                                            labels[t], " from one face, ", side, " from interface ",
+                                            complex.sides[source].from, "|", complex.sides[source].to,
+                                            "); the surface "
                                             "orientation is inconsistent: run tm-check-surface"));
             if (labels[t] == unlabelled) queue.push_back(t);
             labels[t] = side;
@@ -183,7 +189,8 @@ TetMesh assemble(const InterfaceComplex& complex, const detail::TetgenOutput& ou
         mesh.tet_labels.push_back(labels[t]);
         // The exact sign: a nearly flat tet whose volume rounds to the wrong sign would come out inverted.
         const auto& p = out.tets[t];
-        if (detail::exact_side(point(out.points, p[0]), point(out.points, p[1]), point(out.points, p[2]), point(out.points, p[3])) < 0)
+        if (detail::exact_side(point(out.points, p[0]), point(out.points, p[1]), point(out.points, p[2]),
+                               point(out.points, p[3])) < 0)
             std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
     }
     for (std::size_t f = 0; f < out.faces.size(); ++f) {
@@ -212,9 +219,11 @@ void require_fit_for_fem(const TetMesh& mesh)
         if (i > 0 && check.problems[i] == check.problems[i - 1]) continue;
         what += (shown++ > 0 ? "; " : "") + check.problems[i];
     }
-    throw AlgorithmError(concat("TetGen's mesh of this surface fails the mesh check (", what, "); remesh the surface with "
-                                "shorter edges where the interfaces come close (tm-remesh), or let TetGen split interface "
-                                "triangles (tm-tetra --allow-steiner)"));
+    throw AlgorithmError(
+        concat("TetGen's mesh of this surface fails the mesh check (", what,
+               "); remesh the surface with "
+               "shorter edges where the interfaces come close (tm-remesh), or let TetGen split interface "
+               "triangles (tm-tetra --allow-steiner)"));
 }
 
 } // namespace
@@ -224,13 +233,16 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
 {
     const auto start = std::chrono::steady_clock::now();
     if (options.improve_quality && options.max_radius_edge_ratio < 1.0)
-        throw InputError(concat("radius-edge ratio bound ", options.max_radius_edge_ratio, " is below 1; TetGen needs >= 1 "
+        throw InputError(concat("radius-edge ratio bound ", options.max_radius_edge_ratio,
+                                " is below 1; TetGen needs >= 1 "
                                 "(2 is a good default)"));
     if (options.optimisation_level < 0 || options.optimisation_level > 10)
-        throw InputError(concat("mesh optimisation level ", options.optimisation_level, " is outside 0..10 (TetGen -O; 2 is "
+        throw InputError(concat("mesh optimisation level ", options.optimisation_level,
+                                " is outside 0..10 (TetGen -O; 2 is "
                                 "the default)"));
     for (const auto& [tissue, volume] : options.max_volume_per_tissue_mm3)
-        if (!(volume > 0)) throw InputError(concat("maximum volume for tissue ", tissue, " is ", volume, "; give a positive mm^3"));
+        if (!(volume > 0))
+            throw InputError(concat("maximum volume for tissue ", tissue, " is ", volume, "; give a positive mm^3"));
     validate_indices(complex, "surface");
     surface::require_fit_for_tetrahedralization(complex, "surface");
 
@@ -263,8 +275,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
         report->interface_faces = mesh.faces.size();
         std::vector<std::uint32_t> faces_of(complex.triangles.size(), 0);
         for (const int marker : out.face_markers) ++faces_of[static_cast<std::size_t>(marker - 1)];
-        report->split_interface_triangles =
-            static_cast<std::size_t>(std::count_if(faces_of.begin(), faces_of.end(), [](std::uint32_t n) { return n > 1; }));
+        report->split_interface_triangles = static_cast<std::size_t>(
+            std::count_if(faces_of.begin(), faces_of.end(), [](std::uint32_t n) { return n > 1; }));
         report->switches = input.switches;
         report->min_dihedral_deg = 180;
         for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
@@ -272,7 +284,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
             report->min_dihedral_deg = std::min(report->min_dihedral_deg, shape.min_dihedral_deg);
             report->max_radius_edge_ratio = std::max(report->max_radius_edge_ratio, shape.radius_edge_ratio);
             const auto tissue_bound = options.max_volume_per_tissue_mm3.find(mesh.tet_labels[t]);
-            const double bound = tissue_bound != options.max_volume_per_tissue_mm3.end() ? tissue_bound->second : options.max_volume_mm3;
+            const double bound =
+                tissue_bound != options.max_volume_per_tissue_mm3.end() ? tissue_bound->second : options.max_volume_mm3;
             if (bound > 0 && signed_volume(mesh, t) > bound * (1 + 1e-9)) ++report->tets_over_volume_bound;
         }
         report->improved = options.improve;

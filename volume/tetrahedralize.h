@@ -16,19 +16,19 @@ namespace tissuemesh::volume {
 /// triangle, so the size and quality bounds are met only where the interface triangles are no larger than
 /// the tets asked for: remesh the surface to the target size first. The report says how far they were met.
 struct TetrahedralizeOptions {
-    bool preserve_interfaces = true;        ///< no Steiner point on any interface (TetGen -Y): interface
-                                            ///< triangles become tet faces unchanged
-    bool improve_quality = true;            ///< refine for the two bounds below (TetGen -q)
-    double max_radius_edge_ratio = 2.0;     ///< circumradius / shortest edge bound (>= 1.0 for TetGen)
-    double min_dihedral_deg = 5.0;          ///< smallest dihedral angle bound
-    double max_volume_mm3 = 0;              ///< bound on every tet's volume (0: none)
-    std::map<Label, double> max_volume_per_tissue_mm3;  ///< per-tissue bounds (override the global one)
-    int optimisation_level = 2;             ///< mesh optimisation passes, 0..10 (TetGen -O)
-    bool mesh_background_cavities = true;   ///< keep tets of the background tissue enclosed by other tissues
-                                            ///< (they carry the background label); false drops them
-    bool improve = true;                    ///< improve TetGen's tets with improve_mesh() against the complex
-                                            ///< (slivers and flat tets next to the interfaces)
-    ImproveOptions improvement;             ///< its options
+    bool preserve_interfaces = true;                   ///< no Steiner point on any interface (TetGen -Y): interface
+                                                       ///< triangles become tet faces unchanged
+    bool improve_quality = true;                       ///< refine for the two bounds below (TetGen -q)
+    double max_radius_edge_ratio = 2.0;                ///< circumradius / shortest edge bound (>= 1.0 for TetGen)
+    double min_dihedral_deg = 5.0;                     ///< smallest dihedral angle bound
+    double max_volume_mm3 = 0;                         ///< bound on every tet's volume (0: none)
+    std::map<Label, double> max_volume_per_tissue_mm3; ///< per-tissue bounds (override the global one)
+    int optimisation_level = 2;                        ///< mesh optimisation passes, 0..10 (TetGen -O)
+    bool mesh_background_cavities = true;              ///< keep tets of the background tissue enclosed by other tissues
+                                                       ///< (they carry the background label); false drops them
+    bool improve = true;        ///< improve TetGen's tets with improve_mesh() against the complex
+                                ///< (slivers and flat tets next to the interfaces)
+    ImproveOptions improvement; ///< its options
 };
 
 /// What tetrahedralize() did.
@@ -37,8 +37,8 @@ struct TetrahedralizeReport {
     std::size_t input_triangles = 0;
     std::size_t nodes = 0;
     std::size_t tets = 0;
-    std::size_t steiner_points = 0;         ///< nodes added by TetGen (inside tissues with -Y)
-    std::size_t interface_faces = 0;        ///< output faces that lie on interfaces or the outer boundary
+    std::size_t steiner_points = 0;  ///< nodes added by TetGen (inside tissues with -Y)
+    std::size_t interface_faces = 0; ///< output faces that lie on interfaces or the outer boundary
     /// Input triangles TetGen split into several faces. With -Y it keeps them whole, save rarely: on the
     /// decimated 1 mm usc19-5 head it put one point on an edge where the surface creases (2 of 2.07 M
     /// triangles split, the interface unchanged: its parts cover it exactly).
@@ -48,8 +48,8 @@ struct TetrahedralizeReport {
     std::size_t tets_over_volume_bound = 0; ///< tets larger than their (global or tissue) volume bound
     std::string switches;                   ///< the TetGen command line used
     double seconds = 0;
-    bool improved = false;                  ///< improve_mesh() ran; `improvement` says what it did
-    ImproveReport improvement;              ///< (its `before` figures are TetGen's mesh)
+    bool improved = false;     ///< improve_mesh() ran; `improvement` says what it did
+    ImproveReport improvement; ///< (its `before` figures are TetGen's mesh)
 };
 
 /// Builds a conforming tetrahedral mesh whose tets never cross an interface of `complex`. Each tet's

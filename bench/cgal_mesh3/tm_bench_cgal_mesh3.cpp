@@ -29,16 +29,16 @@ namespace {
 
 /// Mesh_3 criteria and optimisers. Lengths in mm, angles in degrees (0: the criterion is off).
 struct CgalOptions {
-    double facet_angle_deg = 30;        ///< lower bound on surface triangle angles
-    double facet_size_mm = 3;           ///< upper bound on surface Delaunay ball radii
-    double facet_distance_mm = 0.5;     ///< upper bound on surface triangle centre to true surface
-    double cell_radius_edge_ratio = 3;  ///< upper bound on circumradius / shortest edge
-    double cell_size_mm = 5;            ///< upper bound on circumradius of tets
-    bool perturb = true;                ///< sliver perturbation
-    bool exude = false;                 ///< sliver exudation (slow; CGAL's default is on)
-    int threads = 1;                    ///< 1: sequential Mesh_3; more: TBB-parallel Mesh_3 with that many threads
-    double perturb_time_s = 0;          ///< time limit of the perturber (0: none)
-    double exude_time_s = 0;            ///< time limit of the exuder (0: none)
+    double facet_angle_deg = 30;       ///< lower bound on surface triangle angles
+    double facet_size_mm = 3;          ///< upper bound on surface Delaunay ball radii
+    double facet_distance_mm = 0.5;    ///< upper bound on surface triangle centre to true surface
+    double cell_radius_edge_ratio = 3; ///< upper bound on circumradius / shortest edge
+    double cell_size_mm = 5;           ///< upper bound on circumradius of tets
+    bool perturb = true;               ///< sliver perturbation
+    bool exude = false;                ///< sliver exudation (slow; CGAL's default is on)
+    int threads = 1;                   ///< 1: sequential Mesh_3; more: TBB-parallel Mesh_3 with that many threads
+    double perturb_time_s = 0;         ///< time limit of the perturber (0: none)
+    double exude_time_s = 0;           ///< time limit of the exuder (0: none)
 };
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -96,7 +96,8 @@ TetMesh run_mesh3(const LabelImage& image, const CgalOptions& options)
     const Domain domain = Domain::create_labeled_image_mesh_domain(cgal_image);
     const Criteria criteria(p::facet_angle = options.facet_angle_deg, p::facet_size = options.facet_size_mm,
                             p::facet_distance = options.facet_distance_mm,
-                            p::cell_radius_edge_ratio = options.cell_radius_edge_ratio, p::cell_size = options.cell_size_mm);
+                            p::cell_radius_edge_ratio = options.cell_radius_edge_ratio,
+                            p::cell_size = options.cell_size_mm);
     const auto perturb = options.perturb ? p::perturb(p::time_limit = options.perturb_time_s) : p::no_perturb();
     const auto exude = options.exude ? p::exude(p::time_limit = options.exude_time_s) : p::no_exude();
     const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, perturb, exude);
@@ -118,18 +119,24 @@ int main(int argc, char** argv)
          "Examples:\n  tm-bench-cgal-mesh3 -i head.nii.gz -o cgal.msh --facet-size-mm 3 --cell-size-mm 5\n"
          "  tm-bench-cgal-mesh3 -i head.nii.gz -o cgal.msh --threads 2 --json cgal.json"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Label image (any format of tm-info)")->required()->check(CLI::ExistingFile);
+            app.add_option("-i,--input", input, "Label image (any format of tm-info)")
+                ->required()
+                ->check(CLI::ExistingFile);
             app.add_option("-o,--output", output, "Tet mesh: .msh, .mesh, .node, .inp")->required();
-            app.add_option("--facet-angle-deg", options.facet_angle_deg, "Lower bound on surface angles")->capture_default_str();
-            app.add_option("--facet-size-mm", options.facet_size_mm, "Surface Delaunay ball radius bound")->capture_default_str();
-            app.add_option("--facet-distance-mm", options.facet_distance_mm, "Surface approximation bound")->capture_default_str();
+            app.add_option("--facet-angle-deg", options.facet_angle_deg, "Lower bound on surface angles")
+                ->capture_default_str();
+            app.add_option("--facet-size-mm", options.facet_size_mm, "Surface Delaunay ball radius bound")
+                ->capture_default_str();
+            app.add_option("--facet-distance-mm", options.facet_distance_mm, "Surface approximation bound")
+                ->capture_default_str();
             app.add_option("--radius-edge", options.cell_radius_edge_ratio, "Tet circumradius / shortest edge bound")
                 ->capture_default_str();
             app.add_option("--cell-size-mm", options.cell_size_mm, "Tet circumradius bound")->capture_default_str();
             app.add_option("--threads", options.threads, "1: sequential; more: TBB-parallel")->capture_default_str();
             app.add_flag("!--no-perturb", options.perturb, "Skip sliver perturbation");
             app.add_flag("--exude", options.exude, "Run sliver exudation (slow)");
-            app.add_option("--perturb-time-s", options.perturb_time_s, "Perturber time limit (0: none)")->capture_default_str();
+            app.add_option("--perturb-time-s", options.perturb_time_s, "Perturber time limit (0: none)")
+                ->capture_default_str();
             app.add_option("--exude-time-s", options.exude_time_s, "Exuder time limit (0: none)")->capture_default_str();
         },
         [&](tools::ToolContext& context) {
@@ -145,13 +152,21 @@ int main(int argc, char** argv)
                 mesh = run_mesh3<CGAL::Parallel_tag>(image, options);
             }
             const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (mesh.tets.empty()) throw AlgorithmError(concat(input, ": CGAL made no tet; lower --cell-size-mm or --facet-size-mm"));
+            if (mesh.tets.empty())
+                throw AlgorithmError(concat(input, ": CGAL made no tet; lower --cell-size-mm or --facet-size-mm"));
             io::write_tet_mesh(mesh, output);
-            context.log(concat(mesh.tets.size(), " tets, ", mesh.vertices.size(), " nodes (", mesh_seconds, " s meshing)"));
-            context.summary = {{"tets", mesh.tets.size()}, {"nodes", mesh.vertices.size()}, {"faces", mesh.faces.size()},
-                               {"mesh_seconds", mesh_seconds}, {"threads", options.threads},
-                               {"facet_size_mm", options.facet_size_mm}, {"facet_distance_mm", options.facet_distance_mm},
-                               {"cell_size_mm", options.cell_size_mm}, {"radius_edge", options.cell_radius_edge_ratio},
-                               {"perturb", options.perturb}, {"exude", options.exude}};
+            context.log(
+                concat(mesh.tets.size(), " tets, ", mesh.vertices.size(), " nodes (", mesh_seconds, " s meshing)"));
+            context.summary = {{"tets", mesh.tets.size()},
+                               {"nodes", mesh.vertices.size()},
+                               {"faces", mesh.faces.size()},
+                               {"mesh_seconds", mesh_seconds},
+                               {"threads", options.threads},
+                               {"facet_size_mm", options.facet_size_mm},
+                               {"facet_distance_mm", options.facet_distance_mm},
+                               {"cell_size_mm", options.cell_size_mm},
+                               {"radius_edge", options.cell_radius_edge_ratio},
+                               {"perturb", options.perturb},
+                               {"exude", options.exude}};
         });
 }

@@ -45,11 +45,16 @@ int main(int argc, char** argv)
          "reference; the worst over the dipoles in --json.",
          "Example:\n  tm-bench-eeg -i cgal.msh --labels spheres4.labels.json --eccentricities 0.5,0.9 --json eeg.json"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Tet mesh of the spheres4 phantom")->required()->check(CLI::ExistingFile);
-            app.add_option("--labels", labels, "Tissue names by label (JSON, as tm-phantom writes), for a mesh that has none")
+            app.add_option("-i,--input", input, "Tet mesh of the spheres4 phantom")
+                ->required()
+                ->check(CLI::ExistingFile);
+            app.add_option("--labels", labels,
+                           "Tissue names by label (JSON, as tm-phantom writes), for a mesh that has none")
                 ->check(CLI::ExistingFile);
             app.add_option("--eccentricities", eccentricities, "Dipole depths as fractions of the brain radius")
-                ->delimiter(',')->check(CLI::Range(0.0, 0.99))->capture_default_str();
+                ->delimiter(',')
+                ->check(CLI::Range(0.0, 0.99))
+                ->capture_default_str();
             app.add_flag("--partial-integration", partial_integration,
                          "Partial integration instead of the subtraction approach");
         },
@@ -75,20 +80,25 @@ int main(int argc, char** argv)
                     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                     std::vector<double> numeric;
                     std::vector<Vec3> points;
-                    for (const std::uint32_t node : surface) numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
+                    for (const std::uint32_t node : surface)
+                        numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
                     const fem::Agreement a = fem::compare_potentials(
                         numeric, fem::sphere_surface_potentials(head_series, position, moment, points));
                     context.log(concat(radial ? "radial" : "tangential", " dipole at eccentricity ", eccentricity,
                                        ": RDM ", a.rdm, ", MAG ", a.mag));
-                    dipoles.push_back({{"eccentricity", eccentricity}, {"radial", radial}, {"rdm", a.rdm}, {"mag", a.mag}});
+                    dipoles.push_back(
+                        {{"eccentricity", eccentricity}, {"radial", radial}, {"rdm", a.rdm}, {"mag", a.mag}});
                     worst_rdm = std::max(worst_rdm, a.rdm);
                     worst_mag = std::max(worst_mag, std::abs(a.mag - 1));
                 }
             std::printf("%s: %zu nodes, %zu surface nodes: worst RDM %.4f, worst |MAG - 1| %.4f over %zu dipoles\n",
                         input.c_str(), mesh.vertex_count(), surface.size(), worst_rdm, worst_mag, dipoles.size());
-            context.summary = {{"nodes", mesh.vertex_count()}, {"surface_nodes", surface.size()},
+            context.summary = {{"nodes", mesh.vertex_count()},
+                               {"surface_nodes", surface.size()},
                                {"dipole_model", partial_integration ? "partial_integration" : "subtraction"},
-                               {"dipoles", dipoles}, {"worst_rdm", worst_rdm}, {"worst_mag_error", worst_mag},
+                               {"dipoles", dipoles},
+                               {"worst_rdm", worst_rdm},
+                               {"worst_mag_error", worst_mag},
                                {"solve_seconds", seconds}};
         });
 }

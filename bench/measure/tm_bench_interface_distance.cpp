@@ -46,7 +46,8 @@ std::vector<Sample> sample_faces(const TetMesh& mesh, const image::PhantomGeomet
         const Vec3& b = mesh.vertices[mesh.faces[f][1]];
         const Vec3& c = mesh.vertices[mesh.faces[f][2]];
         const double area = 0.5 * norm(cross(b - a, c - a));
-        samples.push_back({distance_to_pair(geometry, interfaces, (1.0 / 3.0) * (a + b + c), mesh.face_sides[f]), area});
+        samples.push_back(
+            {distance_to_pair(geometry, interfaces, (1.0 / 3.0) * (a + b + c), mesh.face_sides[f]), area});
         for (const Vec3* corner : {&a, &b, &c})
             samples.push_back({distance_to_pair(geometry, interfaces, *corner, mesh.face_sides[f]), 0});
     }
@@ -69,7 +70,8 @@ int main(int argc, char** argv)
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh")->required()->check(CLI::ExistingFile);
             app.add_option("--phantom", phantom_name, "Phantom name (as tm-phantom)")->required();
-            app.add_option("--voxel-mm", phantom_options.voxel_mm, "Voxel size the phantom was made with")->capture_default_str();
+            app.add_option("--voxel-mm", phantom_options.voxel_mm, "Voxel size the phantom was made with")
+                ->capture_default_str();
         },
         [&](tools::ToolContext& context) {
             TetMesh mesh = io::read_tet_mesh(input);
@@ -77,9 +79,11 @@ int main(int argc, char** argv)
             const image::Phantom phantom = image::make_phantom(phantom_name, phantom_options);
             std::vector<Sample> samples = sample_faces(mesh, phantom.geometry);
             double total = 0, weighted = 0, maximum = 0;
-            for (const Sample& s : samples) total += s.weight_mm2, weighted += s.weight_mm2 * s.distance_mm,
-                                            maximum = std::max(maximum, s.distance_mm);
-            std::sort(samples.begin(), samples.end(), [](const Sample& x, const Sample& y) { return x.distance_mm < y.distance_mm; });
+            for (const Sample& s : samples)
+                total += s.weight_mm2, weighted += s.weight_mm2 * s.distance_mm,
+                    maximum = std::max(maximum, s.distance_mm);
+            std::sort(samples.begin(), samples.end(),
+                      [](const Sample& x, const Sample& y) { return x.distance_mm < y.distance_mm; });
             double below = 0, p95 = 0;
             for (const Sample& s : samples)
                 if ((below += s.weight_mm2) >= 0.95 * total) {
@@ -89,7 +93,10 @@ int main(int argc, char** argv)
             const double mean = total > 0 ? weighted / total : 0;
             std::printf("%s: %zu faces, distance to the exact interfaces: mean %.3f mm, p95 %.3f mm, max %.3f mm\n",
                         input.c_str(), mesh.faces.size(), mean, p95, maximum);
-            context.summary = {{"faces", mesh.faces.size()}, {"area_mm2", total}, {"mean_mm", mean},
-                               {"p95_mm", p95}, {"max_mm", maximum}};
+            context.summary = {{"faces", mesh.faces.size()},
+                               {"area_mm2", total},
+                               {"mean_mm", mean},
+                               {"p95_mm", p95},
+                               {"max_mm", maximum}};
         });
 }

@@ -21,7 +21,10 @@ namespace {
 
 const fem::LayeredSphere head_series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
-Vec3 vec(const nlohmann::json& values) { return {values[0].get<double>(), values[1].get<double>(), values[2].get<double>()}; }
+Vec3 vec(const nlohmann::json& values)
+{
+    return {values[0].get<double>(), values[1].get<double>(), values[2].get<double>()};
+}
 
 struct LeadFieldFile {
     io::NpyMatrix matrix;
@@ -51,7 +54,8 @@ std::vector<Column> columns_of(const nlohmann::json& sidecar)
             columns.push_back({position, vec(source["orientation"]), eccentricity});
             continue;
         }
-        for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}) columns.push_back({position, axis, eccentricity});
+        for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
+            columns.push_back({position, axis, eccentricity});
     }
     return columns;
 }
@@ -67,7 +71,9 @@ double percentile(std::vector<double> values, double fraction)
 nlohmann::json statistics(const std::vector<double>& values, const std::vector<Column>& columns)
 {
     const auto summary = [](const std::vector<double>& v) {
-        return nlohmann::json{{"count", v.size()}, {"median", percentile(v, 0.5)}, {"p95", percentile(v, 0.95)},
+        return nlohmann::json{{"count", v.size()},
+                              {"median", percentile(v, 0.5)},
+                              {"p95", percentile(v, 0.95)},
                               {"max", v.empty() ? std::nan("") : *std::max_element(v.begin(), v.end())}};
     };
     nlohmann::json result = summary(values);
@@ -91,8 +97,8 @@ nlohmann::json measure_eeg(const std::string& path, tools::ToolContext& context)
     }
     const std::vector<Column> columns = columns_of(file.sidecar);
     if (file.matrix.rows != on_sphere.size() || file.matrix.columns != columns.size())
-        throw InputError(concat(path, ": ", file.matrix.rows, " x ", file.matrix.columns, " but the sidecar has ", on_sphere.size(),
-                                " sensors and ", columns.size(), " columns"));
+        throw InputError(concat(path, ": ", file.matrix.rows, " x ", file.matrix.columns, " but the sidecar has ",
+                                on_sphere.size(), " sensors and ", columns.size(), " columns"));
     std::vector<double> rdm(columns.size()), mag(columns.size());
 #pragma omp parallel for schedule(dynamic)
     for (std::size_t c = 0; c < columns.size(); ++c) {
@@ -105,9 +111,13 @@ nlohmann::json measure_eeg(const std::string& path, tools::ToolContext& context)
     }
     const nlohmann::json rdm_statistics = statistics(rdm, columns), mag_statistics = statistics(mag, columns);
     context.log(concat("EEG ", path, ": ", on_sphere.size(), " electrodes, ", columns.size(), " columns: RDM median ",
-                       rdm_statistics["median"].get<double>(), ", 95th percentile ", rdm_statistics["p95"].get<double>(),
-                       ", max ", rdm_statistics["max"].get<double>(), "; |MAG - 1| median ", mag_statistics["median"].get<double>()));
-    return {{"electrodes", on_sphere.size()}, {"columns", columns.size()}, {"rdm", rdm_statistics}, {"mag_error", mag_statistics}};
+                       rdm_statistics["median"].get<double>(), ", 95th percentile ",
+                       rdm_statistics["p95"].get<double>(), ", max ", rdm_statistics["max"].get<double>(),
+                       "; |MAG - 1| median ", mag_statistics["median"].get<double>()));
+    return {{"electrodes", on_sphere.size()},
+            {"columns", columns.size()},
+            {"rdm", rdm_statistics},
+            {"mag_error", mag_statistics}};
 }
 
 nlohmann::json measure_meg(const std::string& path, tools::ToolContext& context)
@@ -116,17 +126,20 @@ nlohmann::json measure_meg(const std::string& path, tools::ToolContext& context)
     const nlohmann::json& sensors = file.sidecar["sensors"];
     const std::vector<Column> columns = columns_of(file.sidecar);
     if (file.matrix.rows != sensors.size() || file.matrix.columns != columns.size())
-        throw InputError(concat(path, ": ", file.matrix.rows, " x ", file.matrix.columns, " but the sidecar has ", sensors.size(),
-                                " sensors and ", columns.size(), " columns"));
+        throw InputError(concat(path, ": ", file.matrix.rows, " x ", file.matrix.columns, " but the sidecar has ",
+                                sensors.size(), " sensors and ", columns.size(), " columns"));
     std::vector<double> rdm(columns.size());
 #pragma omp parallel for schedule(dynamic)
     for (std::size_t c = 0; c < columns.size(); ++c) {
         double numeric_norm = 0, exact_norm = 0, cross = 0;
         for (std::size_t r = 0; r < sensors.size(); ++r) {
             const Vec3 normal = vec(sensors[r]["normal"]);
-            double exact = dot(fem::sarvas_field(vec(sensors[r]["position_mm"]), columns[c].position_mm, columns[c].moment), normal);
+            double exact = dot(
+                fem::sarvas_field(vec(sensors[r]["position_mm"]), columns[c].position_mm, columns[c].moment), normal);
             if (sensors[r].contains("second_coil_mm"))
-                exact -= dot(fem::sarvas_field(vec(sensors[r]["second_coil_mm"]), columns[c].position_mm, columns[c].moment), normal);
+                exact -=
+                    dot(fem::sarvas_field(vec(sensors[r]["second_coil_mm"]), columns[c].position_mm, columns[c].moment),
+                        normal);
             const double numeric = file.matrix.values[r * columns.size() + c];
             numeric_norm += numeric * numeric, exact_norm += exact * exact, cross += numeric * exact;
         }
@@ -135,8 +148,8 @@ nlohmann::json measure_meg(const std::string& path, tools::ToolContext& context)
     }
     const nlohmann::json rdm_statistics = statistics(rdm, columns);
     context.log(concat("MEG ", path, ": ", sensors.size(), " sensors, ", columns.size(), " columns: RDM median ",
-                       rdm_statistics["median"].get<double>(), ", 95th percentile ", rdm_statistics["p95"].get<double>(),
-                       ", max ", rdm_statistics["max"].get<double>()));
+                       rdm_statistics["median"].get<double>(), ", 95th percentile ",
+                       rdm_statistics["p95"].get<double>(), ", max ", rdm_statistics["max"].get<double>()));
     return {{"sensors", sensors.size()}, {"columns", columns.size()}, {"rdm", rdm_statistics}};
 }
 
@@ -149,12 +162,15 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-bench-leadfield",
          "Accuracy of tm-leadfield's lead fields on a mesh of the 4-shell sphere head (tm-phantom spheres4, centred at "
-         "the origin): EEG columns against the 4-shell series (RDM, MAG; average reference), MEG columns against Sarvas' "
+         "the origin): EEG columns against the 4-shell series (RDM, MAG; average reference), MEG columns against "
+         "Sarvas' "
          "formula (RDM). Medians, 95th percentiles and maxima, overall and per eccentricity band, in --json.",
          "Example:\n  tm-bench-leadfield --eeg eeg.npy --meg meg.npy --json accuracy.json"},
         [&](CLI::App& app) {
-            app.add_option("--eeg", eeg, "EEG lead field .npy of tm-leadfield (sidecar next to it)")->check(CLI::ExistingFile);
-            app.add_option("--meg", meg, "MEG lead field .npy of tm-leadfield (sidecar next to it)")->check(CLI::ExistingFile);
+            app.add_option("--eeg", eeg, "EEG lead field .npy of tm-leadfield (sidecar next to it)")
+                ->check(CLI::ExistingFile);
+            app.add_option("--meg", meg, "MEG lead field .npy of tm-leadfield (sidecar next to it)")
+                ->check(CLI::ExistingFile);
         },
         [&](tools::ToolContext& context) {
             if (eeg.empty() && meg.empty()) throw InputError("give --eeg, --meg or both");

@@ -19,8 +19,8 @@ namespace {
 
 /// Sizes of the inputs. Lengths in mm.
 struct StageInputOptions {
-    double voxel_mm = 4;         ///< spheres4 voxel size (4 mm: 0.11 M voxels)
-    double max_distance_mm = 1;  ///< decimation bound, as the workflow's sphere head
+    double voxel_mm = 4;        ///< spheres4 voxel size (4 mm: 0.11 M voxels)
+    double max_distance_mm = 1; ///< decimation bound, as the workflow's sphere head
 };
 
 /// The chain of inputs, each made once (by the previous stages) and shared by the benchmarks. The tets
@@ -33,7 +33,7 @@ struct StageInputs {
 
 surface::ExtractOptions extract_options()
 {
-    return {.priority = {{3, 1}}};  // CSF wins thin places, as the workflow's sphere head
+    return {.priority = {{3, 1}}}; // CSF wins thin places, as the workflow's sphere head
 }
 
 StageInputs make_inputs(const StageInputOptions& options)
@@ -54,8 +54,8 @@ const StageInputs& inputs()
 
 void set_rate(benchmark::State& state, const char* name, std::size_t per_iteration)
 {
-    state.counters[name] = benchmark::Counter(static_cast<double>(per_iteration),
-                                              benchmark::Counter::kIsIterationInvariantRate);
+    state.counters[name] =
+        benchmark::Counter(static_cast<double>(per_iteration), benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void extraction(benchmark::State& state)

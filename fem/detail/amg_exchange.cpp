@@ -46,7 +46,8 @@ void seek(std::FILE* file, const std::filesystem::path& path, long long offset)
         throw IoError(concat(path.string(), ": truncated solver exchange file"));
 }
 
-void check_magic(const std::array<char, 8>& magic, const std::filesystem::path& path, const std::array<char, 8>& expected)
+void check_magic(const std::array<char, 8>& magic, const std::filesystem::path& path,
+                 const std::array<char, 8>& expected)
 {
     if (magic != expected) throw IoError(concat(path.string(), ": not a solver exchange file of this version"));
 }
@@ -178,7 +179,7 @@ void SystemFileReader::next_column(std::vector<double>& block_rhs)
     block_rhs.assign(static_cast<std::size_t>(count), 0.0);
     std::int64_t entries = 0;
     get(in, path_, &entries, 1);
-    if (entries < 0) {  // dense: skip to this block's rows
+    if (entries < 0) { // dense: skip to this block's rows
         const long long at = ftello(in);
         seek(in, path_, at + 8 * first);
         get(in, path_, block_rhs.data(), block_rhs.size());
@@ -192,7 +193,8 @@ void SystemFileReader::next_column(std::vector<double>& block_rhs)
     get(in, path_, values.data(), values.size());
     for (std::size_t k = 0; k < indices.size(); ++k) {
         const std::int64_t row = indices[k];
-        if (row < 0 || row >= block_.global_rows) throw IoError(concat(path_.string(), ": right-hand side row out of range"));
+        if (row < 0 || row >= block_.global_rows)
+            throw IoError(concat(path_.string(), ": right-hand side row out of range"));
         if (row >= first && row < first + count) block_rhs[static_cast<std::size_t>(row - first)] = values[k];
     }
 }
@@ -254,7 +256,8 @@ bool ResultFileReader::open(const std::filesystem::path& path, std::int64_t colu
     }
     check_magic(magic, path_, result_magic);
     if (counts[0] != columns || counts[1] != kept)
-        throw IoError(concat(path_.string(), ": ", counts[0], " x ", counts[1], " solution values for ", columns, " x ", kept));
+        throw IoError(
+            concat(path_.string(), ": ", counts[0], " x ", counts[1], " solution values for ", columns, " x ", kept));
     kept_ = kept;
     copy_seconds_ = seconds[0];
     setup_seconds_ = seconds[1];
@@ -271,7 +274,8 @@ bool ResultFileReader::next(PcgSolve& solve, std::vector<double>& kept_values)
     std::int64_t counts[2] = {0, 0};
     double figures[2] = {0, 0};
     kept_values.resize(static_cast<std::size_t>(kept_));
-    if (!read_at(file_.get(), counts, sizeof counts, next_at_) || !read_at(file_.get(), figures, sizeof figures, next_at_ + 16) ||
+    if (!read_at(file_.get(), counts, sizeof counts, next_at_) ||
+        !read_at(file_.get(), figures, sizeof figures, next_at_ + 16) ||
         !read_at(file_.get(), kept_values.data(), kept_values.size() * 8, next_at_ + record_head_bytes))
         throw IoError(concat(path_.string(), ": truncated solver exchange file"));
     solve.iterations = static_cast<int>(counts[0]);

@@ -18,8 +18,8 @@ namespace tissuemesh::fem::detail {
 
 /// What the system file asks of the solver besides the system itself.
 struct SolveRequest {
-    double tolerance = 1e-10;  ///< relative residual to reach
-    int max_iterations = 0;    ///< CG iteration cap
+    double tolerance = 1e-10; ///< relative residual to reach
+    int max_iterations = 0;   ///< CG iteration cap
 };
 
 struct CloseFile {

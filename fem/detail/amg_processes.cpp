@@ -77,7 +77,8 @@ bool singleton_own(std::string_view text)
 {
     if (text.starts_with("PMIX_")) return true;
     if (!text.starts_with("OMPI_")) return false;
-    if (!text.starts_with("OMPI_MCA_")) return !text.starts_with("OMPI_ALLOW_RUN_AS_ROOT");  // OMPI_COMMAND, OMPI_APP_CTX_...
+    if (!text.starts_with("OMPI_MCA_"))
+        return !text.starts_with("OMPI_ALLOW_RUN_AS_ROOT"); // OMPI_COMMAND, OMPI_APP_CTX_...
     return text.starts_with("OMPI_MCA_ess") || text.starts_with("OMPI_MCA_orte_") || text.starts_with("OMPI_MCA_pmix");
 }
 
@@ -92,11 +93,13 @@ std::vector<std::string> worker_environment()
         const std::string_view text(*entry);
         if (!singleton_own(text) && !text.starts_with("OMP_NUM_THREADS=")) environment.emplace_back(text);
     }
-    for (const std::string_view setting : {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
-                                           "OMPI_MCA_rmaps_base_oversubscribe=1", "OMPI_MCA_hwloc_base_binding_policy=none",
-                                           "OMPI_MCA_btl_vader_single_copy_mechanism=none", "OMP_NUM_THREADS=1"}) {
+    for (const std::string_view setting :
+         {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1", "OMPI_MCA_rmaps_base_oversubscribe=1",
+          "OMPI_MCA_hwloc_base_binding_policy=none", "OMPI_MCA_btl_vader_single_copy_mechanism=none",
+          "OMP_NUM_THREADS=1"}) {
         const std::string_view name = setting.substr(0, setting.find('=') + 1);
-        if (std::none_of(environment.begin(), environment.end(), [&](const std::string& kept) { return kept.starts_with(name); }))
+        if (std::none_of(environment.begin(), environment.end(),
+                         [&](const std::string& kept) { return kept.starts_with(name); }))
             environment.emplace_back(setting);
     }
     return environment;
@@ -137,10 +140,11 @@ pid_t start_mpiexec(std::vector<std::string> arguments, const fs::path& log)
     }
     const pid_t parent = getpid();
     const pid_t pid = fork();
-    if (pid == 0) {  // only async-signal-safe calls until exec: other threads may hold locks
+    if (pid == 0) { // only async-signal-safe calls until exec: other threads may hold locks
         prctl(PR_SET_PDEATHSIG, SIGTERM);
-        if (getppid() != parent) _exit(127);  // the parent ended before the line above took effect
-        if (dup2(input, STDIN_FILENO) < 0 || dup2(output, STDOUT_FILENO) < 0 || dup2(output, STDERR_FILENO) < 0) _exit(127);
+        if (getppid() != parent) _exit(127); // the parent ended before the line above took effect
+        if (dup2(input, STDIN_FILENO) < 0 || dup2(output, STDOUT_FILENO) < 0 || dup2(output, STDERR_FILENO) < 0)
+            _exit(127);
         execve(argv[0], argv.data(), envp.data());
         _exit(127);
     }
@@ -153,8 +157,8 @@ pid_t start_mpiexec(std::vector<std::string> arguments, const fs::path& log)
 
 // How mpiexec ended.
 struct Ending {
-    bool started = true;  ///< false: the ranks had not started within start_timeout, and mpiexec was stopped
-    std::optional<int> status;  ///< its wait status; unknown when it was reaped elsewhere (SIGCHLD ignored)
+    bool started = true;       ///< false: the ranks had not started within start_timeout, and mpiexec was stopped
+    std::optional<int> status; ///< its wait status; unknown when it was reaped elsewhere (SIGCHLD ignored)
 };
 
 // Stops mpiexec (SIGTERM, on which it takes its ranks down; SIGKILL after 5 s) and reaps it.
@@ -194,7 +198,7 @@ Ending wait_for(pid_t pid, const fs::path& started, const std::function<void()>&
             stop(pid);
             throw;
         }
-        if (done < 0 && errno != EINTR) return {true, std::nullopt};  // ECHILD: reaped by an ignored SIGCHLD
+        if (done < 0 && errno != EINTR) return {true, std::nullopt}; // ECHILD: reaped by an ignored SIGCHLD
         std::error_code ignored;
         if (!fs::exists(started, ignored) && std::chrono::steady_clock::now() - begin > start_timeout) {
             stop(pid);
@@ -244,9 +248,10 @@ int available_cores()
 }
 
 std::optional<ColumnsResult> solve_columns_on_processes(const SparseMatrix& matrix, std::size_t columns,
-                                                       const ColumnFiller& rhs, const std::vector<std::uint32_t>& kept_rows,
-                                                       const ColumnSink& sink, const SolveRequest& request,
-                                                       const ProcessLaunch& launch, std::string& why_not)
+                                                        const ColumnFiller& rhs,
+                                                        const std::vector<std::uint32_t>& kept_rows,
+                                                        const ColumnSink& sink, const SolveRequest& request,
+                                                        const ProcessLaunch& launch, std::string& why_not)
 {
     const std::optional<fs::path> mpiexec = find_program(launch.mpiexec);
     if (!mpiexec) {
@@ -259,7 +264,8 @@ std::optional<ColumnsResult> solve_columns_on_processes(const SparseMatrix& matr
         why_not = concat(worker.string(), " is missing: it is built and installed next to tm-solve");
         return std::nullopt;
     }
-    const auto kept = static_cast<std::int64_t>(kept_rows.empty() ? static_cast<std::size_t>(matrix.rows()) : kept_rows.size());
+    const auto kept =
+        static_cast<std::int64_t>(kept_rows.empty() ? static_cast<std::size_t>(matrix.rows()) : kept_rows.size());
     try {
         const TemporaryFolder folder;
         const fs::path system = folder.path() / "system.bin", result = folder.path() / "result.bin",
@@ -301,9 +307,10 @@ std::optional<ColumnsResult> solve_columns_on_processes(const SparseMatrix& matr
         solved.copy_seconds = reader.copy_seconds();
         solved.setup_seconds = reader.setup_seconds();
         return solved;
-    } catch (const CallerFailure& failure) {  // not a reason to try again in one process
+    } catch (const CallerFailure& failure) { // not a reason to try again in one process
         std::rethrow_exception(failure.error);
-    } catch (const std::exception& failure) {  // IoError of the exchange files, a filesystem error (no temporary directory)
+    } catch (
+        const std::exception& failure) { // IoError of the exchange files, a filesystem error (no temporary directory)
         why_not = failure.what();
         return std::nullopt;
     }

@@ -18,8 +18,8 @@ namespace tissuemesh::fem::detail {
 
 /// How to start the processes.
 struct ProcessLaunch {
-    int processes = 2;                ///< MPI ranks
-    std::string mpiexec = "mpiexec";  ///< the launcher: a path, or a name looked up in PATH
+    int processes = 2;               ///< MPI ranks
+    std::string mpiexec = "mpiexec"; ///< the launcher: a path, or a name looked up in PATH
 };
 
 /// Fills right-hand side k into b (zeros on entry, #rows entries).
@@ -29,9 +29,9 @@ using ColumnSink = std::function<void(std::size_t k, const PcgSolve& solve, cons
 
 /// What the processes reported besides the solutions.
 struct ColumnsResult {
-    std::vector<PcgSolve> solves;  ///< one per right-hand side, in order
-    double copy_seconds = 0;       ///< rank 0's
-    double setup_seconds = 0;      ///< the BoomerAMG hierarchy, set up once
+    std::vector<PcgSolve> solves; ///< one per right-hand side, in order
+    double copy_seconds = 0;      ///< rank 0's
+    double setup_seconds = 0;     ///< the BoomerAMG hierarchy, set up once
 };
 
 /// Solves A x_k = b_k for k < `columns` with BoomerAMG-CG on several MPI processes: the system and every
@@ -43,9 +43,10 @@ struct ColumnsResult {
 /// its sink may see columns again: it must store, not accumulate. Exceptions of `rhs` and `sink` propagate
 /// (the processes are stopped).
 std::optional<ColumnsResult> solve_columns_on_processes(const SparseMatrix& matrix, std::size_t columns,
-                                                       const ColumnFiller& rhs, const std::vector<std::uint32_t>& kept_rows,
-                                                       const ColumnSink& sink, const SolveRequest& request,
-                                                       const ProcessLaunch& launch, std::string& why_not);
+                                                        const ColumnFiller& rhs,
+                                                        const std::vector<std::uint32_t>& kept_rows,
+                                                        const ColumnSink& sink, const SolveRequest& request,
+                                                        const ProcessLaunch& launch, std::string& why_not);
 
 /// The cores this process may run on (its CPU affinity mask), at least 1.
 int available_cores();

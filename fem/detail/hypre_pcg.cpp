@@ -57,10 +57,7 @@ HYPRE_ParVector make_vector(HYPRE_BigInt first, HYPRE_BigInt count, HYPRE_BigInt
     return vector;
 }
 
-double* values_of(HYPRE_ParVector vector)
-{
-    return hypre_VectorData(hypre_ParVectorLocalVector(vector));
-}
+double* values_of(HYPRE_ParVector vector) { return hypre_VectorData(hypre_ParVectorLocalVector(vector)); }
 
 // The matrix straight into hypre's ParCSR form, without the IJ interface, which stages every entry and then
 // copies it again (0.99 s for 1.04 M rows, against 0.17 s this way). On one process the whole matrix is the
@@ -136,9 +133,9 @@ HYPRE_Solver make_boomeramg()
     HYPRE_BoomerAMGSetStrongThreshold(amg, 0.5);
     HYPRE_BoomerAMGSetAggNumLevels(amg, 1);
     HYPRE_BoomerAMGSetAggInterpType(amg, 4);
-    HYPRE_BoomerAMGSetRelaxType(amg, 6);  // then split below; the coarsest level is solved directly
-    HYPRE_BoomerAMGSetCycleRelaxType(amg, 13, 1);  // down: forward l1-Gauss-Seidel
-    HYPRE_BoomerAMGSetCycleRelaxType(amg, 14, 2);  // up: backward l1-Gauss-Seidel
+    HYPRE_BoomerAMGSetRelaxType(amg, 6);          // then split below; the coarsest level is solved directly
+    HYPRE_BoomerAMGSetCycleRelaxType(amg, 13, 1); // down: forward l1-Gauss-Seidel
+    HYPRE_BoomerAMGSetCycleRelaxType(amg, 14, 2); // up: backward l1-Gauss-Seidel
     HYPRE_BoomerAMGSetNumSweeps(amg, 1);
     HYPRE_BoomerAMGSetTol(amg, 0.0);
     HYPRE_BoomerAMGSetMaxIter(amg, 1);
@@ -150,7 +147,6 @@ double seconds_since(std::chrono::steady_clock::time_point since)
 {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
-
 
 } // namespace
 
@@ -170,10 +166,8 @@ struct AmgPcg::Objects {
         if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
         for (HYPRE_ParVector vector : {residual, solution, rhs})
             if (vector) HYPRE_ParVectorDestroy(vector);
-        if (ij_matrix)
-            HYPRE_IJMatrixDestroy(ij_matrix);
-        else if (matrix)
-            HYPRE_ParCSRMatrixDestroy(matrix);
+        if (ij_matrix) HYPRE_IJMatrixDestroy(ij_matrix);
+        else if (matrix) HYPRE_ParCSRMatrixDestroy(matrix);
     }
 
     // The vectors and the PCG with its BoomerAMG hierarchy (the expensive part, done once).
@@ -185,7 +179,7 @@ struct AmgPcg::Objects {
         HYPRE_ParCSRPCGCreate(MPI_COMM_WORLD, &pcg);
         HYPRE_PCGSetMaxIter(pcg, max_iterations);
         HYPRE_PCGSetTol(pcg, tolerance);
-        HYPRE_PCGSetTwoNorm(pcg, 1);  // stop on ||r||_2 / ||b||_2, the measure we report
+        HYPRE_PCGSetTwoNorm(pcg, 1); // stop on ||r||_2 / ||b||_2, the measure we report
         HYPRE_PCGSetPrintLevel(pcg, 0);
         HYPRE_PCGSetLogging(pcg, 1);
         amg = make_boomeramg();
@@ -220,7 +214,8 @@ AmgPcg::AmgPcg(const RowBlock& block, double tolerance, int max_iterations) : ob
     std::vector<HYPRE_Int> sizes(static_cast<std::size_t>(rows));
     std::vector<HYPRE_BigInt> row_numbers(static_cast<std::size_t>(rows));
     for (HYPRE_Int r = 0; r < rows; ++r) {
-        sizes[static_cast<std::size_t>(r)] = block.starts[static_cast<std::size_t>(r) + 1] - block.starts[static_cast<std::size_t>(r)];
+        sizes[static_cast<std::size_t>(r)] =
+            block.starts[static_cast<std::size_t>(r) + 1] - block.starts[static_cast<std::size_t>(r)];
         row_numbers[static_cast<std::size_t>(r)] = first + r;
     }
     HYPRE_IJMatrixCreate(MPI_COMM_WORLD, first, first + rows - 1, first, first + rows - 1, &objects_->ij_matrix);
@@ -251,7 +246,7 @@ PcgSolve AmgPcg::solve(const double* rhs, double* solution)
     HYPRE_ParVectorInnerProd(o.rhs, o.rhs, &rhs_norm2);
     if (rhs_norm2 > 0) {
         HYPRE_ParCSRPCGSolve(o.pcg, o.matrix, o.rhs, o.solution);
-        HYPRE_ClearAllErrors();  // non-convergence is reported through the result, not hypre's error flag
+        HYPRE_ClearAllErrors(); // non-convergence is reported through the result, not hypre's error flag
         HYPRE_Int iterations = 0, converged = 0;
         HYPRE_PCGGetNumIterations(o.pcg, &iterations);
         HYPRE_PCGGetConverged(o.pcg, &converged);

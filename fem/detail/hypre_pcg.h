@@ -15,9 +15,9 @@ struct HyprePcgResult {
     Eigen::VectorXd solution;
     int iterations = 0;
     bool converged = false;
-    double copy_seconds = 0;     ///< building hypre's matrix and vectors
-    double setup_seconds = 0;    ///< BoomerAMG setup
-    double iterate_seconds = 0;  ///< PCG iterations
+    double copy_seconds = 0;    ///< building hypre's matrix and vectors
+    double setup_seconds = 0;   ///< BoomerAMG setup
+    double iterate_seconds = 0; ///< PCG iterations
 };
 
 /// One MPI process's share of a system: rows [first_row, first_row + row_count) of a global_rows x global_rows
@@ -25,9 +25,9 @@ struct HyprePcgResult {
 struct RowBlock {
     std::int64_t global_rows = 0;
     std::int64_t first_row = 0;
-    std::vector<int> starts;     ///< row_count + 1 offsets into columns and values, from 0
-    std::vector<int> columns;    ///< global column of each entry
-    std::vector<double> values;  ///< the entries
+    std::vector<int> starts;    ///< row_count + 1 offsets into columns and values, from 0
+    std::vector<int> columns;   ///< global column of each entry
+    std::vector<double> values; ///< the entries
     std::int64_t row_count() const { return static_cast<std::int64_t>(starts.size()) - 1; }
 };
 
@@ -35,8 +35,8 @@ struct RowBlock {
 struct PcgSolve {
     int iterations = 0;
     bool converged = false;
-    double relative_residual = 0;  ///< ||b - A x||_2 / ||b||_2 recomputed from x (0 for b = 0)
-    double seconds = 0;            ///< the iterations and the residual check
+    double relative_residual = 0; ///< ||b - A x||_2 / ||b||_2 recomputed from x (0 for b = 0)
+    double seconds = 0;           ///< the iterations and the residual check
 };
 
 /// BoomerAMG-CG with the hierarchy set up once, in the constructor, and used for every right-hand side
@@ -56,8 +56,8 @@ public:
     PcgSolve solve(const double* rhs, double* solution);
 
     std::int64_t local_rows() const;
-    double copy_seconds() const;   ///< building hypre's matrix and vectors
-    double setup_seconds() const;  ///< the BoomerAMG hierarchy
+    double copy_seconds() const;  ///< building hypre's matrix and vectors
+    double setup_seconds() const; ///< the BoomerAMG hierarchy
 
 private:
     struct Objects;

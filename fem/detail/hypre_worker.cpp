@@ -26,7 +26,8 @@ std::vector<double> gather_kept(const SystemFileReader& system, const std::vecto
     const auto first = std::lower_bound(kept.begin(), kept.end(), block.first_row);
     const auto last = std::lower_bound(first, kept.end(), block.first_row + block.row_count());
     std::vector<double> mine;
-    for (auto row = first; row != last; ++row) mine.push_back(solution[static_cast<std::size_t>(*row - block.first_row)]);
+    for (auto row = first; row != last; ++row)
+        mine.push_back(solution[static_cast<std::size_t>(*row - block.first_row)]);
     int count = static_cast<int>(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(size)), offsets(static_cast<std::size_t>(size), 0);
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -35,7 +36,8 @@ std::vector<double> gather_kept(const SystemFileReader& system, const std::vecto
         for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
         whole.resize(kept.size());
     }
-    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, whole.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, whole.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0,
+                MPI_COMM_WORLD);
     return whole;
 }
 

@@ -58,8 +58,9 @@ std::vector<std::uint32_t> locate_sources(const TetMesh& mesh, const std::vector
 }
 
 std::vector<ColumnLoad> column_loads(const TetMesh& mesh, const Conductivities& conductivities,
-                                     const std::vector<LeadFieldSource>& sources, const std::vector<std::uint32_t>& tets,
-                                     DipoleModel model, const VenantOptions& venant)
+                                     const std::vector<LeadFieldSource>& sources,
+                                     const std::vector<std::uint32_t>& tets, DipoleModel model,
+                                     const VenantOptions& venant)
 {
     std::vector<ColumnLoad> loads;
     if (model == DipoleModel::partial_integration) {
@@ -82,14 +83,17 @@ std::vector<ColumnLoad> column_loads(const TetMesh& mesh, const Conductivities& 
     }
     // Venant: the tets around each source's nearest corner, found in one pass for all of them.
     std::vector<std::uint32_t> corners;
-    for (std::size_t s = 0; s < sources.size(); ++s) corners.push_back(nearest_corner(mesh, tets[s], sources[s].position_mm));
+    for (std::size_t s = 0; s < sources.size(); ++s)
+        corners.push_back(nearest_corner(mesh, tets[s], sources[s].position_mm));
     const std::vector<std::vector<std::uint32_t>> around = tets_around(mesh, corners);
     for (std::size_t s = 0; s < sources.size(); ++s) {
-        const VenantBasis basis = venant_basis(mesh, conductivities, sources[s].position_mm, s, tets[s], around[s], venant);
+        const VenantBasis basis =
+            venant_basis(mesh, conductivities, sources[s].position_mm, s, tets[s], around[s], venant);
         for (const Vec3& moment : column_moments(sources[s])) {
             ColumnLoad load{basis.nodes, std::vector<double>(basis.nodes.size(), 0.0)};
             for (std::size_t k = 0; k < basis.nodes.size(); ++k)
-                for (std::size_t axis = 0; axis < 3; ++axis) load.currents_a[k] += moment[axis] * basis.unit_currents_a[axis][k];
+                for (std::size_t axis = 0; axis < 3; ++axis)
+                    load.currents_a[k] += moment[axis] * basis.unit_currents_a[axis][k];
             loads.push_back(std::move(load));
         }
     }

@@ -30,7 +30,8 @@ struct ColumnLoad {
 /// locate_sources).
 /// @throws AlgorithmError when a Venant source has no solution (a flat tet next to it)
 std::vector<ColumnLoad> column_loads(const TetMesh& mesh, const Conductivities& conductivities,
-                                     const std::vector<LeadFieldSource>& sources, const std::vector<std::uint32_t>& tets,
-                                     DipoleModel model, const VenantOptions& venant);
+                                     const std::vector<LeadFieldSource>& sources,
+                                     const std::vector<std::uint32_t>& tets, DipoleModel model,
+                                     const VenantOptions& venant);
 
 } // namespace tissuemesh::fem::detail

@@ -4,7 +4,8 @@
 
 namespace tissuemesh::fem::detail {
 
-SparseMatrix assemble_local_stiffness(const TetMesh& mesh, const LocalMesh& renumbered, const Conductivities& conductivities)
+SparseMatrix assemble_local_stiffness(const TetMesh& mesh, const LocalMesh& renumbered,
+                                      const Conductivities& conductivities)
 {
     try {
         return assemble_stiffness(renumbered.mesh, conductivities);

@@ -10,6 +10,7 @@ namespace tissuemesh::fem::detail {
 /// assemble_stiffness() of `renumbered.mesh`. A bad tet or tissue is reported as `mesh` (the caller's
 /// numbering) has it: on an InputError the original mesh is assembled again to throw its message.
 /// @throws InputError as assemble_stiffness()
-SparseMatrix assemble_local_stiffness(const TetMesh& mesh, const LocalMesh& renumbered, const Conductivities& conductivities);
+SparseMatrix assemble_local_stiffness(const TetMesh& mesh, const LocalMesh& renumbered,
+                                      const Conductivities& conductivities);
 
 } // namespace tissuemesh::fem::detail

@@ -55,7 +55,8 @@ LocalMesh renumber_for_locality(const TetMesh& mesh)
     LocalMesh result;
     result.original = locality_order(mesh.vertices, std::vector<bool>(mesh.vertex_count(), true));
     result.local.resize(mesh.vertex_count());
-    for (std::size_t k = 0; k < result.original.size(); ++k) result.local[result.original[k]] = static_cast<std::uint32_t>(k);
+    for (std::size_t k = 0; k < result.original.size(); ++k)
+        result.local[result.original[k]] = static_cast<std::uint32_t>(k);
     TetMesh& out = result.mesh;
     out.vertices.resize(mesh.vertex_count());
     for (std::size_t k = 0; k < result.original.size(); ++k) out.vertices[k] = mesh.vertices[result.original[k]];
@@ -83,7 +84,8 @@ LocalMesh renumber_for_locality(const TetMesh& mesh)
         out.tet_labels[at] = mesh.tet_labels[static_cast<std::size_t>(t)];
     }
     out.faces.reserve(mesh.faces.size());
-    for (const Triangle& face : mesh.faces) out.faces.push_back({result.local[face[0]], result.local[face[1]], result.local[face[2]]});
+    for (const Triangle& face : mesh.faces)
+        out.faces.push_back({result.local[face[0]], result.local[face[1]], result.local[face[2]]});
     out.face_sides = mesh.face_sides;
     out.names = mesh.names;
     return result;

@@ -18,9 +18,9 @@ std::vector<std::uint32_t> locality_order(const std::vector<Vec3>& nodes, const 
 
 /// A mesh renumbered for locality, and the way back.
 struct LocalMesh {
-    TetMesh mesh;                       ///< nodes in Z-order, tets by their first node in that order
-    std::vector<std::uint32_t> local;   ///< #V: the new index of each original node
-    std::vector<std::uint32_t> original;  ///< #V: the original index of each new node
+    TetMesh mesh;                        ///< nodes in Z-order, tets by their first node in that order
+    std::vector<std::uint32_t> local;    ///< #V: the new index of each original node
+    std::vector<std::uint32_t> original; ///< #V: the original index of each new node
 };
 
 /// `mesh` (valid indices) with its nodes in locality_order() and its tets sorted by their smallest new

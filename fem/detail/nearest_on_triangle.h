@@ -36,7 +36,7 @@ inline std::array<double, 3> nearest_on_triangle(const Vec3& p, const Vec3& a, c
         return {0, 1 - w, w};
     }
     const double denominator = va + vb + vc;
-    if (!(denominator > 0)) return {1, 0, 0};  // a degenerate triangle: its first corner
+    if (!(denominator > 0)) return {1, 0, 0}; // a degenerate triangle: its first corner
     const double v = vb / denominator, w = vc / denominator;
     return {1 - v - w, v, w};
 }

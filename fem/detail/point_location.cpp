@@ -31,7 +31,8 @@ public:
         for (std::size_t c = 1; c < starts_.size(); ++c) starts_[c] += starts_[c - 1];
         members_.resize(points.size());
         std::vector<std::uint32_t> fill(starts_.begin(), starts_.end() - 1);
-        for (std::size_t k = 0; k < points.size(); ++k) members_[fill[cell_of(points[k])]++] = static_cast<std::uint32_t>(k);
+        for (std::size_t k = 0; k < points.size(); ++k)
+            members_[fill[cell_of(points[k])]++] = static_cast<std::uint32_t>(k);
     }
 
     // Calls visit(point index) for every point in the cells the box [low, high] overlaps.
@@ -60,7 +61,8 @@ private:
     }
     std::size_t cell_of(const Vec3& p) const
     {
-        return (static_cast<std::size_t>(index_along(2, p[2])) * size_[1] + index_along(1, p[1])) * size_[0] + index_along(0, p[0]);
+        return (static_cast<std::size_t>(index_along(2, p[2])) * size_[1] + index_along(1, p[1])) * size_[0] +
+               index_along(0, p[0]);
     }
 
     const std::vector<Vec3>& points_;
@@ -71,7 +73,7 @@ private:
 };
 
 struct Candidate {
-    double smallest = -std::numeric_limits<double>::infinity();  // smallest barycentric coordinate
+    double smallest = -std::numeric_limits<double>::infinity(); // smallest barycentric coordinate
     std::uint32_t tet = outside_mesh;
     bool better_than(const Candidate& other) const
     {
@@ -98,7 +100,8 @@ std::vector<std::uint32_t> locate_points(const TetMesh& mesh, const std::vector<
             Vec3 low = mesh.vertices[tet[0]], high = low;
             for (int k = 1; k < 4; ++k)
                 for (int a = 0; a < 3; ++a)
-                    low[a] = std::min(low[a], mesh.vertices[tet[k]][a]), high[a] = std::max(high[a], mesh.vertices[tet[k]][a]);
+                    low[a] = std::min(low[a], mesh.vertices[tet[k]][a]),
+                    high[a] = std::max(high[a], mesh.vertices[tet[k]][a]);
             const Vec3 slack{1e-9, 1e-9, 1e-9};
             bool element_ready = false;
             P1Element element;
@@ -107,7 +110,8 @@ std::vector<std::uint32_t> locate_points(const TetMesh& mesh, const std::vector<
                 for (int a = 0; a < 3; ++a)
                     if (point[a] < low[a] - 1e-9 || point[a] > high[a] + 1e-9) return;
                 if (!element_ready) {
-                    if (!(signed_volume(mesh, static_cast<std::size_t>(t)) > 0)) return;  // no P1 element: not ours to refuse
+                    if (!(signed_volume(mesh, static_cast<std::size_t>(t)) > 0))
+                        return; // no P1 element: not ours to refuse
                     element = p1_element(mesh, static_cast<std::size_t>(t));
                     element_ready = true;
                 }
@@ -135,7 +139,7 @@ std::vector<std::uint32_t> locate_points(const TetMesh& mesh, const std::vector<
 
 std::vector<std::vector<std::uint32_t>> tets_around(const TetMesh& mesh, const std::vector<std::uint32_t>& nodes)
 {
-    std::unordered_map<std::uint32_t, std::vector<std::size_t>> wanted;  // node -> its places in `nodes`
+    std::unordered_map<std::uint32_t, std::vector<std::size_t>> wanted; // node -> its places in `nodes`
     for (std::size_t k = 0; k < nodes.size(); ++k) wanted[nodes[k]].push_back(k);
     std::vector<std::vector<std::uint32_t>> around(nodes.size());
     for (std::size_t t = 0; t < mesh.tet_count(); ++t)

@@ -46,12 +46,10 @@ ReducedSystem reduce(const SparseMatrix& stiffness, const Eigen::VectorXd& rhs, 
             row.clear();
             for (SparseMatrix::InnerIterator entry(stiffness, original); entry; ++entry) {
                 const int column = system.free_index[static_cast<std::size_t>(entry.col())];
-                if (column >= 0)
-                    row.emplace_back(column, entry.value());
-                else
-                    value -= entry.value() * fixed[static_cast<std::size_t>(entry.col())];
+                if (column >= 0) row.emplace_back(column, entry.value());
+                else value -= entry.value() * fixed[static_cast<std::size_t>(entry.col())];
             }
-            std::sort(row.begin(), row.end());  // columns are distinct: the values only ride along
+            std::sort(row.begin(), row.end()); // columns are distinct: the values only ride along
             int at = row_start[static_cast<std::size_t>(k)];
             for (const auto& [column, entry_value] : row) {
                 system.matrix.innerIndexPtr()[at] = column;

@@ -15,7 +15,7 @@ namespace tissuemesh::fem::detail {
 struct ReducedSystem {
     SparseMatrix matrix;
     Eigen::VectorXd rhs;
-    std::vector<int> free_index;  ///< #V: row of each free node, -1 for fixed ones
+    std::vector<int> free_index; ///< #V: row of each free node, -1 for fixed ones
 };
 
 /// The system on the nodes whose `fixed` value is NaN; the others hold their potential (V). `rhs` may be

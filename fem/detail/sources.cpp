@@ -59,7 +59,7 @@ std::size_t locate_tet(const TetMesh& mesh, const Vec3& point_mm, const std::str
             high = std::max(high, v[0] + v[1] + v[2]);
         }
         const double s = point_mm[0] + point_mm[1] + point_mm[2];
-        if (s < low - 1e-9 || s > high + 1e-9) continue;  // cheap rejection along (1,1,1)
+        if (s < low - 1e-9 || s > high + 1e-9) continue; // cheap rejection along (1,1,1)
         const P1Element element = p1_element(mesh, t);
         const Vec3 offset = metres_per_mm * (point_mm - mesh.vertices[tet[0]]);
         double smallest = 1;

@@ -16,7 +16,7 @@ namespace tissuemesh::fem::detail {
 /// face it belongs to; patch faces have all three nodes inside the radius).
 struct ElectrodePatch {
     std::vector<std::uint32_t> nodes;
-    std::vector<double> node_area_mm2;  ///< parallel to nodes
+    std::vector<double> node_area_mm2; ///< parallel to nodes
     double area_mm2 = 0;
 };
 

@@ -40,7 +40,6 @@ bool needs_split(const Vec3* corners, int count, const Vec3& centre, const Subtr
     return depth < max_splits && longest_edge(corners, count) > split_ratio * distance(centre, source.position_m);
 }
 
-
 // Integrals of (grad(phi_inf) . n) lambda_k over the triangle `c` (metres, area `area`) for its three
 // barycentric coordinates lambda_k, with `l` the coordinates of the corners in the parent face: the
 // 3-point edge-midpoint rule (degree 2), on the 4 midpoint children when the face is close to the source.
@@ -59,7 +58,8 @@ std::array<double, 3> face_integral(const std::array<Vec3, 3>& c, const std::arr
         return sums;
     }
     const auto mid = [](const std::array<Vec3, 3>& v, int i, int j) { return 0.5 * (v[i] + v[j]); };
-    const std::array<Vec3, 3> cm{mid(c, 0, 1), mid(c, 1, 2), mid(c, 2, 0)}, lm{mid(l, 0, 1), mid(l, 1, 2), mid(l, 2, 0)};
+    const std::array<Vec3, 3> cm{mid(c, 0, 1), mid(c, 1, 2), mid(c, 2, 0)},
+        lm{mid(l, 0, 1), mid(l, 1, 2), mid(l, 2, 0)};
     const std::array<std::array<int, 3>, 4> corners{{{0, 3, 5}, {3, 1, 4}, {5, 4, 2}, {3, 4, 5}}};
     for (const auto& child : corners) {
         std::array<Vec3, 3> cc{}, lc{};
@@ -135,9 +135,9 @@ void add_subtraction_load(const TetMesh& mesh, const Conductivities& conductivit
         Mat3 difference{};
         for (int k = 0; k < 9; ++k) difference[k] = sigma[k] - sigma_inf[k];
         const P1Element element = p1_element(mesh, tet);
-        const Vec3 gradient = adaptive_tet_integral(corners_m(mesh, mesh.tets[tet]), element.volume_m3, source.position_m,
-                                                    split_ratio, max_splits,
-                                                    [&](const Vec3& point) { return unbounded_gradient(source, point); });
+        const Vec3 gradient =
+            adaptive_tet_integral(corners_m(mesh, mesh.tets[tet]), element.volume_m3, source.position_m, split_ratio,
+                                  max_splits, [&](const Vec3& point) { return unbounded_gradient(source, point); });
         const Vec3 flux = multiply(difference, gradient);
         for (int k = 0; k < 4; ++k) loads[tet][k] = -dot(flux, element.gradients[k]);
     }
@@ -149,8 +149,8 @@ void add_subtraction_load(const TetMesh& mesh, const Conductivities& conductivit
                                     metres_per_mm * mesh.vertices[face[2]]};
         const Vec3 normal = cross(c[1] - c[0], c[2] - c[0]);
         const double area = 0.5 * norm(normal);
-        const std::array<double, 3> integrals = face_integral(c, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, area,
-                                                              (0.5 / area) * normal, source, 0);
+        const std::array<double, 3> integrals =
+            face_integral(c, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, area, (0.5 / area) * normal, source, 0);
         for (int k = 0; k < 3; ++k) rhs[face[k]] -= source.sigma_inf * integrals[k];
     }
 }

@@ -32,10 +32,14 @@ Vec3 adaptive_tet_integral(const std::array<Vec3, 4>& c, double volume, const Ve
     }
     const auto mid = [&](int i, int j) { return 0.5 * (c[i] + c[j]); };
     const Vec3 m01 = mid(0, 1), m02 = mid(0, 2), m03 = mid(0, 3), m12 = mid(1, 2), m13 = mid(1, 3), m23 = mid(2, 3);
-    const std::array<std::array<Vec3, 4>, 8> children{{{c[0], m01, m02, m03}, {m01, c[1], m12, m13},
-                                                       {m02, m12, c[2], m23}, {m03, m13, m23, c[3]},
-                                                       {m01, m02, m03, m13}, {m01, m02, m12, m13},
-                                                       {m02, m03, m13, m23}, {m02, m12, m13, m23}}};
+    const std::array<std::array<Vec3, 4>, 8> children{{{c[0], m01, m02, m03},
+                                                       {m01, c[1], m12, m13},
+                                                       {m02, m12, c[2], m23},
+                                                       {m03, m13, m23, c[3]},
+                                                       {m01, m02, m03, m13},
+                                                       {m01, m02, m12, m13},
+                                                       {m02, m03, m13, m23},
+                                                       {m02, m12, m13, m23}}};
     Vec3 sum{0, 0, 0};
     for (const auto& child : children)
         sum = sum + adaptive_tet_integral(child, volume / 8, near, split_ratio, max_splits, field, depth + 1);

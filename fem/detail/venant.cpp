@@ -66,13 +66,14 @@ VenantBasis venant_basis(const TetMesh& mesh, const Conductivities& conductiviti
 {
     if (!(options.reference_length_mm > 0) || !(options.regularisation > 0) || options.weighting_exponent < 0)
         throw InputError(concat("Venant options: reference length ", options.reference_length_mm,
-                                " mm, regularisation ", options.regularisation, ", weighting exponent ", options.weighting_exponent,
+                                " mm, regularisation ", options.regularisation, ", weighting exponent ",
+                                options.weighting_exponent,
                                 "; the first two must be positive and the exponent at least 0"));
     VenantBasis basis;
     basis.nodes = patch_nodes(mesh, conductivities, source, around);
     const auto count = static_cast<Eigen::Index>(basis.nodes.size());
     const double a_mm = options.reference_length_mm;
-    Eigen::MatrixXd d(3, count);  // scaled offsets (x_k - x0) / a
+    Eigen::MatrixXd d(3, count); // scaled offsets (x_k - x0) / a
     Eigen::VectorXd weight(count);
     for (Eigen::Index k = 0; k < count; ++k) {
         const Vec3& node = mesh.vertices[basis.nodes[static_cast<std::size_t>(k)]];
@@ -102,7 +103,8 @@ VenantBasis venant_basis(const TetMesh& mesh, const Conductivities& conductiviti
                                     "integration or subtraction"));
     const Eigen::MatrixXd solution = lu.solve(rhs);
     for (int axis = 0; axis < 3; ++axis)
-        basis.unit_currents_a[static_cast<std::size_t>(axis)].assign(solution.col(axis).data(), solution.col(axis).data() + count);
+        basis.unit_currents_a[static_cast<std::size_t>(axis)].assign(solution.col(axis).data(),
+                                                                     solution.col(axis).data() + count);
     return basis;
 }
 
@@ -125,8 +127,8 @@ Monopoles venant_monopoles(const TetMesh& mesh, const Conductivities& conductivi
     return monopoles;
 }
 
-void add_venant_load(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
-                     std::size_t index, const VenantOptions& options, Eigen::VectorXd& rhs)
+void add_venant_load(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole, std::size_t index,
+                     const VenantOptions& options, Eigen::VectorXd& rhs)
 {
     const Monopoles monopoles = venant_monopoles(mesh, conductivities, dipole, index, options);
     for (std::size_t k = 0; k < monopoles.nodes.size(); ++k) rhs[monopoles.nodes[k]] += monopoles.currents_a[k];

@@ -38,15 +38,15 @@ namespace tissuemesh::fem::detail {
 
 /// Point currents standing in for one dipole.
 struct Monopoles {
-    std::vector<std::uint32_t> nodes;  ///< mesh nodes, increasing
-    std::vector<double> currents_a;    ///< parallel to nodes, A; they sum to zero
+    std::vector<std::uint32_t> nodes; ///< mesh nodes, increasing
+    std::vector<double> currents_a;   ///< parallel to nodes, A; they sum to zero
 };
 
 /// The monopoles of unit moments (1 A*m) along x, y and z at one position: any moment's currents are their
 /// combination with the moment's components.
 struct VenantBasis {
-    std::vector<std::uint32_t> nodes;                      ///< mesh nodes, increasing
-    std::array<std::vector<double>, 3> unit_currents_a;    ///< per axis, parallel to nodes, A per A*m
+    std::vector<std::uint32_t> nodes;                   ///< mesh nodes, increasing
+    std::array<std::vector<double>, 3> unit_currents_a; ///< per axis, parallel to nodes, A per A*m
 };
 
 /// The corner of tet `source` nearest `position_mm` (the first of equally near ones).
@@ -69,7 +69,7 @@ Monopoles venant_monopoles(const TetMesh& mesh, const Conductivities& conductivi
                            std::size_t index, const VenantOptions& options);
 
 /// Adds the monopoles' currents (A) of `dipole` to `rhs`.
-void add_venant_load(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole,
-                     std::size_t index, const VenantOptions& options, Eigen::VectorXd& rhs);
+void add_venant_load(const TetMesh& mesh, const Conductivities& conductivities, const Dipole& dipole, std::size_t index,
+                     const VenantOptions& options, Eigen::VectorXd& rhs);
 
 } // namespace tissuemesh::fem::detail

@@ -15,10 +15,7 @@ namespace {
 
 /// Distance from the point at height h above a plane and at distance r_perp from the axis to the
 /// circle of `radius` in that plane around the axis.
-double distance_to_circle(double h, double r_perp, double radius)
-{
-    return std::hypot(r_perp - radius, h);
-}
+double distance_to_circle(double h, double r_perp, double radius) { return std::hypot(r_perp - radius, h); }
 
 } // namespace
 
@@ -143,7 +140,7 @@ double distance_to_ellipsoid(const std::array<double, 3>& semi_axes, const Vec3&
     double e[3], y[3];
     for (int i = 0; i < 3; ++i) {
         e[i] = semi_axes[order[i]];
-        y[i] = std::abs(local[order[i]]);  // the ellipsoid is symmetric in every axis
+        y[i] = std::abs(local[order[i]]); // the ellipsoid is symmetric in every axis
     }
     return distance_sorted(e, y, 3);
 }

@@ -26,9 +26,11 @@ class Boxes final : public PhantomModel {
 public:
     Boxes(Box cube, Box a, Box b) : cube_(cube), a_(a), b_(b)
     {
-        const AxisRect a_face = box_faces(a.lo, a.hi)[1];  // +x face of a
-        const AxisRect b_face = box_faces(b.lo, b.hi)[0];  // -x face of b
-        shared_ = {0, a.hi[0], {std::max(a_face.lo[0], b_face.lo[0]), std::max(a_face.lo[1], b_face.lo[1])},
+        const AxisRect a_face = box_faces(a.lo, a.hi)[1]; // +x face of a
+        const AxisRect b_face = box_faces(b.lo, b.hi)[0]; // -x face of b
+        shared_ = {0,
+                   a.hi[0],
+                   {std::max(a_face.lo[0], b_face.lo[0]), std::max(a_face.lo[1], b_face.lo[1])},
                    {std::min(a_face.hi[0], b_face.hi[0]), std::min(a_face.hi[1], b_face.hi[1])}};
         patches_[{0, 1}] = box_faces(cube.lo, cube.hi);
         for (const auto& [box, label] : {std::pair{a, Label{2}}, std::pair{b, Label{3}}}) {
@@ -72,8 +74,7 @@ public:
         nlohmann::json list = nlohmann::json::array();
         for (const auto& [box, label] : {std::pair{cube_, 1}, std::pair{a_, 2}, std::pair{b_, 3}})
             list.push_back({{"type", "box"}, {"min", to_json(box.lo)}, {"max", to_json(box.hi)}, {"label", label}});
-        return {{"rule", "a point takes the label of the last box containing it (faces included)"},
-                {"shapes", list}};
+        return {{"rule", "a point takes the label of the last box containing it (faces included)"}, {"shapes", list}};
     }
 
 private:

@@ -15,9 +15,8 @@ Mat3 rotation(const Vec3& axis, double angle_rad)
 {
     const double c = std::cos(angle_rad), s = std::sin(angle_rad), t = 1 - c;
     const double x = axis[0], y = axis[1], z = axis[2];
-    return {t * x * x + c,     t * x * y - s * z, t * x * z + s * y,
-            t * x * y + s * z, t * y * y + c,     t * y * z - s * x,
-            t * x * z - s * y, t * y * z + s * x, t * z * z + c};
+    return {t * x * x + c,     t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
+            t * y * z - s * x, t * x * z - s * y, t * y * z + s * x, t * z * z + c};
 }
 
 /// Tissue 1 inside the outer ellipsoid, tissue 2 inside the inner one; both centred at centre_ with
@@ -25,7 +24,9 @@ Mat3 rotation(const Vec3& axis, double angle_rad)
 class Ellipsoids final : public PhantomModel {
 public:
     Ellipsoids(Vec3 centre, Mat3 rotation, std::array<double, 3> outer, std::array<double, 3> inner)
-        : centre_(centre), rotation_(rotation), axes_{outer, inner} {}
+        : centre_(centre), rotation_(rotation), axes_{outer, inner}
+    {
+    }
 
     Label label_at(const Vec3& p) const override
     {
@@ -45,7 +46,8 @@ public:
         const double k = 1.6075;
         const double mean = (std::pow(e[0] * e[1], k) + std::pow(e[0] * e[2], k) + std::pow(e[1] * e[2], k)) / 3;
         const double area = 4 * pi * std::pow(mean, 1 / k);
-        std::vector<Vec3> points = unit_sphere_points(static_cast<std::size_t>(std::ceil(area / (spacing_mm * spacing_mm))));
+        std::vector<Vec3> points =
+            unit_sphere_points(static_cast<std::size_t>(std::ceil(area / (spacing_mm * spacing_mm))));
         for (Vec3& p : points) p = centre_ + multiply(rotation_, Vec3{e[0] * p[0], e[1] * p[1], e[2] * p[2]});
         return points;
     }
@@ -60,9 +62,11 @@ public:
     {
         nlohmann::json list = nlohmann::json::array();
         for (std::size_t k = 0; k < 2; ++k)
-            list.push_back({{"type", "ellipsoid"}, {"centre", to_json(centre_)},
+            list.push_back({{"type", "ellipsoid"},
+                            {"centre", to_json(centre_)},
                             {"semi_axes", {axes_[k][0], axes_[k][1], axes_[k][2]}},
-                            {"rotation_row_major", rotation_}, {"label", k + 1}});
+                            {"rotation_row_major", rotation_},
+                            {"label", k + 1}});
         return {{"rule", "world = centre + rotation * local; a point takes the label of the last "
                          "ellipsoid containing it"},
                 {"shapes", list}};
@@ -87,7 +91,7 @@ private:
 PhantomSetup make_ellipsoids(double voxel_mm)
 {
     const Vec3 centre{5.5, -3.25, 12.0};
-    const double skew = 1 / std::sqrt(14.0);  // the unit axis (1, 2, 3) / sqrt(14)
+    const double skew = 1 / std::sqrt(14.0); // the unit axis (1, 2, 3) / sqrt(14)
     const Mat3 shape_rotation = rotation({skew, 2 * skew, 3 * skew}, 35 * pi / 180);
     auto model = std::make_shared<Ellipsoids>(centre, shape_rotation, std::array<double, 3>{45, 35, 25},
                                               std::array<double, 3>{33, 22, 15});

@@ -28,9 +28,9 @@ public:
     virtual nlohmann::json primitives() const = 0;
 
     std::string name;
-    TissueNames names;              ///< the background included
-    double domain_volume_mm3 = 0;   ///< volume of the image's voxel cells, for the background's volume
-    std::vector<LabelPair> known_pairs;  ///< interfaces(), computed once: distance queries check against it
+    TissueNames names;                  ///< the background included
+    double domain_volume_mm3 = 0;       ///< volume of the image's voxel cells, for the background's volume
+    std::vector<LabelPair> known_pairs; ///< interfaces(), computed once: distance queries check against it
 };
 
 /// A model and the (all-background) grid that samples it.
@@ -54,10 +54,7 @@ PhantomSetup make_boxes(double voxel_mm);
 PhantomSetup make_ellipsoids(double voxel_mm);
 
 /// Normalised copy of a pair: from <= to.
-inline LabelPair ordered(LabelPair pair)
-{
-    return pair.from <= pair.to ? pair : LabelPair{pair.to, pair.from};
-}
+inline LabelPair ordered(LabelPair pair) { return pair.from <= pair.to ? pair : LabelPair{pair.to, pair.from}; }
 
 inline nlohmann::json to_json(const Vec3& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
 

@@ -17,7 +17,8 @@ double ball_volume(double radius) { return 4.0 / 3.0 * pi * radius * radius * ra
 std::vector<Vec3> sphere_points(const Vec3& centre, double radius, double spacing_mm)
 {
     const double area = 4 * pi * radius * radius;
-    std::vector<Vec3> points = unit_sphere_points(static_cast<std::size_t>(std::ceil(area / (spacing_mm * spacing_mm))));
+    std::vector<Vec3> points =
+        unit_sphere_points(static_cast<std::size_t>(std::ceil(area / (spacing_mm * spacing_mm))));
     for (Vec3& p : points) p = centre + radius * p;
     return points;
 }
@@ -36,7 +37,7 @@ public:
     }
     double distance_to_interface(const Vec3& p, LabelPair pair) const override
     {
-        return distance_to_sphere(p, centre_, radii_[pair.from]);  // interface (k, k+1) is sphere k
+        return distance_to_sphere(p, centre_, radii_[pair.from]); // interface (k, k+1) is sphere k
     }
     std::vector<Vec3> sample_interface(LabelPair pair, double spacing_mm) const override
     {
@@ -45,7 +46,8 @@ public:
     std::vector<LabelPair> interfaces() const override
     {
         std::vector<LabelPair> pairs;
-        for (std::size_t k = 0; k < radii_.size(); ++k) pairs.push_back({static_cast<Label>(k), static_cast<Label>(k + 1)});
+        for (std::size_t k = 0; k < radii_.size(); ++k)
+            pairs.push_back({static_cast<Label>(k), static_cast<Label>(k + 1)});
         return pairs;
     }
     double tissue_volume_mm3(Label label) const override
@@ -72,7 +74,9 @@ private:
 class Junction final : public PhantomModel {
 public:
     Junction(Vec3 centre, double outer, double inner, Vec3 normal)
-        : centre_(centre), outer_(outer), inner_(inner), normal_(normal) {}
+        : centre_(centre), outer_(outer), inner_(inner), normal_(normal)
+    {
+    }
 
     Label label_at(const Vec3& p) const override
     {
@@ -85,7 +89,7 @@ public:
     {
         if (pair.from == 0) return distance_to_sphere(p, centre_, outer_);
         if (pair.from == 2) return distance_to_disk(p, centre_, inner_, normal_);
-        const Vec3 side = pair.to == 2 ? normal_ : -1.0 * normal_;  // 1|2 is the half with dot <= 0
+        const Vec3 side = pair.to == 2 ? normal_ : -1.0 * normal_; // 1|2 is the half with dot <= 0
         return distance_to_hemisphere(p, centre_, inner_, side);
     }
     std::vector<Vec3> sample_interface(LabelPair pair, double spacing_mm) const override
@@ -109,8 +113,12 @@ public:
     {
         return {{"rule", "tissue 1 for inner_radius < |p - centre| <= outer_radius; inside inner_radius, "
                          "tissue 2 where dot(p - centre, normal) < 0, else tissue 3"},
-                {"shapes", {{{"type", "split_shell"}, {"centre", to_json(centre_)}, {"outer_radius", outer_},
-                             {"inner_radius", inner_}, {"normal", to_json(normal_)}}}}};
+                {"shapes",
+                 {{{"type", "split_shell"},
+                   {"centre", to_json(centre_)},
+                   {"outer_radius", outer_},
+                   {"inner_radius", inner_},
+                   {"normal", to_json(normal_)}}}}};
     }
 
 private:

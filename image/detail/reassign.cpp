@@ -51,7 +51,7 @@ Label most_common(const std::map<Label, std::size_t>& histogram, Label fallback)
     Label best = fallback;
     std::size_t best_count = 0;
     for (const auto& [label, count] : histogram)
-        if (count > best_count) best = label, best_count = count;  // ascending: ties keep the smaller
+        if (count > best_count) best = label, best_count = count; // ascending: ties keep the smaller
     return best;
 }
 
@@ -79,7 +79,8 @@ std::size_t absorb_components(LabelImage& image, const Components& components,
         all = surrounding_labels(image, components, selected, false);
     std::vector<Label> targets(selected.size());
     for (std::size_t n = 0; n < selected.size(); ++n)
-        targets[n] = most_common(staying[n].empty() && !all.empty() ? all[n] : staying[n], components.label[selected[n]]);
+        targets[n] =
+            most_common(staying[n].empty() && !all.empty() ? all[n] : staying[n], components.label[selected[n]]);
     return assign_components(image, components, selected, targets);
 }
 

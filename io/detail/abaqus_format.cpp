@@ -49,7 +49,8 @@ std::string parameter(const std::vector<std::string>& keyword, const std::string
 {
     for (const std::string& field : keyword) {
         const std::size_t equals = field.find('=');
-        if (equals != std::string::npos && upper(trimmed(field.substr(0, equals))) == key) return trimmed(field.substr(equals + 1));
+        if (equals != std::string::npos && upper(trimmed(field.substr(0, equals))) == key)
+            return trimmed(field.substr(equals + 1));
     }
     return "";
 }
@@ -60,8 +61,10 @@ std::string set_name(const TetMesh& mesh, Label label)
 {
     const auto found = mesh.names.find(label);
     std::string name = found != mesh.names.end() ? found->second.substr(0, 50) : "";
-    for (char& c : name) if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) name = "tissue" + (name.empty() ? "" : "_" + name);
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0])))
+        name = "tissue" + (name.empty() ? "" : "_" + name);
     return concat(name, "_", label);
 }
 
@@ -134,14 +137,14 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
     read_name_comments(text, "**", mesh.names);
     NodeIndex nodes;
     std::vector<long long> node_numbers;
-    std::vector<std::array<long long, 4>> corners;          // node numbers, resolved once all nodes are read
-    std::unordered_map<long long, std::size_t> tet_of;      // element number -> tet
-    std::vector<std::pair<std::string, std::vector<long long>>> sets;  // in file order
+    std::vector<std::array<long long, 4>> corners;                    // node numbers, resolved once all nodes are read
+    std::unordered_map<long long, std::size_t> tet_of;                // element number -> tet
+    std::vector<std::pair<std::string, std::vector<long long>>> sets; // in file order
     std::map<std::string, Label> commented;
-    std::map<std::string, LabelPair> surface_pairs;  // by surface name, upper case
+    std::map<std::string, LabelPair> surface_pairs; // by surface name, upper case
     std::vector<AbaqusSurface> surfaces;
     constexpr std::size_t npos = std::string::npos;
-    std::size_t element_set = npos;  // the set an *ELEMENT block's own ELSET= names
+    std::size_t element_set = npos; // the set an *ELEMENT block's own ELSET= names
     enum class Block { none, node_lines, tets, elset, generate, surface } block = Block::none;
     while (in.remaining() > 0) {
         const std::string line = trimmed(in.rest_of_line());
@@ -153,7 +156,8 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             unsigned to = 0;
             if (std::sscanf(comment.c_str(), " tissuemesh elset %127s label %u", set, &label) == 2 && label <= 65535)
                 commented[upper(set)] = static_cast<Label>(label);
-            if (std::sscanf(comment.c_str(), " tissuemesh surface %127s from %u to %u", set, &label, &to) == 3 && label <= 65535 && to <= 65535)
+            if (std::sscanf(comment.c_str(), " tissuemesh surface %127s from %u to %u", set, &label, &to) == 3 &&
+                label <= 65535 && to <= 65535)
                 surface_pairs[upper(set)] = {static_cast<Label>(label), static_cast<Label>(to)};
             continue;
         }
@@ -173,7 +177,8 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
                 if (!elset.empty()) sets.push_back({elset, {}});
                 if (keyword == "*ELEMENT" && !elset.empty()) element_set = sets.size() - 1;
                 if (keyword == "*ELSET") {
-                    const bool generate = std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return upper(p) == "GENERATE"; });
+                    const bool generate = std::any_of(parts.begin(), parts.end(),
+                                                      [](const std::string& p) { return upper(p) == "GENERATE"; });
                     block = elset.empty() ? Block::none : generate ? Block::generate : Block::elset;
                 }
             }
@@ -193,8 +198,10 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             if (element_set != npos) sets[element_set].second.push_back(id);
         } else if (block == Block::surface) {
             if (parts.size() < 2 || parts[1].size() < 2 || std::toupper(static_cast<unsigned char>(parts[1][0])) != 'S')
-                in.fail(concat("surface ", surfaces.back().name, " has a line that is not \"element set, S<face>\""), "write e.g. \"SKIN, S2\"");
-            surfaces.back().entries.push_back({parts[0], static_cast<int>(std::clamp<long long>(number(parts[1].substr(1), in, "a face id"), -1, 99))});
+                in.fail(concat("surface ", surfaces.back().name, " has a line that is not \"element set, S<face>\""),
+                        "write e.g. \"SKIN, S2\"");
+            surfaces.back().entries.push_back({parts[0], static_cast<int>(std::clamp<long long>(
+                                                             number(parts[1].substr(1), in, "a face id"), -1, 99))});
         } else if (block == Block::elset || block == Block::generate) {
             std::vector<long long>& members = sets.back().second;
             std::vector<long long> values;
@@ -202,7 +209,8 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
             if (block == Block::elset) members.insert(members.end(), values.begin(), values.end());
             else if (values.size() >= 2) {
                 const long long step = values.size() > 2 ? values[2] : 1;
-                if (step < 1 || values[1] < values[0] || values[1] - values[0] > static_cast<long long>(corners.size()) * step + step)
+                if (step < 1 || values[1] < values[0] ||
+                    values[1] - values[0] > static_cast<long long>(corners.size()) * step + step)
                     in.fail("an ELSET GENERATE range is not valid", "write first, last, step with step >= 1");
                 for (long long e = values[0]; e <= values[1]; e += step) members.push_back(e);
             }
@@ -211,18 +219,19 @@ TetMesh parse_abaqus(const std::string& text, const std::string& what)
     for (const long long n : node_numbers) nodes.add(n);
     nodes.finish(in);
     mesh.tets.reserve(corners.size());
-    std::vector<Tet> resolved;  // in the file's corner order, which the face ids refer to
+    std::vector<Tet> resolved; // in the file's corner order, which the face ids refer to
     resolved.reserve(corners.size());
     for (const auto& c : corners) {
         resolved.push_back({nodes.at(c[0], in), nodes.at(c[1], in), nodes.at(c[2], in), nodes.at(c[3], in)});
         add_tet(mesh, resolved.back(), 0);
     }
-    std::set<std::string> face_sets;  // element sets that surfaces use: faces, not tissues
+    std::set<std::string> face_sets; // element sets that surfaces use: faces, not tissues
     for (const AbaqusSurface& surface : surfaces)
         for (const auto& entry : surface.entries) face_sets.insert(upper(entry.first));
     Label position = 0;
     for (const auto& [name, members] : sets) {
-        const bool has_tets = std::any_of(members.begin(), members.end(), [&](long long e) { return tet_of.count(e) > 0; });
+        const bool has_tets =
+            std::any_of(members.begin(), members.end(), [&](long long e) { return tet_of.count(e) > 0; });
         if (!has_tets || face_sets.count(upper(name))) continue;
         const Label label = label_of_set(name, commented, ++position);
         for (const long long e : members)

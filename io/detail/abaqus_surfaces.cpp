@@ -41,13 +41,15 @@ std::vector<std::pair<std::size_t, int>> face_owners(const TetMesh& mesh, const 
                  it != lookup.end() && it->first == key; ++it) {
                 const LabelPair& pair = mesh.face_sides[it->second];
                 const bool from_side = mesh.tet_labels[t] == pair.from;
-                if (from_side || (mesh.tet_labels[t] == pair.to && owner[it->second].first == none)) owner[it->second] = {t, k};
+                if (from_side || (mesh.tet_labels[t] == pair.to && owner[it->second].first == none))
+                    owner[it->second] = {t, k};
             }
         }
     for (std::size_t f = 0; f < owner.size(); ++f)
         if (owner[f].first == none)
-            throw InputError(concat(what, ": face ", f, " (", mesh.face_sides[f].from, " | ", mesh.face_sides[f].to,
-                                    ") is no face of a tet of either tissue, so Abaqus cannot hold it; check the mesh with tm-check-mesh"));
+            throw InputError(concat(
+                what, ": face ", f, " (", mesh.face_sides[f].from, " | ", mesh.face_sides[f].to,
+                ") is no face of a tet of either tissue, so Abaqus cannot hold it; check the mesh with tm-check-mesh"));
     return owner;
 }
 
@@ -59,13 +61,14 @@ const std::array<std::size_t, 3>& c3d4_face(int k)
     return faces[static_cast<std::size_t>(std::clamp(k, 1, 4) - 1)];
 }
 
-std::string format_abaqus_surfaces(const TetMesh& mesh, const std::vector<long long>& element_of_tet, const std::string& what)
+std::string format_abaqus_surfaces(const TetMesh& mesh, const std::vector<long long>& element_of_tet,
+                                   const std::string& what)
 {
     const auto owner = face_owners(mesh, what);
-    std::map<std::pair<Label, Label>, std::array<std::vector<long long>, 4>> members;  // by pair, by face id
+    std::map<std::pair<Label, Label>, std::array<std::vector<long long>, 4>> members; // by pair, by face id
     for (std::size_t f = 0; f < owner.size(); ++f)
-        members[{mesh.face_sides[f].from, mesh.face_sides[f].to}][static_cast<std::size_t>(owner[f].second - 1)].push_back(
-            element_of_tet[owner[f].first]);
+        members[{mesh.face_sides[f].from, mesh.face_sides[f].to}][static_cast<std::size_t>(owner[f].second - 1)]
+            .push_back(element_of_tet[owner[f].first]);
     std::string out;
     for (auto& [labels, by_face] : members) {
         const std::string name = surface_name({labels.first, labels.second});
@@ -91,38 +94,46 @@ void add_abaqus_faces(TetMesh& mesh, const AbaqusFaceSources& sources, const Byt
     for (const AbaqusSurface& surface : sources.surfaces) {
         const auto commented = sources.pairs.find(upper(surface.name));
         for (const auto& [reference, k] : surface.entries) {
-            if (k < 1 || k > 4) in.fail(concat("surface ", surface.name, " names face S", k, " of a C3D4 element"), "use S1, S2, S3 or S4");
+            if (k < 1 || k > 4)
+                in.fail(concat("surface ", surface.name, " names face S", k, " of a C3D4 element"),
+                        "use S1, S2, S3 or S4");
             std::vector<long long> single;
             const std::vector<long long>* elements = nullptr;
             long long number = 0;
-            if (std::from_chars(reference.data(), reference.data() + reference.size(), number).ptr == reference.data() + reference.size()) {
+            if (std::from_chars(reference.data(), reference.data() + reference.size(), number).ptr ==
+                reference.data() + reference.size()) {
                 single.push_back(number);
                 elements = &single;
             } else if (const auto found = set_by_name.find(upper(reference)); found != set_by_name.end()) {
                 elements = found->second;
             } else {
-                in.fail(concat("surface ", surface.name, " refers to element set ", reference, ", which is not defined"), "define it with *ELSET");
+                in.fail(
+                    concat("surface ", surface.name, " refers to element set ", reference, ", which is not defined"),
+                    "define it with *ELSET");
             }
             for (const long long element : *elements) {
                 const auto tet = sources.tet_of.find(element);
-                if (tet == sources.tet_of.end()) continue;  // not a tetrahedron: not read
+                if (tet == sources.tet_of.end()) continue; // not a tetrahedron: not read
                 const Tet& c = sources.corners[tet->second];
                 const auto& local = c3d4_face(k);
                 Triangle face{c[local[0]], c[local[1]], c[local[2]]};
                 const std::uint32_t opposite = c[6 - local[0] - local[1] - local[2]];
-                const Vec3 &a = mesh.vertices[face[0]], &b = mesh.vertices[face[1]], &d = mesh.vertices[face[2]], &o = mesh.vertices[opposite];
-                if (dot(cross(b - a, d - a), o - a) > 0) std::swap(face[1], face[2]);  // now out of the element
+                const Vec3 &a = mesh.vertices[face[0]], &b = mesh.vertices[face[1]], &d = mesh.vertices[face[2]],
+                           &o = mesh.vertices[opposite];
+                if (dot(cross(b - a, d - a), o - a) > 0) std::swap(face[1], face[2]); // now out of the element
                 const Label label = mesh.tet_labels[tet->second];
                 LabelPair pair{label, 0};
                 if (commented != sources.pairs.end()) {
                     pair = commented->second;
-                    if (label == pair.to && label != pair.from) std::swap(face[1], face[2]);  // the element lies on the `to` side
+                    if (label == pair.to && label != pair.from)
+                        std::swap(face[1], face[2]); // the element lies on the `to` side
                 }
                 mesh.faces.push_back(face);
                 mesh.face_sides.push_back(pair);
             }
             if (mesh.faces.size() > 4 * mesh.tets.size())
-                in.fail(concat("the surfaces list more faces than the ", mesh.tets.size(), " tets have"), "the file is corrupt; write it again");
+                in.fail(concat("the surfaces list more faces than the ", mesh.tets.size(), " tets have"),
+                        "the file is corrupt; write it again");
         }
     }
 }

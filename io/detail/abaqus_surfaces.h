@@ -22,7 +22,8 @@ const std::array<std::size_t, 3>& c3d4_face(int k);
 
 /// The comments, element sets and surfaces of `mesh`'s faces; `element_of_tet[t]` is tet t's element number.
 /// @throws InputError (naming `what`) when a face is no face of a tet of one of its two tissues
-std::string format_abaqus_surfaces(const TetMesh& mesh, const std::vector<long long>& element_of_tet, const std::string& what);
+std::string format_abaqus_surfaces(const TetMesh& mesh, const std::vector<long long>& element_of_tet,
+                                   const std::string& what);
 
 /// One *SURFACE of a file: its name, its lines (an element set name or an element number, and a face id 1..4).
 struct AbaqusSurface {

@@ -43,7 +43,8 @@ long long ByteReader::integer(const char* expected)
     long long value = 0;
     const auto [end, error] = std::from_chars(w.data(), w.data() + w.size(), value);
     if (error != std::errc() || end != w.data() + w.size())
-        fail(concat("expected ", expected, " but found \"", w.substr(0, 40), "\""), "the file is corrupt; write it again");
+        fail(concat("expected ", expected, " but found \"", w.substr(0, 40), "\""),
+             "the file is corrupt; write it again");
     return value;
 }
 
@@ -53,7 +54,8 @@ double ByteReader::real(const char* expected)
     double value = 0;
     const auto [end, error] = std::from_chars(w.data(), w.data() + w.size(), value);
     if (error != std::errc() || end != w.data() + w.size())
-        fail(concat("expected ", expected, " but found \"", w.substr(0, 40), "\""), "the file is corrupt; write it again");
+        fail(concat("expected ", expected, " but found \"", w.substr(0, 40), "\""),
+             "the file is corrupt; write it again");
     return value;
 }
 
@@ -63,7 +65,8 @@ std::size_t ByteReader::count(const char* items, std::size_t min_bytes_each)
     return checked_count(value, value < 0, items, min_bytes_each);
 }
 
-std::size_t ByteReader::checked_count(long long value, bool negative, const char* items, std::size_t min_bytes_each) const
+std::size_t ByteReader::checked_count(long long value, bool negative, const char* items,
+                                      std::size_t min_bytes_each) const
 {
     if (negative) fail(concat(value, " ", items, " is not a count"), "the file is corrupt; write it again");
     const auto count = static_cast<unsigned long long>(value);

@@ -28,8 +28,10 @@ std::vector<std::string_view> split_fields(std::string_view line)
     std::vector<std::string_view> fields;
     for (std::size_t start = 0;;) {
         const std::size_t comma = line.find(',', start);
-        std::string_view field = trimmed(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
-        if (field.size() >= 2 && field.front() == '"' && field.back() == '"') field = trimmed(field.substr(1, field.size() - 2));
+        std::string_view field =
+            trimmed(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+        if (field.size() >= 2 && field.front() == '"' && field.back() == '"')
+            field = trimmed(field.substr(1, field.size() - 2));
         fields.push_back(field);
         if (comma == std::string_view::npos) return fields;
         start = comma + 1;
@@ -73,11 +75,12 @@ public:
                 const auto optional = std::find(spec.optional_numbers.begin(), spec.optional_numbers.end(), name);
                 index = optional == spec.optional_numbers.end()
                             ? -1
-                            : static_cast<int>(spec.numbers.size() + static_cast<std::size_t>(optional - spec.optional_numbers.begin()));
+                            : static_cast<int>(spec.numbers.size() +
+                                               static_cast<std::size_t>(optional - spec.optional_numbers.begin()));
             }
             if (index < 0 && (spec.text_column.empty() || name != spec.text_column))
-                throw IoError(concat(file, " line ", line, ": unknown column '", printable(std::string(field)),
-                                     "'", hint(name), "; the header is ", expected));
+                throw IoError(concat(file, " line ", line, ": unknown column '", printable(std::string(field)), "'",
+                                     hint(name), "; the header is ", expected));
             if (const auto [at, inserted] = seen.emplace(name, columns_.size() + 1); !inserted)
                 throw IoError(concat(file, " line ", line, ": column '", name, "' appears twice (columns ", at->second,
                                      " and ", columns_.size() + 1, "); the header is ", expected));
@@ -85,7 +88,8 @@ public:
         }
         for (const std::string& name : spec.numbers)
             if (!seen.count(name))
-                throw IoError(concat(file, " line ", line, ": the header has no column '", name, "'; the header is ", expected));
+                throw IoError(
+                    concat(file, " line ", line, ": the header has no column '", name, "'; the header is ", expected));
     }
 
     const std::vector<int>& columns() const { return columns_; }
@@ -148,16 +152,19 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
     std::error_code error;
     const std::uintmax_t size = fs::file_size(path, error);
     if (error) throw IoError(concat(file, ": cannot read its size (", error.message(), "); check the file"));
-    if (size == 0) throw IoError(concat(file, ": the file is empty; write the header ", Header::expected_header(spec), " and one line per ", spec.rows_are));
+    if (size == 0)
+        throw IoError(concat(file, ": the file is empty; write the header ", Header::expected_header(spec),
+                             " and one line per ", spec.rows_are));
     if (size > spec.max_bytes)
-        throw IoError(concat(file, ": ", size, " bytes, more than the ", spec.max_bytes, " a file of ", spec.max_rows, " ",
-                             spec.rows_are, "s may take; check that it is the right file"));
+        throw IoError(concat(file, ": ", size, " bytes, more than the ", spec.max_bytes, " a file of ", spec.max_rows,
+                             " ", spec.rows_are, "s may take; check that it is the right file"));
     const std::string bytes = read_file_bytes(path);
     const std::vector<std::string_view> lines = lines_of(bytes);
     std::size_t at = 0;
     while (at < lines.size() && skipped(lines[at])) ++at;
     if (at == lines.size())
-        throw IoError(concat(file, ": no header line (only blank or '#' lines); write the header ", Header::expected_header(spec)));
+        throw IoError(concat(file, ": no header line (only blank or '#' lines); write the header ",
+                             Header::expected_header(spec)));
     const Header header(file, at + 1, lines[at], spec);
     const bool named = std::find(header.columns().begin(), header.columns().end(), -1) != header.columns().end();
     std::vector<CsvRow> rows;
@@ -183,10 +190,11 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
             const bool optional = index >= spec.numbers.size();
             if (optional && fields[k].empty()) continue;
             if (!parse_finite(fields[k], row.numbers[index]))
-                throw IoError(concat(file, " line ", line, ", column ",
-                                     optional ? spec.optional_numbers[index - spec.numbers.size()] : spec.numbers[index], ": '",
-                                     printable(std::string(fields[k])), "' is not a finite number; write plain decimals (",
-                                     Header::expected_header(spec), ")"));
+                throw IoError(
+                    concat(file, " line ", line, ", column ",
+                           optional ? spec.optional_numbers[index - spec.numbers.size()] : spec.numbers[index], ": '",
+                           printable(std::string(fields[k])), "' is not a finite number; write plain decimals (",
+                           Header::expected_header(spec), ")"));
         }
         if (named) {
             if (row.text.empty())
@@ -197,7 +205,8 @@ std::vector<CsvRow> read_csv_table(const fs::path& path, const CsvSpec& spec)
                                      "' holds control characters; use plain text"));
             if (const auto [first, inserted] = names.emplace(row.text, line); !inserted)
                 throw IoError(concat(file, " line ", line, ": ", spec.text_column, " '", printable(row.text),
-                                     "' is also on line ", first->second, "; give each ", spec.rows_are, " its own name"));
+                                     "' is also on line ", first->second, "; give each ", spec.rows_are,
+                                     " its own name"));
         }
         rows.push_back(std::move(row));
     }

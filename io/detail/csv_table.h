@@ -10,24 +10,24 @@ namespace tissuemesh::io::detail {
 
 /// What a table must look like.
 struct CsvSpec {
-    std::string rows_are;                 ///< what a row is, for messages: "sensor", "electrode"
-    std::vector<std::string> numbers;     ///< required number columns, lower case ("x", "y", "z", ...)
+    std::string rows_are;             ///< what a row is, for messages: "sensor", "electrode"
+    std::vector<std::string> numbers; ///< required number columns, lower case ("x", "y", "z", ...)
     /// Number columns the header may leave out ("nx", "ny", "nz"); in a row a blank field reads as NaN
     /// (whether that is allowed is the caller's rule).
     std::vector<std::string> optional_numbers;
-    std::string text_column = "name";     ///< an optional text column ("" none)
-    std::string units;                    ///< the expected header with units, for messages: "x,y,z (mm)"
-    std::size_t max_rows = 0;             ///< more rows are refused
-    std::size_t max_bytes = 64u << 20;    ///< larger files are refused before they are read
+    std::string text_column = "name";  ///< an optional text column ("" none)
+    std::string units;                 ///< the expected header with units, for messages: "x,y,z (mm)"
+    std::size_t max_rows = 0;          ///< more rows are refused
+    std::size_t max_bytes = 64u << 20; ///< larger files are refused before they are read
 };
 
 /// One data row.
 struct CsvRow {
-    std::size_t line = 0;          ///< 1-based line in the file
+    std::size_t line = 0; ///< 1-based line in the file
     /// CsvSpec::numbers (finite), then CsvSpec::optional_numbers (finite, or NaN when the header has no
     /// such column or the field is blank)
     std::vector<double> numbers;
-    std::string text;              ///< the text column ("" when the table has none)
+    std::string text; ///< the text column ("" when the table has none)
 };
 
 /// Reads a table: the first line that is neither blank nor a comment ('#') is the header; its columns

@@ -14,7 +14,7 @@ namespace {
 /// Geometry in ITK's LPS frame: x and y of RAS negated.
 struct LpsGeometry {
     Vec3 origin;
-    std::array<Vec3, 3> axes;  ///< unit direction of each index axis
+    std::array<Vec3, 3> axes; ///< unit direction of each index axis
 };
 
 LpsGeometry to_lps(const LabelImage& image)

@@ -19,13 +19,13 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t block_size = 256;
-constexpr std::size_t max_header_blocks = 256;  // 64 KiB: real headers use one block
+constexpr std::size_t max_header_blocks = 256; // 64 KiB: real headers use one block
 const std::string magic = "#INRIMAGE-4#{";
 const std::string header_end = "##}";
 
 struct InrHeader {
     std::map<std::string, std::string> fields;
-    std::size_t bytes = 0;  ///< header size, a multiple of 256
+    std::size_t bytes = 0; ///< header size, a multiple of 256
 };
 
 InrHeader read_header(const fs::path& path)
@@ -77,7 +77,8 @@ std::size_t dimension_field(const std::string& name, const InrHeader& header, co
 {
     const double value = number_field(name, header, key, key == "ZDIM" ? 1 : -1);
     if (!(value >= 1) || value != std::floor(value) || value > 1e15)
-        throw InputError(concat(name, ": dimension ", axis, " is ", value, " (", key, "); every axis needs a "
+        throw InputError(concat(name, ": dimension ", axis, " is ", value, " (", key,
+                                "); every axis needs a "
                                 "whole number of voxels, at least 1. The header is corrupt"));
     return static_cast<std::size_t>(value);
 }
@@ -89,8 +90,8 @@ VoxelType voxel_type(const std::string& name, const InrHeader& header)
     const bool is_float = type == "float";
     const bool is_signed = type == "signed fixed";
     if (!is_float && !is_signed && type != "unsigned fixed")
-        throw IoError(concat(name, ": unsupported Inrimage TYPE=", type,
-                             "; expected unsigned fixed, signed fixed or float"));
+        throw IoError(
+            concat(name, ": unsupported Inrimage TYPE=", type, "; expected unsigned fixed, signed fixed or float"));
     if (is_float && bits == 32) return VoxelType::f32;
     if (is_float && bits == 64) return VoxelType::f64;
     if (!is_float && bits == 8) return is_signed ? VoxelType::i8 : VoxelType::u8;
@@ -122,7 +123,8 @@ InrimageLayout read_inrimage_layout(const fs::path& path)
                    dimension_field(name, header, "ZDIM", 2)};
     const double values = number_field(name, header, "VDIM", 1);
     if (values != 1)
-        throw InputError(concat(name, ": ", values, " values per voxel (VDIM); a label map holds one value per "
+        throw InputError(concat(name, ": ", values,
+                                " values per voxel (VDIM); a label map holds one value per "
                                 "voxel. Extract one component"));
     layout.type = voxel_type(name, header);
     layout.big_endian = big_endian_cpu(name, header);
@@ -155,13 +157,14 @@ void write_inrimage(const LabelImage& image, const fs::path& path, const std::st
     for (int n = 0; n < 9; ++n)
         if (std::abs(image.direction()[n] - identity_matrix()[n]) > 1e-9)
             throw InputError(concat(name, ": Inrimage cannot store the image's orientation (its direction "
-                                    "matrix is not the identity); write .nii.gz, .nrrd or .mha instead"));
+                                          "matrix is not the identity); write .nii.gz, .nrrd or .mha instead"));
     const std::size_t width = label_width(image);
     std::ostringstream text;
     text.precision(17);
     text << magic << "\nXDIM=" << image.dims()[0] << "\nYDIM=" << image.dims()[1] << "\nZDIM=" << image.dims()[2]
-         << "\nVDIM=1\nTYPE=unsigned fixed\nPIXSIZE=" << 8 * width << " bits\nSCALE=2**0\nCPU=decm\nVX="
-         << image.spacing_mm()[0] << "\nVY=" << image.spacing_mm()[1] << "\nVZ=" << image.spacing_mm()[2] << "\n";
+         << "\nVDIM=1\nTYPE=unsigned fixed\nPIXSIZE=" << 8 * width
+         << " bits\nSCALE=2**0\nCPU=decm\nVX=" << image.spacing_mm()[0] << "\nVY=" << image.spacing_mm()[1]
+         << "\nVZ=" << image.spacing_mm()[2] << "\n";
     const Vec3& origin = image.origin_mm();
     if (origin[0] != 0 || origin[1] != 0 || origin[2] != 0)
         text << "TX=" << origin[0] << "\nTY=" << origin[1] << "\nTZ=" << origin[2] << "\n";

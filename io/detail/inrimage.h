@@ -27,7 +27,7 @@ struct InrimageLayout {
     Vec3 origin_mm{0, 0, 0};
     VoxelType type = VoxelType::u8;
     bool big_endian = false;
-    std::size_t header_bytes = 0;  ///< the voxel data starts here (a multiple of 256)
+    std::size_t header_bytes = 0; ///< the voxel data starts here (a multiple of 256)
 };
 
 /// Reads and checks the header of a .inr or .inr.gz file (one value per voxel, valid geometry).
@@ -43,7 +43,6 @@ LabelImage read_inrimage(const std::filesystem::path& path, const BeforeVoxels& 
 /// when `compress`. `name` is the file name for messages.
 /// @throws InputError when the direction is not the identity (Inrimage cannot store it)
 /// @throws IoError when the file cannot be written
-void write_inrimage(const LabelImage& image, const std::filesystem::path& path, const std::string& name,
-                    bool compress);
+void write_inrimage(const LabelImage& image, const std::filesystem::path& path, const std::string& name, bool compress);
 
 } // namespace tissuemesh::io::detail

@@ -55,8 +55,8 @@ VoxelType voxel_type_of(const std::string& name, const itk::ImageIOBase& io)
     using C = itk::IOComponentEnum;
     const C type = io.GetComponentType();
     const std::size_t size = io.GetComponentSize();
-    const bool is_signed = type == C::CHAR || type == C::SHORT || type == C::INT || type == C::LONG ||
-                           type == C::LONGLONG;
+    const bool is_signed =
+        type == C::CHAR || type == C::SHORT || type == C::INT || type == C::LONG || type == C::LONGLONG;
     if (type == C::FLOAT) return VoxelType::f32;
     if (type == C::DOUBLE) return VoxelType::f64;
     if (type != C::LDOUBLE && type != C::UNKNOWNCOMPONENTTYPE) {
@@ -80,7 +80,8 @@ void reject_vectors(const std::string& name, const itk::ImageIOBase& io, Dims& d
             throw InputError(concat(name, ": a segmentation with ", io.GetNumberOfComponents(),
                                     " layers (overlapping segments); only single-layer label maps are "
                                     "supported. In 3D Slicer, export the segmentation as a labelmap volume"));
-        throw InputError(concat(name, ": ", io.GetNumberOfComponents(), " values per voxel (a vector or "
+        throw InputError(concat(name, ": ", io.GetNumberOfComponents(),
+                                " values per voxel (a vector or "
                                 "colour image); a label map holds one value per voxel. Extract one component"));
     }
     for (unsigned axis = 0; axis < rank; ++axis) {
@@ -116,7 +117,8 @@ TissueNames read_segment_names(const std::string& name, const itk::MetaDataDicti
         names[static_cast<Label>(value)] = segment_name;
     }
     if (layers.size() > 1)
-        throw InputError(concat(name, ": a segmentation with ", layers.size(), " layers (overlapping "
+        throw InputError(concat(name, ": a segmentation with ", layers.size(),
+                                " layers (overlapping "
                                 "segments); only single-layer label maps are supported. In 3D Slicer, "
                                 "export the segmentation as a labelmap volume"));
     return names;
@@ -165,7 +167,7 @@ struct StoredVoxels {
 };
 
 StoredVoxels read_with(itk::ImageIOBase& io, const std::string& name, std::uint64_t max_payload_bytes,
-                        const BeforeVoxels& before_voxels)
+                       const BeforeVoxels& before_voxels)
 {
     io.ReadImageInformation();
     Dims dims{1, 1, 1};
@@ -211,7 +213,8 @@ auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, con
         const itk::ImageIOBase::Pointer io =
             itk::ImageIOFactory::CreateImageIO(path.c_str(), itk::IOFileModeEnum::ReadMode);
         if (!io)
-            throw IoError(concat(name, ": not a readable ", full_extension(path), " image (wrong magic or "
+            throw IoError(concat(name, ": not a readable ", full_extension(path),
+                                 " image (wrong magic or "
                                  "corrupt header); check that the file is not renamed or damaged"));
         io->SetFileName(path.string());
         return use(*io, read_with(*io, name, max_payload_bytes, before_voxels));
@@ -223,7 +226,8 @@ auto read_through_itk(const fs::path& path, std::uint64_t max_payload_bytes, con
 
 } // namespace
 
-LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes, const BeforeVoxels& before_voxels)
+LabelImage read_itk_label_image(const fs::path& path, std::uint64_t max_payload_bytes,
+                                const BeforeVoxels& before_voxels)
 {
     const std::string name = path.string();
     return read_through_itk(path, max_payload_bytes, before_voxels, [&](itk::ImageIOBase& io, StoredVoxels stored) {
@@ -244,8 +248,7 @@ GreyImage read_itk_grey_image(const fs::path& path, std::uint64_t max_payload_by
     });
 }
 
-void write_itk_label_image(const LabelImage& image, const fs::path& path, const std::string& name,
-                           bool slicer_segments)
+void write_itk_label_image(const LabelImage& image, const fs::path& path, const std::string& name, bool slicer_segments)
 {
     const QuietItk quiet;
     const Label largest = image.labels().empty() ? 0 : *std::max_element(image.labels().begin(), image.labels().end());

@@ -23,7 +23,7 @@ std::string trimmed(std::string_view text)
 std::vector<std::string> lines_of(const std::string& text)
 {
     std::vector<std::string> lines;
-    std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
+    std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0; // a UTF-8 byte-order mark
     while (start <= text.size()) {
         std::size_t end = text.find('\n', start);
         if (end == std::string::npos) end = text.size();
@@ -78,8 +78,8 @@ public:
         const std::string name = trimmed(name_text);
         if (name.empty()) fail(line, concat("label ", label, " has an empty name"));
         if (!names_.emplace(static_cast<Label>(label), name).second)
-            fail(line, concat("label ", label, " is named twice (\"", printable(names_[static_cast<Label>(label)]), "\" and \"",
-                              printable(name), "\")"));
+            fail(line, concat("label ", label, " is named twice (\"", printable(names_[static_cast<Label>(label)]),
+                              "\" and \"", printable(name), "\")"));
     }
 
     TissueNames finish() const
@@ -110,7 +110,8 @@ TissueNames parse_freesurfer(const std::vector<std::string>& lines, const std::s
 
 TissueNames parse_itksnap(const std::vector<std::string>& lines, const std::string& what)
 {
-    Table table(what, "an ITK-SNAP label file has lines \"<label> <r> <g> <b> <alpha> <visible> <mesh> \\\"<name>\\\"\"");
+    Table table(what,
+                "an ITK-SNAP label file has lines \"<label> <r> <g> <b> <alpha> <visible> <mesh> \\\"<name>\\\"\"");
     for (std::size_t n = 0; n < lines.size(); ++n) {
         const std::string line = trimmed(lines[n]);
         if (line.empty() || line[0] == '#') continue;
@@ -144,7 +145,8 @@ TissueNames parse_bids(const std::vector<std::string>& lines, const std::string&
     const std::vector<std::string> header = split(lines[n], '\t');
     const std::size_t index = column(header, "index"), name = column(header, "name");
     if (index == header.size() || name == header.size())
-        table.fail(n + 1, concat("the header \"", printable(lines[n], 60), "\" lacks \"", index == header.size() ? "index" : "name", "\""));
+        table.fail(n + 1, concat("the header \"", printable(lines[n], 60), "\" lacks \"",
+                                 index == header.size() ? "index" : "name", "\""));
     for (++n; n < lines.size(); ++n) {
         if (trimmed(lines[n]).empty()) continue;
         const std::vector<std::string> fields = split(lines[n], '\t');

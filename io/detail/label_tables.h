@@ -10,9 +10,9 @@ namespace tissuemesh::io::detail {
 
 /// The text table formats parse_label_table() reads.
 enum class LabelTableFormat {
-    freesurfer_lut,  ///< "<label> <name> <r> <g> <b> <a>" per line, '#' comments (FreeSurferColorLUT.txt)
-    itksnap,         ///< "<label> <r> <g> <b> <alpha> <visible> <mesh> "<name>"" per line, '#' comments
-    bids_tsv,        ///< tab-separated with a header row holding "index" and "name" (BIDS *_dseg.tsv)
+    freesurfer_lut, ///< "<label> <name> <r> <g> <b> <a>" per line, '#' comments (FreeSurferColorLUT.txt)
+    itksnap,        ///< "<label> <r> <g> <b> <alpha> <visible> <mesh> "<name>"" per line, '#' comments
+    bids_tsv,       ///< tab-separated with a header row holding "index" and "name" (BIDS *_dseg.tsv)
 };
 
 /// Which text format `text` is in: a `.tsv` name is BIDS; otherwise the first line that is neither blank

@@ -34,13 +34,15 @@ TetMesh parse_medit(const std::string& text, const std::string& what)
     ByteReader in(clean, what);
     TetMesh mesh;
     read_name_comments(text, "#", mesh.names);
-    if (in.word() != "MeshVersionFormatted") in.fail("not a Medit .mesh file (no MeshVersionFormatted)", "check the file or its extension");
+    if (in.word() != "MeshVersionFormatted")
+        in.fail("not a Medit .mesh file (no MeshVersionFormatted)", "check the file or its extension");
     in.integer("a version");
     // Numbers per record of the sections other tools write, after the count; 0: not a known section.
-    const std::map<std::string, int, std::less<>> skipped{{"Edges", 3}, {"Quadrilaterals", 5}, {"Hexahedra", 9},
-                                                          {"Prisms", 7}, {"Corners", 1}, {"RequiredVertices", 1},
-                                                          {"Ridges", 1}, {"RequiredEdges", 1}, {"RequiredTriangles", 1},
-                                                          {"Normals", 3}, {"NormalAtVertices", 2}, {"Tangents", 3}};
+    const std::map<std::string, int, std::less<>> skipped{
+        {"Edges", 3},   {"Quadrilaterals", 5},   {"Hexahedra", 9},
+        {"Prisms", 7},  {"Corners", 1},          {"RequiredVertices", 1},
+        {"Ridges", 1},  {"RequiredEdges", 1},    {"RequiredTriangles", 1},
+        {"Normals", 3}, {"NormalAtVertices", 2}, {"Tangents", 3}};
     for (std::string_view keyword = in.word(); !keyword.empty() && keyword != "End"; keyword = in.word()) {
         if (keyword == "Dimension") {
             if (in.integer("a dimension") != 3) in.fail("the mesh is not 3-D", "write a 3-D tet mesh");
@@ -65,7 +67,8 @@ TetMesh parse_medit(const std::string& text, const std::string& what)
                 const long long reference = in.integer("an element reference");
                 if (tets) {
                     add_tet(mesh, v, checked_label(static_cast<double>(reference), [&](double value) {
-                                in.fail(concat("tet reference ", value, " is not a label 0..65535"), "the file is corrupt");
+                                in.fail(concat("tet reference ", value, " is not a label 0..65535"),
+                                        "the file is corrupt");
                             }));
                 } else {
                     mesh.faces.push_back({v[0], v[1], v[2]});
@@ -76,7 +79,8 @@ TetMesh parse_medit(const std::string& text, const std::string& what)
             const std::size_t count = in.count("records", 2 * static_cast<std::size_t>(found->second));
             for (std::size_t n = 0; n < count * static_cast<std::size_t>(found->second); ++n) in.real("a record value");
         } else {
-            in.fail(concat("section \"", keyword.substr(0, 40), "\" is not supported"), "save vertices, triangles and tetrahedra only");
+            in.fail(concat("section \"", keyword.substr(0, 40), "\" is not supported"),
+                    "save vertices, triangles and tetrahedra only");
         }
     }
     return mesh;

@@ -45,7 +45,8 @@ VoxelType voxel_type(const std::string& name, std::int32_t code)
     case 3: return VoxelType::f32;
     case 10: return VoxelType::u16;
     default:
-        throw InputError(concat(name, ": MGH voxel type ", code, " is not a label type; save the labels as uchar (0), "
+        throw InputError(concat(name, ": MGH voxel type ", code,
+                                " is not a label type; save the labels as uchar (0), "
                                 "short (4), int (1), ushort (10) or float (3), e.g. mri_convert -odt uchar"));
     }
 }
@@ -56,12 +57,14 @@ Dims dims_of(const std::string& name, const BigEndianHeader& header)
     for (std::size_t axis = 0; axis < 3; ++axis) {
         const std::int32_t value = header.int32(4 + 4 * axis);
         if (value <= 0)
-            throw InputError(concat(name, ": MGH dimension ", axis, " is ", value, "; the header is corrupt, write the file again"));
+            throw InputError(
+                concat(name, ": MGH dimension ", axis, " is ", value, "; the header is corrupt, write the file again"));
         dims[axis] = static_cast<std::size_t>(value);
     }
     const std::int32_t frames = header.int32(16);
     if (frames != 1)
-        throw InputError(concat(name, ": ", frames, " frames per voxel; a label image has one (extract the frame "
+        throw InputError(concat(name, ": ", frames,
+                                " frames per voxel; a label image has one (extract the frame "
                                 "holding the labels, e.g. mri_convert --frame 0)"));
     return dims;
 }
@@ -73,11 +76,13 @@ LabelImage read_mgh(const std::filesystem::path& path, const BeforeVoxels& befor
     const std::string name = path.string();
     const std::uint64_t available = uncompressed_size(path);
     if (available < header_bytes)
-        throw IoError(concat(name, ": ", available, " bytes are too few for an MGH header (284); the file is truncated "
+        throw IoError(concat(name, ": ", available,
+                             " bytes are too few for an MGH header (284); the file is truncated "
                              "or not an MGH volume"));
     const BigEndianHeader header(read_payload(path, 0, header_bytes));
     if (header.int32(0) != 1)
-        throw IoError(concat(name, ": MGH version ", header.int32(0), " is not 1; this is not an MGH/MGZ volume (or is "
+        throw IoError(concat(name, ": MGH version ", header.int32(0),
+                             " is not 1; this is not an MGH/MGZ volume (or is "
                              "corrupt), check the file or its extension"));
     const Dims dims = dims_of(name, header);
     const VoxelType type = voxel_type(name, header.int32(20));
@@ -97,10 +102,12 @@ LabelImage read_mgh(const std::filesystem::path& path, const BeforeVoxels& befor
     for (std::size_t i = 0; i < 3; ++i) {
         const double length = norm(axes[i]);
         if (!(length > 0) || !std::isfinite(length))
-            throw InputError(concat(name, ": the direction of voxel axis ", i, " in the MGH header is zero or not finite; "
+            throw InputError(concat(name, ": the direction of voxel axis ", i,
+                                    " in the MGH header is zero or not finite; "
                                     "the header is corrupt, write the file again"));
         if (!(spacing[i] > 0) || !std::isfinite(spacing[i]))
-            throw InputError(concat(name, ": MGH spacing along axis ", i, " is ", spacing[i], " mm; it must be a positive "
+            throw InputError(concat(name, ": MGH spacing along axis ", i, " is ", spacing[i],
+                                    " mm; it must be a positive "
                                     "number, fix the header (mri_convert -vs)"));
         spacing_mm[i] = spacing[i] * length;
         for (std::size_t j = 0; j < 3; ++j) {

@@ -16,13 +16,13 @@ void append_elements_ascii(std::string& out, const Msh2Elements& elements)
     std::size_t id = 1;
     for (std::size_t f = 0; f < elements.faces.size(); ++f) {
         const Triangle& tri = elements.faces[f];
-        out += concat(id++, " 2 2 ", elements.face_tags[f][0], ' ', elements.face_tags[f][1], ' ', tri[0] + 1, ' ', tri[1] + 1,
-                      ' ', tri[2] + 1, '\n');
+        out += concat(id++, " 2 2 ", elements.face_tags[f][0], ' ', elements.face_tags[f][1], ' ', tri[0] + 1, ' ',
+                      tri[1] + 1, ' ', tri[2] + 1, '\n');
     }
     for (std::size_t t = 0; t < elements.tets.size(); ++t) {
         const Tet& tet = elements.tets[t];
-        out += concat(id++, " 4 2 ", elements.tet_tags[t][0], ' ', elements.tet_tags[t][1], ' ', tet[0] + 1, ' ', tet[1] + 1,
-                      ' ', tet[2] + 1, ' ', tet[3] + 1, '\n');
+        out += concat(id++, " 4 2 ", elements.tet_tags[t][0], ' ', elements.tet_tags[t][1], ' ', tet[0] + 1, ' ',
+                      tet[1] + 1, ' ', tet[2] + 1, ' ', tet[3] + 1, '\n');
     }
 }
 
@@ -45,7 +45,8 @@ void add_element(TetMesh& mesh, int type, const std::vector<int>& tags, const st
 {
     const int physical = tags.empty() ? 0 : tags[0];
     if (type == 4) {
-        if (physical < 0 || physical > 65535) throw InputError(concat("tet physical tag ", physical, " is not a label"));
+        if (physical < 0 || physical > 65535)
+            throw InputError(concat("tet physical tag ", physical, " is not a label"));
         add_tet(mesh, v, static_cast<Label>(physical));
     } else if (type == 2) {
         mesh.faces.push_back({v[0], v[1], v[2]});
@@ -138,8 +139,12 @@ std::string format_msh2(const std::vector<Vec3>& vertices, const Msh2Elements& e
 
 std::string format_msh2(const TetMesh& mesh, bool binary)
 {
-    Msh2Elements elements{.faces = mesh.faces, .face_tags = {}, .tets = mesh.tets, .tet_tags = {},
-                          .physical_names = format_physical_names(mesh), .names_after_elements = false};
+    Msh2Elements elements{.faces = mesh.faces,
+                          .face_tags = {},
+                          .tets = mesh.tets,
+                          .tet_tags = {},
+                          .physical_names = format_physical_names(mesh),
+                          .names_after_elements = false};
     for (const LabelPair& pair : mesh.face_sides) elements.face_tags.push_back({face_physical(pair), face_tag(pair)});
     for (const Label label : mesh.tet_labels) elements.tet_tags.push_back({int{label}, int{label}});
     return format_msh2(mesh.vertices, elements, binary);
@@ -173,9 +178,10 @@ TetMesh parse_msh2(ByteReader& in)
             parse_physical_names(in, mesh.names);
             in.expect("$EndPhysicalNames");
         } else if (section.size() > 1 && section[0] == '$') {
-            in.skip_past(concat("$End", section.substr(1)));  // $NodeData, $Periodic, ...: not ours
+            in.skip_past(concat("$End", section.substr(1))); // $NodeData, $Periodic, ...: not ours
         } else {
-            in.fail(concat("unexpected \"", section.substr(0, 40), "\" between sections"), "the file is corrupt; write it again");
+            in.fail(concat("unexpected \"", section.substr(0, 40), "\" between sections"),
+                    "the file is corrupt; write it again");
         }
     }
     return mesh;

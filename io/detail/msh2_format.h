@@ -18,9 +18,9 @@ struct Msh2Elements {
     std::vector<std::array<int, 2>> face_tags;
     std::span<const Tet> tets;
     std::vector<std::array<int, 2>> tet_tags;
-    std::string physical_names;          ///< the whole $PhysicalNames section, or "" for none
-    bool names_after_elements = false;   ///< $PhysicalNames at the end (dune-grid's reader wants $Nodes first)
-    std::vector<Triangle> owned_faces;   ///< faces made for the file (`faces` then points here), else empty
+    std::string physical_names;        ///< the whole $PhysicalNames section, or "" for none
+    bool names_after_elements = false; ///< $PhysicalNames at the end (dune-grid's reader wants $Nodes first)
+    std::vector<Triangle> owned_faces; ///< faces made for the file (`faces` then points here), else empty
 };
 
 /// The whole file: faces first, then tets, numbered from 1; nodes 1..#V in vertex order.

@@ -44,8 +44,14 @@ public:
     {
         return binary_ ? in.binary_count<std::uint64_t>(what, min_bytes_each) : in.count(what, min_bytes_each);
     }
-    long long tag(const char* what) { return binary_ ? static_cast<long long>(in.binary<std::uint64_t>(what)) : in.integer(what); }
-    int integer(const char* what) { return binary_ ? in.binary<std::int32_t>(what) : static_cast<int>(in.integer(what)); }
+    long long tag(const char* what)
+    {
+        return binary_ ? static_cast<long long>(in.binary<std::uint64_t>(what)) : in.integer(what);
+    }
+    int integer(const char* what)
+    {
+        return binary_ ? in.binary<std::int32_t>(what) : static_cast<int>(in.integer(what));
+    }
     double real(const char* what) { return binary_ ? in.binary<double>(what) : in.real(what); }
     std::size_t bytes(std::size_t binary_bytes) const { return binary_ ? binary_bytes : 2; }
     ByteReader& in;
@@ -56,7 +62,7 @@ private:
 
 struct Block {
     int dim = 0, tag = 0, type = 0;
-    std::vector<std::size_t> elements;  ///< face or tet indices into the mesh
+    std::vector<std::size_t> elements; ///< face or tet indices into the mesh
 };
 
 void append_box(Writer& w, const TetMesh& mesh, const std::vector<std::uint32_t>& corners)
@@ -93,7 +99,8 @@ std::vector<Block> blocks_of(const TetMesh& mesh)
 
 void append_entities(Writer& w, const TetMesh& mesh, const std::vector<Block>& blocks)
 {
-    const auto surfaces = static_cast<std::size_t>(std::count_if(blocks.begin(), blocks.end(), [](const Block& b) { return b.dim == 2; }));
+    const auto surfaces = static_cast<std::size_t>(
+        std::count_if(blocks.begin(), blocks.end(), [](const Block& b) { return b.dim == 2; }));
     for (const std::size_t n : {std::size_t{0}, std::size_t{0}, surfaces, blocks.size() - surfaces}) w.size(n);
     w.end_line();
     for (const Block& block : blocks) {
@@ -106,7 +113,7 @@ void append_entities(Writer& w, const TetMesh& mesh, const std::vector<Block>& b
         append_box(w, mesh, corners);
         w.size(1);
         w.integer(block.dim == 2 ? face_physical(mesh.face_sides[block.elements.front()]) : block.tag);
-        w.size(0);  // bounding entities: a discrete mesh needs none
+        w.size(0); // bounding entities: a discrete mesh needs none
         w.end_line();
     }
 }
@@ -141,8 +148,10 @@ void append_elements(Writer& w, const TetMesh& mesh, const std::vector<Block>& b
         w.end_line();
         for (const std::size_t e : block.elements) {
             w.size(id++);
-            if (block.dim == 2) for (const std::uint32_t v : mesh.faces[e]) w.size(v + 1);
-            else for (const std::uint32_t v : mesh.tets[e]) w.size(v + 1);
+            if (block.dim == 2)
+                for (const std::uint32_t v : mesh.faces[e]) w.size(v + 1);
+            else
+                for (const std::uint32_t v : mesh.tets[e]) w.size(v + 1);
             w.end_line();
         }
     }
@@ -187,7 +196,8 @@ void parse_nodes(Reader& r, TetMesh& mesh, NodeIndex& index)
         r.integer("an entity tag");
         const int parametric = r.integer("the parametric flag");
         const std::size_t n = r.size("nodes in a block", r.bytes(32));
-        if (n > count - done) r.in.fail(concat(n, " nodes in a block exceed the ", count, " announced"), "the file is corrupt");
+        if (n > count - done)
+            r.in.fail(concat(n, " nodes in a block exceed the ", count, " announced"), "the file is corrupt");
         for (std::size_t i = 0; i < n; ++i) index.add(r.tag("a node tag"));
         const int extra = parametric != 0 ? std::clamp(dim, 0, 3) : 0;
         for (std::size_t i = 0; i < n; ++i) {
@@ -196,11 +206,13 @@ void parse_nodes(Reader& r, TetMesh& mesh, NodeIndex& index)
         }
         done += n;
     }
-    if (done != count) r.in.fail(concat("the node blocks hold ", done, " of the ", count, " nodes announced"), "the file is corrupt");
+    if (done != count)
+        r.in.fail(concat("the node blocks hold ", done, " of the ", count, " nodes announced"), "the file is corrupt");
     index.finish(r.in);
 }
 
-void parse_elements(Reader& r, TetMesh& mesh, const NodeIndex& nodes, const std::map<std::pair<int, int>, int>& physical)
+void parse_elements(Reader& r, TetMesh& mesh, const NodeIndex& nodes,
+                    const std::map<std::pair<int, int>, int>& physical)
 {
     const std::size_t blocks = r.size("element blocks", r.bytes(20));
     const std::size_t count = r.size("elements", r.bytes(16));
@@ -213,11 +225,13 @@ void parse_elements(Reader& r, TetMesh& mesh, const NodeIndex& nodes, const std:
         const int corners = gmsh_element_nodes(type);
         if (corners < 0) r.in.fail(concat("element type ", type, " is not supported"), "save tets and triangles only");
         const std::size_t n = r.size("elements in a block", r.bytes(8 * (1 + static_cast<std::size_t>(corners))));
-        if (n > count - done) r.in.fail(concat(n, " elements in a block exceed the ", count, " announced"), "the file is corrupt");
+        if (n > count - done)
+            r.in.fail(concat(n, " elements in a block exceed the ", count, " announced"), "the file is corrupt");
         const auto found = physical.find({dim, tag});
         const int group = found != physical.end() && found->second != 0 ? found->second : tag;
         if (type == 4 && (group < 0 || group > 65535))
-            r.in.fail(concat("volume ", tag, " has physical tag ", group, ", which is not a label"), "tag tissues 0..65535");
+            r.in.fail(concat("volume ", tag, " has physical tag ", group, ", which is not a label"),
+                      "tag tissues 0..65535");
         for (std::size_t e = 0; e < n; ++e) {
             r.tag("an element tag");
             std::array<std::uint32_t, 4> v{};
@@ -272,10 +286,11 @@ TetMesh parse_msh4(ByteReader& in)
             if (!have_nodes) in.fail("$Elements comes before $Nodes", "the file is corrupt; write it again");
             parse_elements(r, mesh, nodes, physical);
         } else if (name.size() > 1 && name[0] == '$') {
-            in.skip_past(concat("$End", name.substr(1)));  // $PartitionedEntities, $NodeData, ...: not ours
+            in.skip_past(concat("$End", name.substr(1))); // $PartitionedEntities, $NodeData, ...: not ours
             continue;
         } else {
-            in.fail(concat("unexpected \"", name.substr(0, 40), "\" between sections"), "the file is corrupt; write it again");
+            in.fail(concat("unexpected \"", name.substr(0, 40), "\" between sections"),
+                    "the file is corrupt; write it again");
         }
         in.expect(concat("$End", name.substr(1)));
     }

@@ -50,7 +50,8 @@ void parse_physical_names(ByteReader& in, TissueNames& names)
         std::string line(in.rest_of_line());
         const std::size_t open = line.find('"'), close = line.rfind('"');
         if (open == std::string::npos || close == open) in.fail("a physical name is not quoted", "the file is corrupt");
-        if (dim == 3 && tag >= 0 && tag <= 65535) names[static_cast<Label>(tag)] = line.substr(open + 1, close - open - 1);
+        if (dim == 3 && tag >= 0 && tag <= 65535)
+            names[static_cast<Label>(tag)] = line.substr(open + 1, close - open - 1);
     }
 }
 
@@ -88,18 +89,18 @@ std::uint32_t NodeIndex::at(long long tag, const ByteReader& in) const
 int gmsh_element_nodes(int type)
 {
     switch (type) {
-    case 15: return 1;   // point
-    case 1: return 2;    // line
-    case 2: return 3;    // triangle
-    case 3: return 4;    // quadrangle
-    case 4: return 4;    // tetrahedron
-    case 5: return 8;    // hexahedron
-    case 6: return 6;    // prism
-    case 7: return 5;    // pyramid
-    case 8: return 3;    // second-order line
-    case 9: return 6;    // second-order triangle
-    case 10: return 9;   // second-order quadrangle
-    case 11: return 10;  // second-order tetrahedron
+    case 15: return 1;  // point
+    case 1: return 2;   // line
+    case 2: return 3;   // triangle
+    case 3: return 4;   // quadrangle
+    case 4: return 4;   // tetrahedron
+    case 5: return 8;   // hexahedron
+    case 6: return 6;   // prism
+    case 7: return 5;   // pyramid
+    case 8: return 3;   // second-order line
+    case 9: return 6;   // second-order triangle
+    case 10: return 9;  // second-order quadrangle
+    case 11: return 10; // second-order tetrahedron
     default: return -1;
     }
 }
@@ -126,7 +127,8 @@ bool parse_mesh_format(ByteReader& in, const char* data_size_hint)
 {
     const long long file_type = in.integer("the file type");
     const long long data_size = in.integer("the data size");
-    if (file_type != 0 && file_type != 1) in.fail(concat("file type ", file_type, " is neither 0 nor 1"), "the file is corrupt");
+    if (file_type != 0 && file_type != 1)
+        in.fail(concat("file type ", file_type, " is neither 0 nor 1"), "the file is corrupt");
     const bool binary = file_type == 1;
     if (binary) {
         if (data_size != 8) in.fail(concat("data size ", data_size, " is not 8"), data_size_hint);

@@ -66,7 +66,8 @@ std::string simnibs_names(const TetMesh& mesh, const std::map<Label, int>& tags,
     std::set<int> volume_tags;
     for (const auto& [label, tag] : tags) volume_tags.insert(tag);
     std::string out = concat("$PhysicalNames\n", volume_tags.size() + face_tags.size(), "\n");
-    for (const int tag : face_tags) out += concat("2 ", tag, " \"", names.count(tag - 1000) ? names[tag - 1000] : "outer", "_surface\"\n");
+    for (const int tag : face_tags)
+        out += concat("2 ", tag, " \"", names.count(tag - 1000) ? names[tag - 1000] : "outer", "_surface\"\n");
     for (const int tag : volume_tags) out += concat("3 ", tag, " \"", names[tag], "\"\n");
     return out + "$EndPhysicalNames\n";
 }
@@ -84,8 +85,9 @@ Msh2Elements simnibs_elements(const TetMesh& mesh, const std::map<Label, int>& t
         std::size_t end = i + 1;
         while (end < all.size() && all[end].key == all[i].key) ++end;
         if (end - i > 2)
-            throw InputError(concat("a face is shared by ", end - i, " tets (nodes ", all[i].key[0] + 1, ", ", all[i].key[1] + 1,
-                                    ", ", all[i].key[2] + 1, "); the mesh does not conform, check it with tm-check-mesh"));
+            throw InputError(concat("a face is shared by ", end - i, " tets (nodes ", all[i].key[0] + 1, ", ",
+                                    all[i].key[1] + 1, ", ", all[i].key[2] + 1,
+                                    "); the mesh does not conform, check it with tm-check-mesh"));
         int tag = 1005;
         const TetFace* owner = &all[i];
         if (end - i == 2) {
@@ -102,8 +104,12 @@ Msh2Elements simnibs_elements(const TetMesh& mesh, const std::map<Label, int>& t
         used_face_tags.insert(tag);
         i = end;
     }
-    Msh2Elements elements{.faces = {}, .face_tags = std::move(face_tags), .tets = mesh.tets, .tet_tags = {},
-                          .physical_names = simnibs_names(mesh, tags, used_face_tags), .names_after_elements = false};
+    Msh2Elements elements{.faces = {},
+                          .face_tags = std::move(face_tags),
+                          .tets = mesh.tets,
+                          .tet_tags = {},
+                          .physical_names = simnibs_names(mesh, tags, used_face_tags),
+                          .names_after_elements = false};
     for (const Label label : mesh.tet_labels) elements.tet_tags.push_back({tags.at(label), tags.at(label)});
     // The faces are new: keep them alive with the elements (the span points into this member).
     elements.owned_faces = std::move(faces);
@@ -120,8 +126,12 @@ Msh2Elements duneuro_elements(const TetMesh& mesh, int offset)
         tag[label] = offset + static_cast<int>(tag.size());
         names += concat("3 ", tag[label], " \"", without_spaces(name_of(mesh, label)), "\"\n");
     }
-    Msh2Elements elements{.faces = {}, .face_tags = {}, .tets = mesh.tets, .tet_tags = {},
-                          .physical_names = names + "$EndPhysicalNames\n", .names_after_elements = true};
+    Msh2Elements elements{.faces = {},
+                          .face_tags = {},
+                          .tets = mesh.tets,
+                          .tet_tags = {},
+                          .physical_names = names + "$EndPhysicalNames\n",
+                          .names_after_elements = true};
     for (const Label label : mesh.tet_labels) elements.tet_tags.push_back({tag[label], tag[label]});
     return elements;
 }
@@ -134,7 +144,8 @@ std::string duneuro_conductivity_file(const TetMesh& mesh, const std::map<Label,
     for (const Label label : labels) {
         const auto found = conductivities.find(label);
         if (found == conductivities.end() || !(found->second > 0) || !std::isfinite(found->second))
-            throw InputError(concat("tissue \"", name_of(mesh, label), "\" (label ", label, ") has no positive conductivity for "
+            throw InputError(concat("tissue \"", name_of(mesh, label), "\" (label ", label,
+                                    ") has no positive conductivity for "
                                     "DUNEuro; give it one in the conductivity table (--conductivity)"));
         out.append(line, static_cast<std::size_t>(std::snprintf(line, sizeof line, "%.17g\n", found->second)));
     }

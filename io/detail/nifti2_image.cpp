@@ -27,8 +27,8 @@ VoxelType nifti_voxel_type(const std::string& name, int datatype)
     case 1280: return VoxelType::u64;
     default: break;
     }
-    throw IoError(concat(name, ": unsupported NIfTI datatype ", datatype,
-                         "; save the label map as an integer or float image"));
+    throw IoError(
+        concat(name, ": unsupported NIfTI datatype ", datatype, "; save the label map as an integer or float image"));
 }
 
 struct Geometry {
@@ -59,9 +59,10 @@ Geometry qform_geometry(const NiftiHeader& h)
     const double a = std::sqrt(std::max(0.0, 1.0 - (b * b + c * c + d * d)));
     const double qfac = h.pixdim[0] < 0 ? -1.0 : 1.0;
     Geometry g;
-    g.direction = {a * a + b * b - c * c - d * d, 2 * (b * c - a * d),         qfac * 2 * (b * d + a * c),
-                   2 * (b * c + a * d),         a * a + c * c - b * b - d * d, qfac * 2 * (c * d - a * b),
-                   2 * (b * d - a * c),         2 * (c * d + a * b),         qfac * (a * a + d * d - b * b - c * c)};
+    g.direction = {
+        a * a + b * b - c * c - d * d, 2 * (b * c - a * d),           qfac * 2 * (b * d + a * c),
+        2 * (b * c + a * d),           a * a + c * c - b * b - d * d, qfac * 2 * (c * d - a * b),
+        2 * (b * d - a * c),           2 * (c * d + a * b),           qfac * (a * a + d * d - b * b - c * c)};
     g.spacing = {h.pixdim[1], h.pixdim[2], h.pixdim[3]};
     g.origin = {h.quatern[3], h.quatern[4], h.quatern[5]};
     return g;

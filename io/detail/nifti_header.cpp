@@ -54,16 +54,19 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
     const bool swap = size != 348 && size != 540;
     const std::int32_t header_size = swap ? swapped : size;
     if (header_size != 348 && header_size != 540)
-        throw IoError(concat(name, not_nifti, "wrong magic: header size field is ", size,
-                             ", expected 348 or 540", fix));
+        throw IoError(
+            concat(name, not_nifti, "wrong magic: header size field is ", size, ", expected 348 or 540", fix));
     NiftiHeader f;
     f.swapped = swap;
     if (header_size == 348) {
-        if (got < nifti1_size) throw IoError(concat(name, ": truncated NIfTI header (", got,
-                                                    " of 348 bytes); the file is incomplete, copy it again"));
+        if (got < nifti1_size)
+            throw IoError(concat(name, ": truncated NIfTI header (", got,
+                                 " of 348 bytes); the file is incomplete, copy it again"));
         if (std::memcmp(header + 344, "n+1", 4) != 0)
-            throw IoError(concat(name, not_nifti, "wrong magic: expected \"n+1\" at byte 344; a "
-                                 "two-file .hdr/.img pair must be converted to .nii", fix));
+            throw IoError(concat(name, not_nifti,
+                                 "wrong magic: expected \"n+1\" at byte 344; a "
+                                 "two-file .hdr/.img pair must be converted to .nii",
+                                 fix));
         for (std::size_t n = 0; n < 8; ++n) {
             f.dim[n] = field<std::int16_t>(header, 40 + 2 * n, swap);
             f.pixdim[n] = field<float>(header, 76 + 4 * n, swap);
@@ -81,8 +84,9 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
         for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<float>(header, 280 + 4 * n, swap);
     } else {
         f.version = 2;
-        if (got < nifti2_size) throw IoError(concat(name, ": truncated NIfTI-2 header (", got,
-                                                    " of 540 bytes); the file is incomplete, copy it again"));
+        if (got < nifti2_size)
+            throw IoError(concat(name, ": truncated NIfTI-2 header (", got,
+                                 " of 540 bytes); the file is incomplete, copy it again"));
         if (std::memcmp(header + 4, "n+2", 4) != 0)
             throw IoError(concat(name, not_nifti, "wrong magic: expected \"n+2\" at byte 4", fix));
         for (std::size_t n = 0; n < 8; ++n) {
@@ -106,10 +110,16 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
 int scalar_bits(int datatype)
 {
     switch (datatype) {
-    case 2: case 256: return 8;
-    case 4: case 512: return 16;
-    case 8: case 16: case 768: return 32;
-    case 64: case 1024: case 1280: return 64;
+    case 2:
+    case 256: return 8;
+    case 4:
+    case 512: return 16;
+    case 8:
+    case 16:
+    case 768: return 32;
+    case 64:
+    case 1024:
+    case 1280: return 64;
     default: return 0;
     }
 }
@@ -140,12 +150,13 @@ NiftiHeader check_nifti_header(const fs::path& path)
             throw InputError(concat(name, ": dimension ", axis - 1, " is ", f.dim[axis],
                                     "; every axis needs at least one voxel. The header is corrupt"));
         if (axis > 3 && f.dim[axis] > 1)
-            throw InputError(concat(name, ": a ", rank, "D image with ", f.dim[axis], " values along axis ",
-                                    axis - 1, "; a label map holds one value per voxel. Extract one volume"));
+            throw InputError(concat(name, ": a ", rank, "D image with ", f.dim[axis], " values along axis ", axis - 1,
+                                    "; a label map holds one value per voxel. Extract one volume"));
         if (axis <= 3) dims[axis - 1] = static_cast<std::size_t>(f.dim[axis]);
     }
     if (is_multi_valued(f.datatype))
-        throw InputError(concat(name, ": NIfTI datatype ", f.datatype, " stores several values per voxel "
+        throw InputError(concat(name, ": NIfTI datatype ", f.datatype,
+                                " stores several values per voxel "
                                 "(a vector, RGB or complex image); a label map holds one value per voxel"));
     // Checked here because the nifti library prints to stderr when it meets an unknown datatype.
     if (scalar_bits(f.datatype) == 0)
@@ -156,8 +167,8 @@ NiftiHeader check_nifti_header(const fs::path& path)
     for (std::int64_t axis = 1; axis <= std::min<std::int64_t>(rank, 3); ++axis) {
         const double s = f.pixdim[axis];
         if (!std::isfinite(s) || s <= 0)
-            throw InputError(concat(name, ": spacing along axis ", axis - 1, " is ", s,
-                                    " mm (pixdim[", axis, "]); it must be a positive finite number. Fix "
+            throw InputError(concat(name, ": spacing along axis ", axis - 1, " is ", s, " mm (pixdim[", axis,
+                                    "]); it must be a positive finite number. Fix "
                                     "the header or the writer that produced it"));
     }
     // ITK aborts the process (vnl's assert_finite) on a non-finite orientation: checked before it sees one.
@@ -165,10 +176,10 @@ NiftiHeader check_nifti_header(const fs::path& path)
     const auto sane = [](double value) { return std::isfinite(value) && std::abs(value) <= 1e9; };
     if (f.qform_code > 0 && !std::all_of(f.quatern.begin(), f.quatern.end(), sane))
         throw InputError(concat(name, ": the qform (quatern_b/c/d, qoffset_x/y/z) holds a non-finite or absurd value; "
-                                "the header is corrupt. Fix the writer, or set qform_code to 0"));
+                                      "the header is corrupt. Fix the writer, or set qform_code to 0"));
     if (f.sform_code > 0 && !std::all_of(f.srow.begin(), f.srow.end(), sane))
         throw InputError(concat(name, ": the sform (srow_x/y/z) holds a non-finite or absurd value; the header is "
-                                "corrupt. Fix the writer, or set sform_code to 0"));
+                                      "corrupt. Fix the writer, or set sform_code to 0"));
     if (f.vox_offset < (f.version == 1 ? 348 : 540))
         throw IoError(concat(name, ": corrupt NIfTI header, vox_offset is ", f.vox_offset,
                              ", inside the header; the file is damaged"));

@@ -13,10 +13,10 @@ namespace tissuemesh::io::detail {
 
 /// The fields of a NIfTI-1 or NIfTI-2 header that tissuemesh uses, in host byte order.
 struct NiftiHeader {
-    int version = 1;                    ///< 1 or 2
-    bool swapped = false;               ///< the file's byte order is not the host's
-    std::array<std::int64_t, 8> dim{};  ///< as stored: dim[0] is the number of axes
-    Dims dims{1, 1, 1};                 ///< dim[1..3] (1 for missing axes)
+    int version = 1;                   ///< 1 or 2
+    bool swapped = false;              ///< the file's byte order is not the host's
+    std::array<std::int64_t, 8> dim{}; ///< as stored: dim[0] is the number of axes
+    Dims dims{1, 1, 1};                ///< dim[1..3] (1 for missing axes)
     std::array<double, 8> pixdim{};
     int datatype = 0;
     int bitpix = 0;
@@ -24,8 +24,8 @@ struct NiftiHeader {
     double scl_slope = 0, scl_inter = 0;
     // Orientation fields, parsed for NIfTI-2 only (ITK reads NIfTI-1's).
     int qform_code = 0, sform_code = 0;
-    std::array<double, 6> quatern{};   ///< quatern_b, c, d, qoffset_x, y, z
-    std::array<double, 12> srow{};     ///< srow_x, srow_y, srow_z (4 each)
+    std::array<double, 6> quatern{};    ///< quatern_b, c, d, qoffset_x, y, z
+    std::array<double, 12> srow{};      ///< srow_x, srow_y, srow_z (4 each)
     std::uint64_t max_buffer_bytes = 0; ///< bound for ITK's voxel buffer: voxels * 8, since ITK hands
                                         ///< images with scl_slope/scl_inter over as float or double
 };
@@ -46,6 +46,7 @@ void require_finite_float_voxels(const std::filesystem::path& path, const NiftiH
 /// Geometry from the sform (when sform_code > 0 and orthogonal), else the qform (qform_code > 0),
 /// else pixdim alone; scl_slope/scl_inter are applied before the labels are checked.
 /// @throws IoError on unsupported datatypes, InputError on invalid content
-LabelImage read_nifti2(const std::filesystem::path& path, const NiftiHeader& header, const BeforeVoxels& before_voxels = {});
+LabelImage read_nifti2(const std::filesystem::path& path, const NiftiHeader& header,
+                       const BeforeVoxels& before_voxels = {});
 
 } // namespace tissuemesh::io::detail

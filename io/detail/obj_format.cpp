@@ -83,7 +83,8 @@ InterfaceComplex parse_obj(const std::string& text, const std::string& what)
             for (std::string_view token = record.word(); !token.empty(); token = record.word(), ++corners)
                 if (corners < 3) tri[corners] = corner(token, complex.vertices.size(), in);
             if (corners != 3)
-                in.fail(concat("a face has ", corners, " corners"), "only triangles are supported: triangulate the surface first");
+                in.fail(concat("a face has ", corners, " corners"),
+                        "only triangles are supported: triangulate the surface first");
             complex.add_triangle(tri, pair);
         } else if (keyword == "g" || keyword == "o") {
             pair = group_pair(record.word());

@@ -24,8 +24,7 @@ public:
     std::string word()
     {
         std::string token;
-        if (!(stream_ >> token))
-            throw IoError(concat(what_, ": truncated; the OFF file ends early, write it again"));
+        if (!(stream_ >> token)) throw IoError(concat(what_, ": truncated; the OFF file ends early, write it again"));
         return token;
     }
     double number()
@@ -38,7 +37,8 @@ public:
         } catch (const std::exception&) {
             used = 0;
         }
-        if (used != token.size()) throw IoError(concat(what_, ": '", token, "' is not a number; the OFF file is corrupt"));
+        if (used != token.size())
+            throw IoError(concat(what_, ": '", token, "' is not a number; the OFF file is corrupt"));
         return value;
     }
 
@@ -78,16 +78,19 @@ InterfaceComplex parse_off(const std::string& text, const std::string& what)
 {
     Tokens tokens(text, what);
     if (tokens.word() != "OFF")
-        throw IoError(concat(what, ": not an OFF file (it does not start with 'OFF'); check the file or its extension"));
+        throw IoError(
+            concat(what, ": not an OFF file (it does not start with 'OFF'); check the file or its extension"));
     const std::size_t vertices = count_value(tokens.number(), what);
     const std::size_t faces = count_value(tokens.number(), what);
-    tokens.number();  // edge count, unused
+    tokens.number(); // edge count, unused
     InterfaceComplex complex;
-    for (std::size_t v = 0; v < vertices; ++v) complex.vertices.push_back({tokens.number(), tokens.number(), tokens.number()});
+    for (std::size_t v = 0; v < vertices; ++v)
+        complex.vertices.push_back({tokens.number(), tokens.number(), tokens.number()});
     for (std::size_t f = 0; f < faces; ++f) {
         const std::size_t corners = count_value(tokens.number(), what);
         if (corners != 3)
-            throw IoError(concat(what, ": face ", f, " has ", corners, " vertices; only triangles are supported, "
+            throw IoError(concat(what, ": face ", f, " has ", corners,
+                                 " vertices; only triangles are supported, "
                                  "triangulate the surface first"));
         Triangle triangle{};
         for (std::uint32_t& index : triangle) index = static_cast<std::uint32_t>(count_value(tokens.number(), what));

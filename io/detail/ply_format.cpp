@@ -30,11 +30,11 @@ enum class Scalar { int8, uint8, int16, uint16, int32, uint32, float32, float64 
 bool scalar_from_name(const std::string& name, Scalar& scalar)
 {
     static const std::pair<const char*, Scalar> names[] = {
-        {"char", Scalar::int8},     {"int8", Scalar::int8},       {"uchar", Scalar::uint8},
-        {"uint8", Scalar::uint8},   {"short", Scalar::int16},     {"int16", Scalar::int16},
-        {"ushort", Scalar::uint16}, {"uint16", Scalar::uint16},   {"int", Scalar::int32},
-        {"int32", Scalar::int32},   {"uint", Scalar::uint32},     {"uint32", Scalar::uint32},
-        {"float", Scalar::float32}, {"float32", Scalar::float32}, {"double", Scalar::float64},
+        {"char", Scalar::int8},      {"int8", Scalar::int8},       {"uchar", Scalar::uint8},
+        {"uint8", Scalar::uint8},    {"short", Scalar::int16},     {"int16", Scalar::int16},
+        {"ushort", Scalar::uint16},  {"uint16", Scalar::uint16},   {"int", Scalar::int32},
+        {"int32", Scalar::int32},    {"uint", Scalar::uint32},     {"uint32", Scalar::uint32},
+        {"float", Scalar::float32},  {"float32", Scalar::float32}, {"double", Scalar::float64},
         {"float64", Scalar::float64}};
     for (const auto& [text, value] : names)
         if (name == text) return scalar = value, true;
@@ -44,9 +44,13 @@ bool scalar_from_name(const std::string& name, Scalar& scalar)
 std::size_t scalar_size(Scalar s)
 {
     switch (s) {
-    case Scalar::int8: case Scalar::uint8: return 1;
-    case Scalar::int16: case Scalar::uint16: return 2;
-    case Scalar::int32: case Scalar::uint32: case Scalar::float32: return 4;
+    case Scalar::int8:
+    case Scalar::uint8: return 1;
+    case Scalar::int16:
+    case Scalar::uint16: return 2;
+    case Scalar::int32:
+    case Scalar::uint32:
+    case Scalar::float32: return 4;
     case Scalar::float64: return 8;
     }
     return 0;
@@ -82,10 +86,7 @@ public:
     }
     void locate(const std::string& element, std::size_t item) { element_ = element, item_ = item; }
 
-    double read(Scalar type)
-    {
-        return format_ == Header::Format::ascii ? read_ascii() : read_binary(type);
-    }
+    double read(Scalar type) { return format_ == Header::Format::ascii ? read_ascii() : read_binary(type); }
 
 private:
     [[noreturn]] void truncated() const
@@ -240,7 +241,8 @@ void read_face(Cursor& cursor, const Element& element, std::size_t face, Interfa
             const double count = cursor.read(property.count_type);
             const bool indices = property.name == "vertex_indices" || property.name == "vertex_index";
             if (indices && count != 3)
-                throw IoError(concat(what, ": face ", face, " has ", count, " vertices; only triangles are supported, "
+                throw IoError(concat(what, ": face ", face, " has ", count,
+                                     " vertices; only triangles are supported, "
                                      "triangulate the surface first"));
             if (count < 0 || count > 1e6) throw IoError(concat(what, ": face ", face, " has a corrupt list length"));
             for (int v = 0; v < static_cast<int>(count); ++v) {
@@ -265,7 +267,8 @@ std::string ply_header(const TissueNames& names, Label background, std::size_t v
                        const std::vector<std::string>& comments, bool ascii)
 {
     std::ostringstream header;
-    header << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian") << " 1.0\ncomment tissuemesh interface complex\n"
+    header << "ply\nformat " << (ascii ? "ascii" : "binary_little_endian")
+           << " 1.0\ncomment tissuemesh interface complex\n"
            << "comment background " << background << "\n";
     for (const auto& [label, name] : names) header << "comment tissue " << label << " " << name << "\n";
     for (const std::string& comment : comments) header << "comment " << comment << "\n";
@@ -296,13 +299,17 @@ void write_ply(const InterfaceComplex& complex, std::ostream& out, const std::ve
                              comments, ascii);
     char line[96];
     for (const Vec3& v : complex.vertices) {
-        if (ascii) chunks.text.append(line, static_cast<std::size_t>(std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", v[0], v[1], v[2])));
+        if (ascii)
+            chunks.text.append(line, static_cast<std::size_t>(
+                                         std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", v[0], v[1], v[2])));
         else append_ply_vertex(chunks.text, v);
         chunks.flush_if_full();
     }
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
         const Triangle& f = complex.triangles[t];
-        if (ascii) chunks.text += concat("3 ", f[0], ' ', f[1], ' ', f[2], ' ', complex.sides[t].from, ' ', complex.sides[t].to, '\n');
+        if (ascii)
+            chunks.text +=
+                concat("3 ", f[0], ' ', f[1], ' ', f[2], ' ', complex.sides[t].from, ' ', complex.sides[t].to, '\n');
         else append_ply_face(chunks.text, f, complex.sides[t]);
         chunks.flush_if_full();
     }
@@ -326,7 +333,8 @@ InterfaceComplex parse_ply(const std::string& bytes, const std::string& what)
             }
             Vec3 position{0, 0, 0};
             for (const Property& property : element.properties) {
-                const std::size_t count = property.is_list ? static_cast<std::size_t>(cursor.read(property.count_type)) : 1;
+                const std::size_t count =
+                    property.is_list ? static_cast<std::size_t>(cursor.read(property.count_type)) : 1;
                 for (std::size_t v = 0; v < count; ++v) {
                     const double value = cursor.read(property.type);
                     if (!vertex || property.is_list) continue;

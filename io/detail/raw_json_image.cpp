@@ -19,7 +19,8 @@ namespace {
 const json& required(const std::string& name, const json& document, const std::string& key)
 {
     if (!document.contains(key))
-        throw InputError(concat(name, ": the key \"", key, "\" is missing; see the raw + JSON schema in "
+        throw InputError(concat(name, ": the key \"", key,
+                                "\" is missing; see the raw + JSON schema in "
                                 "io/detail/raw_json_image.h"));
     return document[key];
 }
@@ -76,7 +77,8 @@ LabelImage read_raw_json_image(const fs::path& path, const BeforeVoxels& before_
     const json& dtype = required(name, document, "dtype");
     const auto type = dtype.is_string() ? parse_voxel_type(dtype.get<std::string>()) : std::nullopt;
     if (!type)
-        throw InputError(concat(name, ": unknown dtype ", dtype.dump(), "; use uint8, int8, uint16, int16, "
+        throw InputError(concat(name, ": unknown dtype ", dtype.dump(),
+                                "; use uint8, int8, uint16, int16, "
                                 "uint32, int32, float32 or float64"));
     const std::string byte_order = document.value("byte_order", std::string("little"));
     if (byte_order != "little" && byte_order != "big")
@@ -87,7 +89,8 @@ LabelImage read_raw_json_image(const fs::path& path, const BeforeVoxels& before_
     const fs::path raw = path.parent_path() / raw_name.get<std::string>();
     std::error_code ec;
     if (!fs::is_regular_file(raw, ec))
-        throw IoError(concat(name, ": its raw file ", raw.string(), " does not exist; keep the .json and its "
+        throw IoError(concat(name, ": its raw file ", raw.string(),
+                             " does not exist; keep the .json and its "
                              "raw file together"));
 
     validate_geometry(name, dims, spacing, direction);

@@ -31,8 +31,8 @@ T read_at(const std::string& bytes, std::size_t at)
     return value;
 }
 
-constexpr std::size_t header_size = 84;  // 80-byte header + uint32 triangle count
-constexpr std::size_t record_size = 50;  // normal, 3 corners (12 float32) + uint16 attribute
+constexpr std::size_t header_size = 84; // 80-byte header + uint32 triangle count
+constexpr std::size_t record_size = 50; // normal, 3 corners (12 float32) + uint16 attribute
 
 } // namespace
 
@@ -50,8 +50,9 @@ void write_ascii_stl(const InterfaceComplex& complex, ChunkedOutput& chunks)
     chunks.text = "solid tissuemesh\n";
     char line[128];
     auto add = [&](const char* format, const Vec3& v) {
-        const int length = std::snprintf(line, sizeof line, format, static_cast<double>(static_cast<float>(v[0])),
-                                         static_cast<double>(static_cast<float>(v[1])), static_cast<double>(static_cast<float>(v[2])));
+        const int length =
+            std::snprintf(line, sizeof line, format, static_cast<double>(static_cast<float>(v[0])),
+                          static_cast<double>(static_cast<float>(v[1])), static_cast<double>(static_cast<float>(v[2])));
         chunks.text.append(line, static_cast<std::size_t>(length));
     };
     for (const Triangle& t : complex.triangles) {
@@ -111,13 +112,15 @@ InterfaceComplex parse_ascii_stl(const std::string& text, const std::string& wha
         in.expect("endfacet");
         complex.add_triangle(triangle, {1, 0});
     }
-    if (word != "endsolid") in.fail(concat("expected facet or endsolid but found \"", word.substr(0, 40), "\""), "the STL file is corrupt");
+    if (word != "endsolid")
+        in.fail(concat("expected facet or endsolid but found \"", word.substr(0, 40), "\""), "the STL file is corrupt");
     return complex;
 }
 
 InterfaceComplex parse_stl(const std::string& bytes, const std::string& what)
 {
-    const bool binary_size = bytes.size() >= header_size && bytes.size() == header_size + record_size * read_at<std::uint32_t>(bytes, 80);
+    const bool binary_size =
+        bytes.size() >= header_size && bytes.size() == header_size + record_size * read_at<std::uint32_t>(bytes, 80);
     if (!binary_size && bytes.compare(0, 5, "solid") == 0) return parse_ascii_stl(bytes, what);
     if (bytes.size() < header_size)
         throw IoError(concat(what, ": ", bytes.size(), " bytes is too short for a binary STL file; it is truncated"));

@@ -13,8 +13,8 @@ std::uint32_t node_of(ByteReader& in, long long base, std::size_t nodes)
 {
     const long long number = in.integer("a node number");
     if (number < base || static_cast<unsigned long long>(number - base) >= nodes)
-        throw InputError(concat(in.what(), ": node ", number, " does not exist (", nodes, " nodes from ", base, ", at byte ",
-                                in.position(), "); the files do not belong together or are corrupt"));
+        throw InputError(concat(in.what(), ": node ", number, " does not exist (", nodes, " nodes from ", base,
+                                ", at byte ", in.position(), "); the files do not belong together or are corrupt"));
     return static_cast<std::uint32_t>(number - base);
 }
 
@@ -56,12 +56,14 @@ TetgenFiles format_tetgen(const TetMesh& mesh)
     files.ele = format_name_comments(mesh.names, "#") + concat(mesh.tets.size(), " 4 1\n");
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
-        files.ele += concat(t + 1, ' ', tet[0] + 1, ' ', tet[1] + 1, ' ', tet[2] + 1, ' ', tet[3] + 1, ' ', mesh.tet_labels[t], '\n');
+        files.ele += concat(t + 1, ' ', tet[0] + 1, ' ', tet[1] + 1, ' ', tet[2] + 1, ' ', tet[3] + 1, ' ',
+                            mesh.tet_labels[t], '\n');
     }
     files.face = concat(mesh.faces.size(), " 1\n");
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
         const Triangle& tri = mesh.faces[f];
-        files.face += concat(f + 1, ' ', tri[0] + 1, ' ', tri[1] + 1, ' ', tri[2] + 1, ' ', face_tag(mesh.face_sides[f]), '\n');
+        files.face +=
+            concat(f + 1, ' ', tri[0] + 1, ' ', tri[1] + 1, ' ', tri[2] + 1, ' ', face_tag(mesh.face_sides[f]), '\n');
     }
     return files;
 }
@@ -86,7 +88,8 @@ TetMesh parse_tetgen(const TetgenFiles& files, const std::string& what)
             for (long long extra = 4; extra < corners; ++extra) in.integer("a node number");
             const double region = attributes > 0 ? in.real("a region attribute") : 0.0;
             add_tet(mesh, v, checked_label(region, [&](double value) {
-                        in.fail(concat("region attribute ", value, " is not a label 0..65535"), "tag regions with labels");
+                        in.fail(concat("region attribute ", value, " is not a label 0..65535"),
+                                "tag regions with labels");
                     }));
             in.skip_line();
         }

@@ -9,7 +9,7 @@
 namespace tissuemesh::io::detail {
 
 struct TetgenFiles {
-    std::string node, ele, face;  ///< the three files' contents (face may be empty when reading)
+    std::string node, ele, face; ///< the three files' contents (face may be empty when reading)
 };
 
 /// The three files, numbered from 1; tissue names as `#` comments in the .ele file.

@@ -22,8 +22,8 @@ namespace {
 constexpr std::uint64_t deflate_ratio = 1032;
 
 struct TextHeader {
-    std::map<std::string, std::string> fields;  ///< lower-case keys without spaces
-    std::uint64_t header_bytes = 0;             ///< where attached data starts
+    std::map<std::string, std::string> fields; ///< lower-case keys without spaces
+    std::uint64_t header_bytes = 0;            ///< where attached data starts
 };
 
 std::string trim(const std::string& text)
@@ -54,7 +54,7 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         header.header_bytes += line.size() + 1;
         if (first && nrrd && !line.starts_with("NRRD"))
             throw IoError(concat(path.string(), ": not a NRRD file (wrong magic, it does not start with "
-                                 "\"NRRD\"); check that the file is not renamed or damaged"));
+                                                "\"NRRD\"); check that the file is not renamed or damaged"));
         first = false;
         const std::string text = trim(line);
         if (nrrd && text.empty()) break;
@@ -64,7 +64,7 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         // becomes a file pattern it loops over forever): a MetaImage header has "Key = Value" lines only.
         if (colon == std::string::npos && !nrrd && header.fields.empty())
             throw IoError(concat(path.string(), ": not a MetaImage file (wrong magic: its first line is not "
-                                 "\"Key = Value\"); check that the file is not renamed or damaged"));
+                                                "\"Key = Value\"); check that the file is not renamed or damaged"));
         if (colon == std::string::npos && !nrrd)
             throw IoError(concat(path.string(), ": header line ", line_number, " (\"", text.substr(0, 40),
                                  "\") is not \"Key = Value\"; the header is damaged. Export the image again"));
@@ -89,8 +89,8 @@ TextHeader parse_header(const fs::path& path, bool nrrd)
         // Our checks read one value per key; MetaIO acts on every repeat in turn ("NDims = 444...3" then
         // "NDims = 3" passed our check and had MetaIO read billions of numbers): a key may come once.
         if (!nrrd && header.fields.count(key))
-            throw IoError(concat(path.string(), ": header line ", line_number, " repeats the key '",
-                                 written_key, "'; the header is damaged. Export the image again"));
+            throw IoError(concat(path.string(), ": header line ", line_number, " repeats the key '", written_key,
+                                 "'; the header is damaged. Export the image again"));
         header.fields[key] = trim(text.substr(colon + 1));
         if (!nrrd && key == "elementdatafile") break;
     }
@@ -123,7 +123,8 @@ bool whole_zlib_stream(const fs::path& file, std::uint64_t offset, std::uint64_t
     std::vector<unsigned char> input(1 << 16), output(1 << 16);
     int status = Z_OK;
     while (status == Z_OK && bytes > 0 && in) {
-        in.read(reinterpret_cast<char*>(input.data()), static_cast<std::streamsize>(std::min<std::uint64_t>(bytes, input.size())));
+        in.read(reinterpret_cast<char*>(input.data()),
+                static_cast<std::streamsize>(std::min<std::uint64_t>(bytes, input.size())));
         const auto got = static_cast<std::uint64_t>(in.gcount());
         if (got == 0) break;
         bytes -= got;
@@ -163,7 +164,7 @@ std::uint64_t meta_image_bound(const fs::path& path)
     const TextHeader header = parse_header(path, false);
     if (!header.fields.count("elementdatafile") || !header.fields.count("dimsize"))
         throw IoError(concat(path.string(), ": not a MetaImage file (wrong magic: no DimSize or "
-                             "ElementDataFile line); check that the file is not renamed or damaged"));
+                                            "ElementDataFile line); check that the file is not renamed or damaged"));
     // MetaIO reads NDims values per field with an unsigned count: "NDims = -1" has it reading 2^32 numbers.
     const auto ndims = header.fields.find("ndims");
     if (ndims != header.fields.end()) {
@@ -195,7 +196,8 @@ std::uint64_t meta_image_bound(const fs::path& path)
         stored = expected;
     }
     if (!whole_zlib_stream(local ? path : path.parent_path() / data_file, local ? header.header_bytes : 0, stored))
-        throw IoError(concat(path.string(), ": its compressed voxel data is not one whole zlib stream (broken off, "
+        throw IoError(concat(path.string(),
+                             ": its compressed voxel data is not one whole zlib stream (broken off, "
                              "damaged or needing a preset dictionary); the file is damaged. Export the image again"));
     return stored * deflate_ratio;
 }

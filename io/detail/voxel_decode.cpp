@@ -24,9 +24,15 @@ struct TypeInfo {
 };
 
 constexpr std::array<TypeInfo, 10> type_table{{
-    {VoxelType::u8, "uint8", 1},   {VoxelType::i8, "int8", 1},     {VoxelType::u16, "uint16", 2},
-    {VoxelType::i16, "int16", 2},  {VoxelType::u32, "uint32", 4},  {VoxelType::i32, "int32", 4},
-    {VoxelType::u64, "uint64", 8}, {VoxelType::i64, "int64", 8},   {VoxelType::f32, "float32", 4},
+    {VoxelType::u8, "uint8", 1},
+    {VoxelType::i8, "int8", 1},
+    {VoxelType::u16, "uint16", 2},
+    {VoxelType::i16, "int16", 2},
+    {VoxelType::u32, "uint32", 4},
+    {VoxelType::i32, "int32", 4},
+    {VoxelType::u64, "uint64", 8},
+    {VoxelType::i64, "int64", 8},
+    {VoxelType::f32, "float32", 4},
     {VoxelType::f64, "float64", 8},
 }};
 
@@ -144,7 +150,8 @@ std::uint64_t checked_voxel_bytes(const std::string& file, const Dims& dims, std
     std::uint64_t total = bytes_per_voxel;
     for (int axis = 0; axis < 3; ++axis) {
         if (dims[axis] == 0)
-            throw InputError(concat(file, ": dimension ", axis, " is 0; an image needs at least one voxel "
+            throw InputError(concat(file, ": dimension ", axis,
+                                    " is 0; an image needs at least one voxel "
                                     "along every axis. The header is corrupt"));
         if (total > std::numeric_limits<std::uint64_t>::max() / dims[axis])
             throw InputError(concat(file, ": dimensions ", dims[0], " x ", dims[1], " x ", dims[2],
@@ -256,8 +263,8 @@ void decode_labels(const std::string& file, const unsigned char* bytes, VoxelTyp
     }
 }
 
-std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
-                                    const LabelImage& grid)
+std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type,
+                                    bool big_endian, const LabelImage& grid)
 {
     const std::size_t count = grid.voxel_count();
     const std::vector<unsigned char> doubles = rescale_to_float64(bytes, type, big_endian, count, 1, 0);

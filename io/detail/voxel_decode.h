@@ -44,8 +44,7 @@ std::uint64_t uncompressed_size(const std::filesystem::path& path);
 /// Reads `bytes` bytes starting at byte `offset` of the (gzip-decompressed) content of `path`.
 /// Call require_payload() first: this allocates `bytes` at once.
 /// @throws IoError when the file ends early or cannot be read
-std::vector<unsigned char> read_payload(const std::filesystem::path& path, std::uint64_t offset,
-                                        std::uint64_t bytes);
+std::vector<unsigned char> read_payload(const std::filesystem::path& path, std::uint64_t offset, std::uint64_t bytes);
 
 /// True when the file starts with the gzip magic bytes.
 bool is_gzip_file(const std::filesystem::path& path);
@@ -60,8 +59,8 @@ void decode_labels(const std::string& file, const unsigned char* bytes, VoxelTyp
 /// The voxels of `grid` (its dims give the count), stored as `type` in `bytes`, as floats (grey values),
 /// x fastest.
 /// @throws InputError naming `file` and the first voxel (i, j, k) whose value is not finite
-std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type, bool big_endian,
-                                    const LabelImage& grid);
+std::vector<float> to_finite_floats(const std::string& file, const unsigned char* bytes, VoxelType type,
+                                    bool big_endian, const LabelImage& grid);
 
 /// The `count` values stored as `type` in `bytes`, times `slope` plus `intercept`, as float64 in host
 /// byte order (NIfTI's scl_slope/scl_inter), ready for decode_labels(..., VoxelType::f64, host order).

@@ -33,7 +33,8 @@ std::vector<double> data_array(const std::string& text, const std::string& secti
     }
     std::size_t tag = text.find("<DataArray", from);
     if (!name.empty())
-        while (tag != std::string::npos && text.substr(tag, text.find('>', tag) - tag).find("Name=\"" + name + "\"") == std::string::npos)
+        while (tag != std::string::npos &&
+               text.substr(tag, text.find('>', tag) - tag).find("Name=\"" + name + "\"") == std::string::npos)
             tag = text.find("<DataArray", tag + 1);
     if (tag == std::string::npos) {
         if (!required) return {};
@@ -78,10 +79,13 @@ void write_vtp(const InterfaceComplex& complex, std::ostream& stream)
     ChunkedOutput chunks(stream);
     std::string& out = chunks.text;
     out = concat("<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
-                             "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n<Piece NumberOfPoints=\"",
-                             complex.vertices.size(), "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
-                             "NumberOfPolys=\"", n, "\">\n<Points>\n<DataArray type=\"Float64\" "
-                             "NumberOfComponents=\"3\" format=\"ascii\">\n");
+                 "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<PolyData>\n<Piece NumberOfPoints=\"",
+                 complex.vertices.size(),
+                 "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+                 "NumberOfPolys=\"",
+                 n,
+                 "\">\n<Points>\n<DataArray type=\"Float64\" "
+                 "NumberOfComponents=\"3\" format=\"ascii\">\n");
     for (const Vec3& v : complex.vertices) {
         for (const double c : v) append_number(out, c);
         out += '\n';
@@ -123,7 +127,8 @@ InterfaceComplex parse_vtp(const std::string& text, const std::string& what)
     const std::vector<double> label_b = data_array(text, "CellData", "label_b", what, false);
     if (xyz.size() != 3 * points || offsets.size() != polys || connectivity.size() != 3 * polys)
         throw IoError(concat(what, ": ", points, " points and ", polys, " polygons announced but the arrays hold ",
-                             xyz.size(), " coordinates and ", connectivity.size(), " indices (only triangles are "
+                             xyz.size(), " coordinates and ", connectivity.size(),
+                             " indices (only triangles are "
                              "read); the file is truncated or not a triangle surface"));
     const bool labelled = label_a.size() == polys && label_b.size() == polys;
     InterfaceComplex complex;

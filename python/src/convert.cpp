@@ -11,14 +11,16 @@ namespace tissuemesh::python {
 namespace {
 
 /// A C-ordered float64 copy of `object` with `columns` columns (0: a vector).
-py::array_t<double, py::array::c_style | py::array::forcecast> floats(const py::handle& object, std::size_t columns, const char* what)
+py::array_t<double, py::array::c_style | py::array::forcecast> floats(const py::handle& object, std::size_t columns,
+                                                                      const char* what)
 {
     const py::array array = py::array::ensure(object);
     if (!array || array.dtype().kind() == 'O' || array.dtype().kind() == 'U' || array.dtype().kind() == 'S')
         throw InputError(concat(what, " must be a numeric array"));
     auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(array);
     if (columns > 0 && (values.ndim() != 2 || static_cast<std::size_t>(values.shape(1)) != columns))
-        throw InputError(concat(what, " must have shape (n, ", columns, "), not ", py::str(py::tuple(array.attr("shape"))).cast<std::string>()));
+        throw InputError(concat(what, " must have shape (n, ", columns, "), not ",
+                                py::str(py::tuple(array.attr("shape"))).cast<std::string>()));
     for (py::ssize_t i = 0; i < values.size(); ++i)
         if (!std::isfinite(values.data()[i])) throw InputError(concat(what, " holds a value that is not finite"));
     return values;
@@ -71,7 +73,8 @@ std::vector<LabelPair> to_pairs(const py::handle& object, const char* what)
 {
     const std::vector<std::int64_t> flat = integers(object, 2, 65535, what);
     std::vector<LabelPair> sides(flat.size() / 2);
-    for (std::size_t i = 0; i < sides.size(); ++i) sides[i] = {static_cast<Label>(flat[2 * i]), static_cast<Label>(flat[2 * i + 1])};
+    for (std::size_t i = 0; i < sides.size(); ++i)
+        sides[i] = {static_cast<Label>(flat[2 * i]), static_cast<Label>(flat[2 * i + 1])};
     return sides;
 }
 
@@ -114,14 +117,16 @@ LabelImage to_image(const py::array& labels, const py::array& affine, const py::
 {
     if (labels.ndim() != 3) throw InputError(concat("labels must be a 3-D array [i, j, k], not ", labels.ndim(), "-D"));
     const auto matrix = floats(affine, 4, "affine");
-    if (matrix.shape(0) != 4 || matrix.at(3, 0) != 0 || matrix.at(3, 1) != 0 || matrix.at(3, 2) != 0 || matrix.at(3, 3) != 1)
+    if (matrix.shape(0) != 4 || matrix.at(3, 0) != 0 || matrix.at(3, 1) != 0 || matrix.at(3, 2) != 0 ||
+        matrix.at(3, 3) != 1)
         throw InputError("affine must be 4 x 4 with last row 0 0 0 1 (voxel index to world mm, as nibabel's)");
     Vec3 spacing{}, origin{};
     Mat3 direction{};
     for (std::size_t c = 0; c < 3; ++c) {
         const Vec3 column{matrix.at(0, c), matrix.at(1, c), matrix.at(2, c)};
         spacing[c] = norm(column);
-        if (!(spacing[c] > 0)) throw InputError(concat("affine column ", c, " is zero: voxel axis ", c, " has no length"));
+        if (!(spacing[c] > 0))
+            throw InputError(concat("affine column ", c, " is zero: voxel axis ", c, " has no length"));
         for (std::size_t r = 0; r < 3; ++r) direction[3 * r + c] = column[r] / spacing[c];
         origin[c] = matrix.at(c, 3);
     }
@@ -174,7 +179,8 @@ InterfaceComplex to_complex(const py::dict& surface)
     if (surface.contains("names")) complex.names = to_names(surface["names"]);
     if (surface.contains("background")) {
         const auto background = surface["background"].cast<long long>();
-        if (background < 0 || background > 65535) throw InputError(concat("surface background ", background, " is outside 0..65535"));
+        if (background < 0 || background > 65535)
+            throw InputError(concat("surface background ", background, " is outside 0..65535"));
         complex.background = static_cast<Label>(background);
     }
     validate_indices(complex, "surface");

@@ -17,22 +17,25 @@ Vec3 SectionFrame::to_world(double x, double y) const
     return world;
 }
 
-SectionFrame fit_section(const TetMesh& mesh, int axis, bool at_centre, double position_mm, double plot_width, double height,
-                         const std::string& view)
+SectionFrame fit_section(const TetMesh& mesh, int axis, bool at_centre, double position_mm, double plot_width,
+                         double height, const std::string& view)
 {
-    if (mesh.tets.empty() || mesh.vertices.empty()) throw InputError(concat(view, ": the mesh has no tetrahedron; nothing to draw"));
+    if (mesh.tets.empty() || mesh.vertices.empty())
+        throw InputError(concat(view, ": the mesh has no tetrahedron; nothing to draw"));
     if (axis < 0 || axis > 2) throw InputError(concat(view, ": axis ", axis, " is not 0 (x), 1 (y) or 2 (z)"));
     SectionFrame frame;
     frame.axis = axis, frame.u = axis == 0 ? 1 : 0, frame.v = axis == 2 ? 1 : 2;
     Vec3 low = mesh.vertices[0], high = low;
     for (const Vec3& p : mesh.vertices)
         for (std::size_t a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
-    const auto a = static_cast<std::size_t>(axis), u = static_cast<std::size_t>(frame.u), v = static_cast<std::size_t>(frame.v);
+    const auto a = static_cast<std::size_t>(axis), u = static_cast<std::size_t>(frame.u),
+               v = static_cast<std::size_t>(frame.v);
     frame.at = at_centre ? 0.5 * (low[a] + high[a]) : position_mm;
     if (!(frame.at >= low[a] && frame.at <= high[a]))
-        throw InputError(concat(view, ": the plane ", "xyz"[axis], " = ", format_mm(frame.at), " mm misses the mesh (", format_mm(low[a]), " .. ",
-                                format_mm(high[a]), " mm)"));
-    frame.scale = 0.95 * std::min(plot_width / std::max(high[u] - low[u], 1e-9), height / std::max(high[v] - low[v], 1e-9));
+        throw InputError(concat(view, ": the plane ", "xyz"[axis], " = ", format_mm(frame.at), " mm misses the mesh (",
+                                format_mm(low[a]), " .. ", format_mm(high[a]), " mm)"));
+    frame.scale =
+        0.95 * std::min(plot_width / std::max(high[u] - low[u], 1e-9), height / std::max(high[v] - low[v], 1e-9));
     frame.mid_u = 0.5 * (low[u] + high[u]), frame.mid_v = 0.5 * (low[v] + high[v]);
     frame.centre_x = 0.5 * plot_width, frame.centre_y = 0.5 * height;
     return frame;
@@ -43,7 +46,8 @@ void cut_tet(const TetMesh& mesh, std::size_t t, const SectionFrame& frame, std:
 {
     points.clear();
     if (values) values->clear();
-    const auto axis = static_cast<std::size_t>(frame.axis), u = static_cast<std::size_t>(frame.u), v = static_cast<std::size_t>(frame.v);
+    const auto axis = static_cast<std::size_t>(frame.axis), u = static_cast<std::size_t>(frame.u),
+               v = static_cast<std::size_t>(frame.v);
     std::array<double, 4> d{};
     int above = 0;
     for (std::size_t i = 0; i < 4; ++i) {
@@ -58,15 +62,19 @@ void cut_tet(const TetMesh& mesh, std::size_t t, const SectionFrame& frame, std:
             const Vec3 &p = mesh.vertices[mesh.tets[t][i]], &q = mesh.vertices[mesh.tets[t][j]];
             const double s = d[i] / (d[i] - d[j]);
             points.push_back({p[u] + s * (q[u] - p[u]), p[v] + s * (q[v] - p[v])});
-            if (node_values) crossing_values.push_back((1 - s) * (*node_values)[mesh.tets[t][i]] + s * (*node_values)[mesh.tets[t][j]]);
+            if (node_values)
+                crossing_values.push_back((1 - s) * (*node_values)[mesh.tets[t][i]] +
+                                          s * (*node_values)[mesh.tets[t][j]]);
         }
     // Around the centre, so that the polygon is convex and in order.
     Point2 mid{0, 0};
-    for (const Point2& p : points) mid[0] += p[0] / static_cast<double>(points.size()), mid[1] += p[1] / static_cast<double>(points.size());
+    for (const Point2& p : points)
+        mid[0] += p[0] / static_cast<double>(points.size()), mid[1] += p[1] / static_cast<double>(points.size());
     std::vector<std::size_t> order(points.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return std::atan2(points[a][1] - mid[1], points[a][0] - mid[0]) < std::atan2(points[b][1] - mid[1], points[b][0] - mid[0]);
+        return std::atan2(points[a][1] - mid[1], points[a][0] - mid[0]) <
+               std::atan2(points[b][1] - mid[1], points[b][0] - mid[0]);
     });
     std::vector<Point2> sorted;
     for (const std::size_t i : order) {
@@ -97,7 +105,8 @@ std::vector<std::array<Point2, 2>> tissue_outlines(const TetMesh& mesh, const Se
             faces.push_back({f, mesh.tet_labels[t]});
         }
     }
-    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.v < b.v || (a.v == b.v && a.label < b.label); });
+    std::sort(faces.begin(), faces.end(),
+              [](const Face& a, const Face& b) { return a.v < b.v || (a.v == b.v && a.label < b.label); });
     std::vector<std::array<Point2, 2>> segments;
     const auto u = static_cast<std::size_t>(frame.u), v = static_cast<std::size_t>(frame.v);
     for (std::size_t i = 0; i < faces.size();) {

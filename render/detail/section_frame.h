@@ -18,9 +18,12 @@ using Point2 = std::array<double, 2>;
 struct SectionFrame {
     int axis = 2, u = 0, v = 1;
     double at = 0;
-    double scale = 1, mid_u = 0, mid_v = 0, centre_x = 0, centre_y = 0;  ///< px per mm; screen centre of the fit
+    double scale = 1, mid_u = 0, mid_v = 0, centre_x = 0, centre_y = 0; ///< px per mm; screen centre of the fit
 
-    Point2 to_screen(const Point2& p) const { return {centre_x + scale * (p[0] - mid_u), centre_y - scale * (p[1] - mid_v)}; }
+    Point2 to_screen(const Point2& p) const
+    {
+        return {centre_x + scale * (p[0] - mid_u), centre_y - scale * (p[1] - mid_v)};
+    }
     /// The world point of the screen position (x, y) on the plane.
     Vec3 to_world(double x, double y) const;
 };
@@ -28,8 +31,8 @@ struct SectionFrame {
 /// The frame of `mesh` cut at its bounding box centre (`at_centre`) or at `position_mm`, in a picture of
 /// `plot_width` x `height` px. `view` names the picture in messages ("section view").
 /// @throws InputError when the mesh has no tet, the axis is not 0..2, or the plane misses the mesh
-SectionFrame fit_section(const TetMesh& mesh, int axis, bool at_centre, double position_mm, double plot_width, double height,
-                         const std::string& view);
+SectionFrame fit_section(const TetMesh& mesh, int axis, bool at_centre, double position_mm, double plot_width,
+                         double height, const std::string& view);
 
 /// The polygon where the frame's plane cuts tet `t` (3 or 4 points, convex, in order) in (u, v) mm, empty
 /// when it does not cross; a vertex on the plane counts as above it. With `node_values` (one per vertex),

@@ -12,14 +12,15 @@ namespace tissuemesh::surface::detail {
 class AngleLimit {
 public:
     explicit AngleLimit(double deg = 0)
-        : deg_(deg), cos_(std::cos(deg * 3.14159265358979323846 / 180)), sin_(std::sin(deg * 3.14159265358979323846 / 180))
+        : deg_(deg), cos_(std::cos(deg * 3.14159265358979323846 / 180)),
+          sin_(std::sin(deg * 3.14159265358979323846 / 180))
     {
     }
     double deg() const { return deg_; }
     /// +1 when atan2(y, x) is certainly above the limit, -1 certainly below, 0 unsure.
     int compare(double y, double x) const
     {
-        if (!(deg_ > 0 && deg_ < 89)) return 0;  // sin(angle - limit) decides the order only for such limits
+        if (!(deg_ > 0 && deg_ < 89)) return 0; // sin(angle - limit) decides the order only for such limits
         const double s = y * cos_ - x * sin_;
         const double margin = 1e-9 * (y + std::abs(x));
         return s > margin ? 1 : s < -margin ? -1 : 0;

@@ -37,8 +37,8 @@ BoxIndex::BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::
     for (std::size_t n = 0; n < ids.size(); n += step) sides.push_back(largest_side(boxes[ids[n]]));
     const auto tenth = sides.begin() + static_cast<std::ptrdiff_t>(sides.size() * 9 / 10);
     std::nth_element(sides.begin(), tenth, sides.end());
-    const double span = std::max({bounds.high[0] - bounds.low[0], bounds.high[1] - bounds.low[1],
-                                  bounds.high[2] - bounds.low[2], 1e-9});
+    const double span = std::max(
+        {bounds.high[0] - bounds.low[0], bounds.high[1] - bounds.low[1], bounds.high[2] - bounds.low[2], 1e-9});
     cell_mm_ = std::max(*tenth / small_fraction, 1e-6 * span);
     origin_ = bounds.low;
     // Per id its cell (small boxes) or `none` (big ones), for the cell size that keeps the filings few.
@@ -52,7 +52,8 @@ BoxIndex::BoxIndex(const std::vector<CompactBox>& boxes, const std::vector<std::
     for (;;) {
         double cells = 1;
         for (int a = 0; a < 3; ++a) {
-            counts_[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds.high[a] - bounds.low[a]) / cell_mm_)));
+            counts_[a] = std::max<std::int64_t>(
+                1, static_cast<std::int64_t>(std::ceil((bounds.high[a] - bounds.low[a]) / cell_mm_)));
             cells *= static_cast<double>(counts_[a]);
         }
         if (cells > static_cast<double>(max_cells)) {

@@ -30,7 +30,8 @@ public:
     /// Calls visit(id) once for every filed id whose box overlaps `box` (closed boxes, compared as
     /// boxes_overlap(const Box3&, const CompactBox&) does), until visit returns true (when it returns a
     /// bool). Order: by cell, then as filed. Reads only.
-    template <class Visit> void visit(const Box3& box, Visit visit) const
+    template <class Visit>
+    void visit(const Box3& box, Visit visit) const
     {
         scan(box, 0, 0, [&](std::uint32_t id) {
             if constexpr (std::is_same_v<decltype(visit(id)), bool>) return visit(id);
@@ -41,7 +42,8 @@ public:
     /// Like visit(box, ...) with the box filed as `id`, but reporting only the ids that come after `id`: for
     /// two small boxes, by their place in the index (cell, then as filed), for a pair with a big box, by id.
     /// Visiting every filed id so reports each overlapping pair once, and reads about half the cells.
-    template <class Visit> void visit_later(std::uint32_t id, const Box3& box, Visit visit) const
+    template <class Visit>
+    void visit_later(std::uint32_t id, const Box3& box, Visit visit) const
     {
         const std::uint32_t self = where_[id];
         if (self & big_bit) {
@@ -81,7 +83,8 @@ private:
             for (std::int64_t j = std::max<std::int64_t>(low[1] - 1, 0); j <= high[1]; ++j) {
                 const std::int64_t row = counts_[0] * (j + counts_[1] * k);
                 const std::uint32_t end = small_start_[static_cast<std::size_t>(row + high[0] + 1)];
-                for (std::uint32_t e = std::max(small_start_[static_cast<std::size_t>(row + from_i)], first_small); e < end; ++e)
+                for (std::uint32_t e = std::max(small_start_[static_cast<std::size_t>(row + from_i)], first_small);
+                     e < end; ++e)
                     if (overlaps(small_[e].box) && stop(small_[e].id)) return;
             }
         if (big_.empty()) return;
@@ -106,7 +109,7 @@ private:
         CompactBox box;
         std::uint32_t id;
     };
-    static constexpr std::uint32_t big_bit = 1u << 31;  ///< in where_: an entry of big_
+    static constexpr std::uint32_t big_bit = 1u << 31; ///< in where_: an entry of big_
     static float float_down(double x)
     {
         const auto f = static_cast<float>(x);
@@ -130,12 +133,12 @@ private:
 
     Vec3 origin_{0, 0, 0};
     double cell_mm_ = 1;
-    std::array<std::int64_t, 3> counts_{0, 0, 0};  ///< cells along each axis (0: nothing filed)
-    std::vector<std::uint32_t> small_start_;  ///< per cell, its first small entry (one more for the end)
-    std::vector<Entry> small_;                ///< boxes filed once, in the cell of their low corner
-    std::vector<std::uint32_t> big_start_;    ///< per cell, its first big entry (one more for the end)
-    std::vector<Entry> big_;                  ///< boxes filed in every cell they overlap
-    std::vector<std::uint32_t> where_;        ///< per id: its entry in small_, or big_bit | one of its entries in big_
+    std::array<std::int64_t, 3> counts_{0, 0, 0}; ///< cells along each axis (0: nothing filed)
+    std::vector<std::uint32_t> small_start_;      ///< per cell, its first small entry (one more for the end)
+    std::vector<Entry> small_;                    ///< boxes filed once, in the cell of their low corner
+    std::vector<std::uint32_t> big_start_;        ///< per cell, its first big entry (one more for the end)
+    std::vector<Entry> big_;                      ///< boxes filed in every cell they overlap
+    std::vector<std::uint32_t> where_; ///< per id: its entry in small_, or big_bit | one of its entries in big_
 };
 
 } // namespace tissuemesh::surface::detail

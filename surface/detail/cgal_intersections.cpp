@@ -173,7 +173,7 @@ bool certainly_proper(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b
         if (off_plane(a, b, 0) || off_plane(b, a, 0)) return true;
         const int axis = dominant_axis(a);
         const auto fa = flatten(a, axis), fb = flatten(b, axis);
-        return separated(fa.data(), 3, fb.data(), 3);  // disjoint shadows: disjoint triangles
+        return separated(fa.data(), 3, fb.data(), 3); // disjoint shadows: disjoint triangles
     }
     case 1: {
         if (off_plane(a, b, 1) || off_plane(b, a, 1)) return true;
@@ -236,7 +236,7 @@ public:
         case 2:
             return CGAL::coplanar(pa[0], pa[1], pa[2], pb[2]) &&
                    CGAL::coplanar_orientation(pa[0], pa[1], pa[2], pb[2]) == CGAL::POSITIVE;
-        default: return false;  // same vertex set: a duplicate, reported by the caller
+        default: return false; // same vertex set: a duplicate, reported by the caller
         }
     }
 
@@ -245,7 +245,7 @@ private:
     {
         const CGAL::Orientation s0 = side(pa, pb[0]), s1 = side(pa, pb[1]), s2 = side(pa, pb[2]);
         if (s0 == s1 && s1 == s2) {
-            if (s0 != CGAL::COPLANAR) return false;  // b strictly on one side of a's plane
+            if (s0 != CGAL::COPLANAR) return false; // b strictly on one side of a's plane
             if (const int axis = projection_axis(pa); axis >= 0)
                 return triangles_meet(project(pa, axis), project(pb, axis));
         }

@@ -21,8 +21,8 @@ std::uint32_t key_high(std::uint64_t key) { return static_cast<std::uint32_t>(ke
 /// One use of an undirected edge by a triangle of a tissue's outward surface.
 struct EdgeUse {
     std::uint64_t key;
-    std::uint32_t local;     ///< the triangle's index in the tissue's triangle list
-    std::int32_t direction;  ///< +1 when traversed from the lower to the higher vertex index
+    std::uint32_t local;    ///< the triangle's index in the tissue's triangle list
+    std::int32_t direction; ///< +1 when traversed from the lower to the higher vertex index
 };
 
 /// The triangle as seen from `tissue`: normal pointing out of it.
@@ -42,11 +42,13 @@ std::vector<std::uint32_t> bucket_starts(std::size_t vertices, const std::vector
 
 /// Sorts each bucket [start[v], start[v + 1]) of `items` by `less` (buckets hold a few items: the edges
 /// of one vertex towards higher indices).
-template <class T, class Less> void sort_buckets(std::vector<T>& items, const std::vector<std::uint32_t>& start, Less less)
+template <class T, class Less>
+void sort_buckets(std::vector<T>& items, const std::vector<std::uint32_t>& start, Less less)
 {
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
         for (std::uint32_t i = start[v] + 1; i < start[v + 1]; ++i)
-            for (std::uint32_t j = i; j > start[v] && less(items[j], items[j - 1]); --j) std::swap(items[j], items[j - 1]);
+            for (std::uint32_t j = i; j > start[v] && less(items[j], items[j - 1]); --j)
+                std::swap(items[j], items[j - 1]);
 }
 
 /// The uses of the edges of a tissue's surface, sorted by edge, then by triangle. Filed by the edge's
@@ -69,9 +71,8 @@ std::vector<EdgeUse> edge_uses(const InterfaceComplex& complex, Label tissue,
     std::vector<EdgeUse> uses(start.back());
     std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
     for_each_use([&](const EdgeUse& use) { uses[next[key_low(use.key)]++] = use; });
-    sort_buckets(uses, start, [](const EdgeUse& x, const EdgeUse& y) {
-        return x.key != y.key ? x.key < y.key : x.local < y.local;
-    });
+    sort_buckets(uses, start,
+                 [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.local < y.local; });
     return uses;
 }
 
@@ -92,8 +93,8 @@ double enclosed_volume(const InterfaceComplex& complex, Label tissue, const std:
 }
 
 /// Logs the defects of one edge of a tissue's surface, given its uses [begin, end).
-void check_edge(DefectLog& log, Label tissue, const std::vector<std::uint32_t>& triangles,
-                const EdgeUse* begin, const EdgeUse* end, TissueCheck& check)
+void check_edge(DefectLog& log, Label tissue, const std::vector<std::uint32_t>& triangles, const EdgeUse* begin,
+                const EdgeUse* end, TissueCheck& check)
 {
     const auto count = static_cast<std::size_t>(end - begin);
     int balance = 0;
@@ -113,9 +114,9 @@ void check_edge(DefectLog& log, Label tissue, const std::vector<std::uint32_t>& 
                 defect.tissues.push_back(pair.from == tissue ? pair.to : pair.from);
                 examples += concat(examples.empty() ? "" : ", ", log.triangle(t));
             }
-            defect.description = concat(what, ' ', a, '-', b, " in the surface of ", log.tissue(tissue),
-                                        " (used by ", count, " of its triangles: ", examples, count > 2 ? ", ..." : "",
-                                        ") ", DefectLog::near(defect.location_mm));
+            defect.description = concat(what, ' ', a, '-', b, " in the surface of ", log.tissue(tissue), " (used by ",
+                                        count, " of its triangles: ", examples, count > 2 ? ", ..." : "", ") ",
+                                        DefectLog::near(defect.location_mm));
             return defect;
         };
     };
@@ -238,7 +239,8 @@ void check_volume_signs(DefectLog& log, const CheckReport& report, const std::se
         if (crossing.count(tissue) == 0) check_sign(log, tissue, check);
 }
 
-void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std::vector<char>& skip, CheckReport& report)
+void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std::vector<char>& skip,
+                 CheckReport& report)
 {
     const InterfaceComplex& complex = log.complex();
     const auto for_each_edge = [&](auto action) {
@@ -275,20 +277,24 @@ void check_edges(DefectLog& log, const std::vector<Triangle>& merged, const std:
                 blades.push_back(blade_on(merged[t], v, w, complex.vertices, complex.sides[t]));
                 fan.push_back(t);
             }
-            if (blades.size() < 3 || fan_order(complex.vertices[v], complex.vertices[w], blades) != FanOrder::out_of_order)
+            if (blades.size() < 3 ||
+                fan_order(complex.vertices[v], complex.vertices[w], blades) != FanOrder::out_of_order)
                 continue;
             log.add(DefectKind::tangled_junction, [&] {
                 Defect defect;
                 defect.location_mm = 0.5 * (complex.vertices[v] + complex.vertices[w]);
                 defect.triangles = fan;
-                for (const std::uint32_t t : fan) defect.tissues.insert(defect.tissues.end(), {complex.sides[t].from, complex.sides[t].to});
+                for (const std::uint32_t t : fan)
+                    defect.tissues.insert(defect.tissues.end(), {complex.sides[t].from, complex.sides[t].to});
                 std::sort(defect.tissues.begin(), defect.tissues.end());
                 defect.tissues.erase(std::unique(defect.tissues.begin(), defect.tissues.end()), defect.tissues.end());
                 std::string names;
                 for (const std::uint32_t t : fan) names += concat(names.empty() ? "" : ", ", log.triangle(t));
-                defect.description = concat("tangled junction edge ", v, '-', w, ": its ", fan.size(), " triangles (", names,
-                                            ") turn about it in an order their tissues contradict, a pocket turned "
-                                            "inside out ", DefectLog::near(defect.location_mm));
+                defect.description =
+                    concat("tangled junction edge ", v, '-', w, ": its ", fan.size(), " triangles (", names,
+                           ") turn about it in an order their tissues contradict, a pocket turned "
+                           "inside out ",
+                           DefectLog::near(defect.location_mm));
                 return defect;
             });
         }

@@ -139,8 +139,8 @@ bool ComplexEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::fu
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
     const std::size_t multiplicity = edge_multiplicity(v, w);
-    const bool allowed = multiplicity > 0 && kinds_[v] != VertexKind::corner &&
-                         (kinds_[v] == VertexKind::patch || multiplicity >= 3);
+    const bool allowed =
+        multiplicity > 0 && kinds_[v] != VertexKind::corner && (kinds_[v] == VertexKind::patch || multiplicity >= 3);
     if (!allowed) {
         ++counters_.topology;
         return false;

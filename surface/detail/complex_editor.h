@@ -36,11 +36,11 @@ namespace tissuemesh::surface::detail {
 
 /// Geometric limits every edit must respect. Lengths in mm, angles in degrees.
 struct EditLimits {
-    double min_angle_deg = 2.0;            ///< new triangles' smallest angle (unless not worse than before)
-    double max_normal_change_deg = 60.0;   ///< a changed triangle may tilt at most this much in one edit
-    double min_gap_mm = 0.0;               ///< distance kept between triangles sharing no vertex
-    double min_wedge_deg = 1.0;            ///< opening kept between triangles sharing one vertex (see
-                                           ///< wedge_angle.h), unless not thinner than before
+    double min_angle_deg = 2.0;          ///< new triangles' smallest angle (unless not worse than before)
+    double max_normal_change_deg = 60.0; ///< a changed triangle may tilt at most this much in one edit
+    double min_gap_mm = 0.0;             ///< distance kept between triangles sharing no vertex
+    double min_wedge_deg = 1.0;          ///< opening kept between triangles sharing one vertex (see
+                                         ///< wedge_angle.h), unless not thinner than before
     /// For repair(): an edit may leave intersections that were already there, as long as the changed
     /// triangles meet no more other triangles than before the edit (never more; none when there were none).
     /// The order around junction edges is then not judged per edit (a crossing tangles the junctions it
@@ -94,10 +94,10 @@ public:
 
 private:
     struct Change {
-        std::uint32_t slot;       ///< triangle slot it replaces (or a new slot)
-        Triangle triangle;        ///< new vertex indices
-        TriangleCorners before;   ///< geometry of the triangle it replaces, for the "not worse" rules
-        LabelPair side{};         ///< tissues of a new slot (existing slots keep theirs)
+        std::uint32_t slot;     ///< triangle slot it replaces (or a new slot)
+        Triangle triangle;      ///< new vertex indices
+        TriangleCorners before; ///< geometry of the triangle it replaces, for the "not worse" rules
+        LabelPair side{};       ///< tissues of a new slot (existing slots keep theirs)
     };
     LabelPair side_of(const Change& change) const;
     bool acceptable(const std::vector<Change>& changes, const std::vector<std::uint32_t>& removed);
@@ -144,28 +144,28 @@ private:
     std::uint32_t add_vertex(const Vec3& p);
 
     EditLimits limits_;
-    AngleLimit min_angle_;  ///< limits_.min_angle_deg
-    AngleLimit max_tilt_;   ///< limits_.max_normal_change_deg
+    AngleLimit min_angle_; ///< limits_.min_angle_deg
+    AngleLimit max_tilt_;  ///< limits_.max_normal_change_deg
     TriangleGrid grid_;
-    double grid_cell_mm_ = 1;   ///< cell size asked of the grid
-    bool grid_ready_ = false;   ///< grid_ files every alive triangle under its current box
-    BoxIndex batch_index_;      ///< move_together()'s index (see refresh_batch_index())
+    double grid_cell_mm_ = 1; ///< cell size asked of the grid
+    bool grid_ready_ = false; ///< grid_ files every alive triangle under its current box
+    BoxIndex batch_index_;    ///< move_together()'s index (see refresh_batch_index())
     bool batch_index_valid_ = false;
-    std::vector<CompactBox> boxes_;      ///< per triangle slot: its bounding box now (alive slots)
-    std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
-    std::size_t intersection_budget_ = 0;  ///< intersections the next check may leave (tolerant mode)
+    std::vector<CompactBox> boxes_;       ///< per triangle slot: its bounding box now (alive slots)
+    std::vector<std::uint32_t> nearby_;   ///< scratch for grid queries
+    std::size_t intersection_budget_ = 0; ///< intersections the next check may leave (tolerant mode)
     EditCounters counters_;
     // Scratch kept between calls, so that an edit (collapses are tried millions of times) allocates nothing
     // once the buffers have grown. fan_around() and judge_moved() keep theirs thread_local instead: they run
     // in parallel within move_together().
-    std::vector<std::uint32_t> collapse_removed_, collapse_excluded_, collapse_common_;  ///< try_collapse()
-    std::vector<Change> collapse_changes_;                                               ///< try_collapse()
-    mutable std::vector<RingEntry> link_ring_v_, link_ring_w_;                           ///< link_condition()
-    mutable std::vector<std::uint32_t> link_apexes_;                                     ///< link_condition()
-    std::vector<TriangleCorners> clear_shapes_;                                          ///< clear_of_others()
-    std::vector<Box3> clear_boxes_;                                                      ///< clear_of_others()
-    std::vector<const TriangleCorners*> clear_before_;                                   ///< clear_of_others()
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> fan_edges_;                     ///< fans_in_order()
+    std::vector<std::uint32_t> collapse_removed_, collapse_excluded_, collapse_common_; ///< try_collapse()
+    std::vector<Change> collapse_changes_;                                              ///< try_collapse()
+    mutable std::vector<RingEntry> link_ring_v_, link_ring_w_;                          ///< link_condition()
+    mutable std::vector<std::uint32_t> link_apexes_;                                    ///< link_condition()
+    std::vector<TriangleCorners> clear_shapes_;                                         ///< clear_of_others()
+    std::vector<Box3> clear_boxes_;                                                     ///< clear_of_others()
+    std::vector<const TriangleCorners*> clear_before_;                                  ///< clear_of_others()
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> fan_edges_;                    ///< fans_in_order()
 };
 
 /// The tissues on either side of the triangles around vertex `v`, sorted, each once.

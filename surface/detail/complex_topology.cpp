@@ -49,7 +49,8 @@ bool ComplexEditor::link_condition(std::uint32_t v, std::uint32_t w) const
 std::vector<Label> tissues_around(const ComplexEditor& editor, std::uint32_t v)
 {
     std::vector<Label> tissues;
-    for (const std::uint32_t t : editor.star(v)) tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
+    for (const std::uint32_t t : editor.star(v))
+        tissues.insert(tissues.end(), {editor.side(t).from, editor.side(t).to});
     std::sort(tissues.begin(), tissues.end());
     tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
     return tissues;

@@ -20,9 +20,9 @@ Carried initial_carried(const InterfaceComplex& complex)
         const Vec3 n = cross(c[1] - c[0], c[2] - c[0]);
         const double area2 = norm(n);
         if (area2 <= 0) continue;
-        const Vec3 u = (1.0 / area2) * n;  // the plane's sign does not matter to its quadric
+        const Vec3 u = (1.0 / area2) * n; // the plane's sign does not matter to its quadric
         Quadric plane(u[0], u[1], u[2], -dot(u, c[0]));
-        plane *= 0.5 * area2;  // area-weighted
+        plane *= 0.5 * area2; // area-weighted
         for (const std::uint32_t v : tri) carried.quadrics[v] += plane;
     }
     for (std::uint32_t v = 0; v < complex.vertices.size(); ++v)
@@ -42,8 +42,7 @@ void add_counters(DecimateReport& report, const EditCounters& counters)
 
 Decimator::Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
                      DecimateReport& report, std::optional<Slab> slab)
-    : options_(options), report_(report),
-      editor_(std::move(complex), limits_of(options), cell_mm),
+    : options_(options), report_(report), editor_(std::move(complex), limits_of(options), cell_mm),
       quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab)
 {
     if (slab) editor_.set_fence(slab->fence(options.min_gap_mm));
@@ -182,7 +181,7 @@ void Decimator::enqueue(std::uint32_t v)
     std::sort(targets.begin(), targets.end());
     const bool bounded = options_.mode == DecimateMode::curvature && options_.max_edge_mm > 0;
     for (const auto& [c, w] : targets) {
-        if (bounded && !short_enough(v, w)) {  // ring_ still holds v's ring
+        if (bounded && !short_enough(v, w)) { // ring_ still holds v's ring
             ++report_.refused_by_length;
             continue;
         }
@@ -216,7 +215,7 @@ std::optional<std::uint32_t> Decimator::collapse_cheapest(std::uint32_t v)
 }
 
 bool Decimator::assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
-                    std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
+                               std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const
 {
     std::vector<std::pair<Vec3, double>>& spheres = spheres_;
     spheres.clear();

@@ -34,12 +34,12 @@ Carried initial_carried(const InterfaceComplex& complex);
 
 /// A slab's share of a decimation in pieces, numbered as the whole complex.
 struct Piece {
-    std::vector<Triangle> triangles;  ///< the alive triangles the slab owns (slabs.h)
+    std::vector<Triangle> triangles; ///< the alive triangles the slab owns (slabs.h)
     std::vector<LabelPair> sides;
-    std::vector<std::vector<std::uint32_t>> samples;          ///< per owned triangle
-    std::vector<std::pair<std::uint32_t, Quadric>> quadrics;  ///< per alive vertex the slab owns
-    std::vector<std::uint32_t> fenced;  ///< alive vertices whose collapse the fence refused
-    DecimateReport report;              ///< counts of the slab's collapses and refusals
+    std::vector<std::vector<std::uint32_t>> samples;         ///< per owned triangle
+    std::vector<std::pair<std::uint32_t, Quadric>> quadrics; ///< per alive vertex the slab owns
+    std::vector<std::uint32_t> fenced;                       ///< alive vertices whose collapse the fence refused
+    DecimateReport report;                                   ///< counts of the slab's collapses and refusals
 };
 
 /// Adds the editor's refusal counts to a report.
@@ -77,7 +77,8 @@ private:
     std::vector<std::pair<double, std::uint32_t>> targets_of(std::uint32_t v) const;
 
     /// Calls visit(cost, w) for every allowed target w of v (curve neighbours for curve vertices).
-    template <class Visit> void for_each_target(std::uint32_t v, Visit visit) const;
+    template <class Visit>
+    void for_each_target(std::uint32_t v, Visit visit) const;
 
     /// Queues v with its cheapest collapse that keeps edges within the bound (ties: the lowest target);
     /// cheaper ones that would not are counted as refused by the length and never tried.
@@ -119,16 +120,16 @@ private:
     LocalEditor editor_;
     std::vector<Quadric> quadrics_;
     std::vector<std::vector<std::uint32_t>> samples_;
-    std::optional<Slab> slab_;  ///< the slab this decimator works on, if any (its fence is the editor's)
-    std::vector<std::uint32_t> fenced_;  ///< vertices whose collapse the fence refused (repeats possible)
-    VertexQueue queue_;  ///< per vertex its cheapest collapse
-    mutable std::vector<LocalEditor::RingEntry> ring_;  ///< scratch of for_each_target()
+    std::optional<Slab> slab_;          ///< the slab this decimator works on, if any (its fence is the editor's)
+    std::vector<std::uint32_t> fenced_; ///< vertices whose collapse the fence refused (repeats possible)
+    VertexQueue queue_;                 ///< per vertex its cheapest collapse
+    mutable std::vector<LocalEditor::RingEntry> ring_; ///< scratch of for_each_target()
     std::vector<std::pair<double, std::uint32_t>> enqueue_scratch_;
-    std::vector<std::uint32_t> targets_, sources_;         ///< scratch of collapse()
+    std::vector<std::uint32_t> targets_, sources_; ///< scratch of collapse()
     std::vector<std::pair<std::size_t, std::uint32_t>> assignment_;
     std::vector<TriangleCorners> shapes_;
-    mutable std::vector<std::pair<Vec3, double>> spheres_;  ///< scratch of assign_samples()
-    std::vector<LocalEditor::RingEntry> around_;        ///< scratch of collapse_all()
+    mutable std::vector<std::pair<Vec3, double>> spheres_; ///< scratch of assign_samples()
+    std::vector<LocalEditor::RingEntry> around_;           ///< scratch of collapse_all()
 };
 
 } // namespace tissuemesh::surface::detail

@@ -24,7 +24,7 @@ FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blade
     // orientation(a, b, p, q) is the sign of the sine of the turn from p to q.
     const Vec3& first = blades[0].apex;
     const Vec3 axis = b - a;
-    thread_local std::vector<std::pair<int, std::uint32_t>> turn;  // (half, blade); scratch: edits ask often
+    thread_local std::vector<std::pair<int, std::uint32_t>> turn; // (half, blade); scratch: edits ask often
     turn.assign(1, {0, 0});
     for (std::uint32_t i = 1; i < n; ++i) {
         const int sine = orientation(a, b, first, blades[i].apex);
@@ -64,7 +64,7 @@ double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlad
     const Vec3 e = (1 / length) * (b - a);
     const Vec3 across = cross(e, std::abs(e[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
     const Vec3 u = (1 / norm(across)) * across, v = cross(e, u);
-    std::array<std::pair<double, Label>, 16> turn{};  // (angle, tissue ahead)
+    std::array<std::pair<double, Label>, 16> turn{}; // (angle, tissue ahead)
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 r = blades[i].apex - a;
         turn[i] = {std::atan2(dot(r, v), dot(r, u)), ahead(blades[i])};

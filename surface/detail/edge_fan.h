@@ -26,9 +26,9 @@ struct FanBlade {
 };
 
 enum class FanOrder : std::uint8_t {
-    in_order,      ///< going round, the tissue ahead of each triangle is the tissue behind the next one
-    out_of_order,  ///< two neighbouring triangles disagree on the tissue between them: a wedge turned inside out
-    overlapping,   ///< two triangles lie in one half-plane about the edge, or one is flat on it
+    in_order,     ///< going round, the tissue ahead of each triangle is the tissue behind the next one
+    out_of_order, ///< two neighbouring triangles disagree on the tissue between them: a wedge turned inside out
+    overlapping,  ///< two triangles lie in one half-plane about the edge, or one is flat on it
 };
 
 /// The blade of triangle `tri` (with tissues `side`, corners in `positions`) on its edge from a to b.

@@ -33,7 +33,8 @@ bool ComplexEditor::shape_ok(const Change& change)
 
 /// No changed triangle meets another (changed or not) improperly, nor comes closer than the gap to one
 /// it shares no vertex with (unless its old version was closer still).
-bool ComplexEditor::meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb) const
+bool ComplexEditor::meet(const Triangle& a, const TriangleCorners& pa, const Triangle& b,
+                         const TriangleCorners& pb) const
 {
     if (certainly_apart(a, pa, b, pb)) return false;
     return triangles_intersect(positions_, a, b);
@@ -77,8 +78,8 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
                   meet(changes[i].triangle, shapes[i], changes[j].triangle, shapes[j]))) &&
                 meets())
                 return false;
-            if (closes_wedge(changes[i].triangle, shapes[i], before[j] ? before[i] : nullptr, changes[j].triangle, shapes[j],
-                             changes[j].before, limits_.min_wedge_deg)) {
+            if (closes_wedge(changes[i].triangle, shapes[i], before[j] ? before[i] : nullptr, changes[j].triangle,
+                             shapes[j], changes[j].before, limits_.min_wedge_deg)) {
                 ++counters_.wedge;
                 return false;
             }
@@ -96,9 +97,9 @@ bool ComplexEditor::clear_of_others(const std::vector<Change>& changes, const st
         for (std::size_t i = 0; i < changes.size(); ++i) {
             if (!boxes_overlap(boxes[i], box)) continue;
             const Triangle& a = changes[i].triangle;
-            if ((same_vertex_set(a, triangles_[t]) || meet(a, shapes[i], triangles_[t], cb)) && meets())
-                return false;
-            if (shares_vertex(a, triangles_[t]) && closes_wedge(a, shapes[i], before[i], triangles_[t], cb, cb, limits_.min_wedge_deg)) {
+            if ((same_vertex_set(a, triangles_[t]) || meet(a, shapes[i], triangles_[t], cb)) && meets()) return false;
+            if (shares_vertex(a, triangles_[t]) &&
+                closes_wedge(a, shapes[i], before[i], triangles_[t], cb, cb, limits_.min_wedge_deg)) {
                 ++counters_.wedge;
                 return false;
             }
@@ -127,7 +128,8 @@ std::size_t ComplexEditor::intersections_involving(const std::vector<std::uint32
             if (!alive_[t] || t == s) continue;
             const bool among = std::binary_search(sorted.begin(), sorted.end(), t);
             if ((among && t < s) || !boxes_overlap(box, bounding_box(corners(t)))) continue;
-            if (same_vertex_set(triangles_[s], triangles_[t]) || triangles_intersect(positions_, triangles_[s], triangles_[t]))
+            if (same_vertex_set(triangles_[s], triangles_[t]) ||
+                triangles_intersect(positions_, triangles_[s], triangles_[t]))
                 ++count;
         }
     }
@@ -145,12 +147,14 @@ LabelPair ComplexEditor::side_of(const Change& change) const
 }
 
 FanOrder ComplexEditor::fan_around(std::uint32_t p, std::uint32_t q, const std::vector<Change>* changes,
-                                   const std::vector<std::uint32_t>* excluded, std::vector<std::uint32_t>* members) const
+                                   const std::vector<std::uint32_t>* excluded,
+                                   std::vector<std::uint32_t>* members) const
 {
-    thread_local std::vector<FanBlade> blades;  // scratch: asked for every junction edge an edit touches
+    thread_local std::vector<FanBlade> blades; // scratch: asked for every junction edge an edit touches
     blades.clear();
     for (const std::uint32_t t : stars_[p]) {
-        if (!contains(triangles_[t], q) || (excluded && std::find(excluded->begin(), excluded->end(), t) != excluded->end()))
+        if (!contains(triangles_[t], q) ||
+            (excluded && std::find(excluded->begin(), excluded->end(), t) != excluded->end()))
             continue;
         blades.push_back(blade_on(triangles_[t], p, q, positions_, sides_[t]));
         if (members) members->push_back(t);

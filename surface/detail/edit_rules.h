@@ -104,8 +104,9 @@ inline bool closes_gap(const TriangleCorners& now, const TriangleCorners& before
 /// Whether triangles `a` and `b`, sharing one vertex, now open a wedge thinner than `limit_deg` there and
 /// thinner than before (`before_a`, `before_b`: their corners before the edit; none when `a` is new, and
 /// then any wedge under the limit counts).
-inline bool closes_wedge(const Triangle& a, const TriangleCorners& now_a, const TriangleCorners* before_a, const Triangle& b,
-                         const TriangleCorners& now_b, const TriangleCorners& before_b, double limit_deg)
+inline bool closes_wedge(const Triangle& a, const TriangleCorners& now_a, const TriangleCorners* before_a,
+                         const Triangle& b, const TriangleCorners& now_b, const TriangleCorners& before_b,
+                         double limit_deg)
 {
     if (wedge_certainly_open(a, now_a, b, now_b, limit_deg)) return false;
     const std::optional<double> now = wedge_between(a, now_a, b, now_b);

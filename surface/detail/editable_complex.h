@@ -79,8 +79,8 @@ protected:
     std::vector<char> alive_;
     std::vector<std::vector<std::uint32_t>> stars_;
     std::vector<VertexKind> kinds_;
-    std::vector<std::uint32_t> reclassified_;  ///< see reclassified()
-    std::size_t alive_count_ = 0;              ///< alive triangles
+    std::vector<std::uint32_t> reclassified_; ///< see reclassified()
+    std::size_t alive_count_ = 0;             ///< alive triangles
 
 private:
     // Scratch of classify() and reclassify(), kept between calls (edits ask them millions of times). The

@@ -15,10 +15,12 @@ std::vector<Label> label_map(const LabelImage& image, const std::vector<Label>& 
     const std::map<Label, std::size_t> present = count_labels(image);
     for (const Label tissue : std::set<Label>(tissues.begin(), tissues.end())) {
         if (tissue == background)
-            throw InputError(concat(what, ": tissue ", tissue, " is also the background label; "
+            throw InputError(concat(what, ": tissue ", tissue,
+                                    " is also the background label; "
                                     "choose another background or drop it from the tissue list"));
         if (!present.contains(tissue))
-            throw InputError(concat(what, ": tissue ", tissue, " does not occur in the image; "
+            throw InputError(concat(what, ": tissue ", tissue,
+                                    " does not occur in the image; "
                                     "check the tissue list against tm-info"));
     }
     return kept_label_map(tissues, background);

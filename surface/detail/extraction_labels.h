@@ -12,8 +12,8 @@ namespace tissuemesh::surface::detail {
 
 /// The labels an extraction works with.
 struct ExtractionLabels {
-    std::vector<Label> map;   ///< 65 536 entries: the label each image label becomes (itself, or the background)
-    std::set<Label> tissues;  ///< the labels left in the image other than the background
+    std::vector<Label> map;  ///< 65 536 entries: the label each image label becomes (itself, or the background)
+    std::set<Label> tissues; ///< the labels left in the image other than the background
 };
 
 /// The label each image label becomes (65 536 entries): itself when `tissues` is empty or holds it, else

@@ -21,7 +21,7 @@ namespace {
 struct FieldSample {
     double value = 0;
     Vec3 gradient{0, 0, 0};
-    double other_weight = 0;  ///< share of the kernel's weight on tissues other than a and b
+    double other_weight = 0; ///< share of the kernel's weight on tissues other than a and b
 };
 
 int radius_for(double sigma) { return static_cast<int>(std::ceil(3 * sigma)); }
@@ -31,7 +31,7 @@ int radius_for(double sigma) { return static_cast<int>(std::ceil(3 * sigma)); }
 /// truncated kernel stays unbiased), and its gradient follows from dg/dx = -(x - n) g / sigma^2.
 FieldSample sample_field(const LabelImage& image, Label background, const Vec3& x, Label a, Label b, double sigma)
 {
-    constexpr int max_taps = 7;  // 2 * radius + 1 for sigma <= 1
+    constexpr int max_taps = 7; // 2 * radius + 1 for sigma <= 1
     const int radius = radius_for(sigma);
     const int taps = 2 * radius + 1;
     std::array<std::int64_t, 3> low{};
@@ -79,7 +79,7 @@ std::optional<Vec3> LabelField::step_to_interface(const Vec3& position_mm, Label
     if (sample.other_weight > third_tissue_share) return std::nullopt;
     const double g2 = dot(sample.gradient, sample.gradient);
     if (!(g2 > 1e-6)) return std::nullopt;
-    Vec3 step = (-sample.value / g2) * sample.gradient;  // index space
+    Vec3 step = (-sample.value / g2) * sample.gradient; // index space
     const double length = norm(step);
     if (length > max_step_voxels) step = (max_step_voxels / length) * step;
     return image_.index_to_world(x + step) - position_mm;

@@ -32,7 +32,7 @@ private:
 
     const LabelImage& image_;
     Label background_;
-    double sigma_;  ///< voxels summed per axis: 3 sigma on either side (the Gaussian beyond is about 1%)
+    double sigma_; ///< voxels summed per axis: 3 sigma on either side (the Gaussian beyond is about 1%)
 };
 
 } // namespace tissuemesh::surface::detail

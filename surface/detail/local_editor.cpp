@@ -36,11 +36,13 @@ void LocalEditor::set_limits(const LocalLimits& limits)
 void LocalEditor::rebuild_grid(double cell_mm)
 {
     if (!(cell_mm > 0)) return;
-    Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+    Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+             std::numeric_limits<double>::max()};
     Vec3 high = -1.0 * low;
     for (std::uint32_t v = 0; v < positions_.size(); ++v)
         if (!stars_[v].empty())
-            for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], positions_[v][a]), high[a] = std::max(high[a], positions_[v][a]);
+            for (int a = 0; a < 3; ++a)
+                low[a] = std::min(low[a], positions_[v][a]), high[a] = std::max(high[a], positions_[v][a]);
     if (low[0] > high[0]) low = high = {0, 0, 0};
     cell_mm_ = cell_mm;
     const auto size = [&] {
@@ -48,7 +50,8 @@ void LocalEditor::rebuild_grid(double cell_mm)
             grid_origin_[a] = low[a] - 2 * cell_mm_;
             grid_dims_[a] = std::min<std::size_t>(60000, static_cast<std::size_t>((high[a] - low[a]) / cell_mm_) + 5);
         }
-        return static_cast<double>(grid_dims_[0]) * static_cast<double>(grid_dims_[1]) * static_cast<double>(grid_dims_[2]);
+        return static_cast<double>(grid_dims_[0]) * static_cast<double>(grid_dims_[1]) *
+               static_cast<double>(grid_dims_[2]);
     };
     // Keep the grid within memory's reach: cells grow when the box is large for the cell asked for.
     while (size() > 4e7) cell_mm_ *= 1.5;
@@ -61,8 +64,9 @@ bool LocalEditor::shape_ok(const Triangle& now, const Triangle& before, bool che
 {
     const TriangleCorners a{positions_[now[0]], positions_[now[1]], positions_[now[2]]};
     const Vec3 na = cross(a[1] - a[0], a[2] - a[0]);
-    const double scale = std::max({dot(a[1] - a[0], a[1] - a[0]), dot(a[2] - a[0], a[2] - a[0]), dot(a[2] - a[1], a[2] - a[1])});
-    if (!(dot(na, na) > 1e-20 * scale * scale)) return false;  // degenerate (or nearly so)
+    const double scale =
+        std::max({dot(a[1] - a[0], a[1] - a[0]), dot(a[2] - a[0], a[2] - a[0]), dot(a[2] - a[1], a[2] - a[1])});
+    if (!(dot(na, na) > 1e-20 * scale * scale)) return false; // degenerate (or nearly so)
     const auto& b = before;
     const TriangleCorners c{positions_[b[0]], positions_[b[1]], positions_[b[2]]};
     if (check_tilt) {
@@ -117,7 +121,8 @@ LocalEditor::CellRange LocalEditor::cells_of(const Triangle& t) const
     CellRange range{};
     for (int a = 0; a < 3; ++a) {
         double low = positions_[t[0]][a], high = low;
-        for (int k = 1; k < 3; ++k) low = std::min(low, positions_[t[k]][a]), high = std::max(high, positions_[t[k]][a]);
+        for (int k = 1; k < 3; ++k)
+            low = std::min(low, positions_[t[k]][a]), high = std::max(high, positions_[t[k]][a]);
         low -= limits_.min_gap_mm, high += limits_.min_gap_mm;
         const auto cell = [&](double x) {
             const double c = std::floor((x - grid_origin_[a]) / cell_mm_);
@@ -155,7 +160,8 @@ void LocalEditor::unfile(std::uint32_t t)
 
 void LocalEditor::save_star(std::uint32_t v)
 {
-    saved_stars_.push_back({v, static_cast<std::uint32_t>(saved_star_items_.size()), static_cast<std::uint32_t>(stars_[v].size())});
+    saved_stars_.push_back(
+        {v, static_cast<std::uint32_t>(saved_star_items_.size()), static_cast<std::uint32_t>(stars_[v].size())});
     saved_star_items_.insert(saved_star_items_.end(), stars_[v].begin(), stars_[v].end());
 }
 
@@ -196,7 +202,8 @@ void LocalEditor::undo()
         alive_[it->triangle] = it->alive;
     }
     for (auto it = saved_stars_.rbegin(); it != saved_stars_.rend(); ++it)
-        stars_[it->vertex].assign(saved_star_items_.begin() + it->start, saved_star_items_.begin() + it->start + it->size);
+        stars_[it->vertex].assign(saved_star_items_.begin() + it->start,
+                                  saved_star_items_.begin() + it->start + it->size);
     triangles_.resize(triangles_before_edit_);
     sides_.resize(triangles_before_edit_);
     alive_.resize(triangles_before_edit_);
@@ -246,11 +253,12 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
     for (const std::uint32_t t : changed)
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
-            if (a > b || edge_multiplicity(a, b) < 3) continue;  // each junction edge once
+            if (a > b || edge_multiplicity(a, b) < 3) continue; // each junction edge once
             blades.clear();
             for (const std::uint32_t s : stars_[a])
                 if (has(triangles_[s], b)) blades.push_back(blade_on(triangles_[s], a, b, positions_, sides_[s]));
-            if (blades.size() >= 3 && fan_order(positions_[a], positions_[b], blades) != FanOrder::in_order) return false;
+            if (blades.size() >= 3 && fan_order(positions_[a], positions_[b], blades) != FanOrder::in_order)
+                return false;
         }
     return true;
 }
@@ -261,7 +269,7 @@ double LocalEditor::smallest_sector_deg(std::uint32_t a, std::uint32_t b) const
     std::size_t count = 0;
     for (const std::uint32_t t : stars_[a]) {
         if (!has(triangles_[t], b)) continue;
-        if (count == blades.size()) return 360;  // no judgement on crowded edges
+        if (count == blades.size()) return 360; // no judgement on crowded edges
         blades[count++] = blade_on(triangles_[t], a, b, positions_, sides_[t]);
     }
     return detail::smallest_sector_deg(positions_[a], positions_[b], std::span(blades.data(), count), background_);
@@ -371,8 +379,10 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     const double gap = limits_.min_gap_mm;
     std::vector<Box>& boxes = boxes_;
     boxes.clear();
-    Box all{{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()},
-            {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest()}};
+    Box all{
+        {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()},
+        {std::numeric_limits<double>::lowest(), std::numeric_limits<double>::lowest(),
+         std::numeric_limits<double>::lowest()}};
     for (const std::uint32_t t : changed) {
         Box& b = boxes.emplace_back(box_of(triangles_[t]));
         for (int a = 0; a < 3; ++a) {

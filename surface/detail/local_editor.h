@@ -33,10 +33,10 @@ namespace tissuemesh::surface::detail {
 
 /// Limits every edit keeps. Lengths in mm, angles in degrees.
 struct LocalLimits {
-    double min_angle_deg = 5;   ///< new triangles' smallest angle (unless not worse than before)
-    double max_tilt_deg = 45;   ///< a new triangle's normal against the one of the triangle it replaces
-    double min_gap_mm = 0.1;    ///< triangles sharing no vertex keep this distance (unless closer before)
-    double max_edge_mm = 0;     ///< collapses and flips may not make a longer edge (0: no bound)
+    double min_angle_deg = 5; ///< new triangles' smallest angle (unless not worse than before)
+    double max_tilt_deg = 45; ///< a new triangle's normal against the one of the triangle it replaces
+    double min_gap_mm = 0.1;  ///< triangles sharing no vertex keep this distance (unless closer before)
+    double max_edge_mm = 0;   ///< collapses and flips may not make a longer edge (0: no bound)
     /// Around every edge of a new triangle, the angle between neighbouring triangles that holds a tissue
     /// (not the background) keeps at least this much, unless the edit makes the smallest such angle near it
     /// no smaller (0: no rule). Why: every tet of that tissue at the edge lies inside the angle, so its
@@ -59,7 +59,7 @@ LocalLimits limits_of(const StepOptions& options)
 /// A small closed piece of one tissue (LocalEditor::small_pieces).
 struct SmallPiece {
     Label tissue = 0;
-    double volume = 0;  ///< enclosed by its triangles, positive with the tissue inside
+    double volume = 0; ///< enclosed by its triangles, positive with the tissue inside
     double area = 0;
 };
 
@@ -99,7 +99,7 @@ private:
         char alive;
     };
     using CellRange = std::array<std::uint16_t, 6>;
-    using Prior = std::pair<std::uint32_t, std::array<Vec3, 3>>;  ///< a changed triangle and its corners before
+    using Prior = std::pair<std::uint32_t, std::array<Vec3, 3>>; ///< a changed triangle and its corners before
 
     bool shape_ok(const Triangle& now, const Triangle& before, bool check_tilt);
     /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
@@ -173,9 +173,9 @@ private:
     /// Forgets what the last edit saved (before a new edit).
     void begin_edit();
     std::size_t triangles_before_edit_ = 0, vertices_before_edit_ = 0;
-    std::vector<std::uint32_t> stamp_;  ///< per triangle: the query that last met it (candidates once each)
+    std::vector<std::uint32_t> stamp_; ///< per triangle: the query that last met it (candidates once each)
     std::uint32_t query_ = 0;
-    std::vector<std::uint32_t> vertex_stamp_;  ///< per vertex: the query that last met it (small_pieces)
+    std::vector<std::uint32_t> vertex_stamp_; ///< per vertex: the query that last met it (small_pieces)
     std::optional<EditFence> fence_;
     EditCounters counters_;
     // Scratch kept between calls, so that an edit (tried millions of times) allocates nothing once the
@@ -188,11 +188,11 @@ private:
         std::vector<Prior> prior;
         std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
     } edit_;
-    std::vector<FanBlade> blades_;                                 ///< fans_ok()
-    std::vector<std::uint32_t> piece_vertices_, piece_triangles_;  ///< small_pieces()
-    std::vector<Label> piece_tissues_;                             ///< small_pieces()
-    std::vector<Box> boxes_;                                       ///< surroundings_ok()
-    std::vector<std::uint32_t> star_vertices_;                     ///< surroundings_ok()
+    std::vector<FanBlade> blades_;                                ///< fans_ok()
+    std::vector<std::uint32_t> piece_vertices_, piece_triangles_; ///< small_pieces()
+    std::vector<Label> piece_tissues_;                            ///< small_pieces()
+    std::vector<Box> boxes_;                                      ///< surroundings_ok()
+    std::vector<std::uint32_t> star_vertices_;                    ///< surroundings_ok()
 };
 
 } // namespace tissuemesh::surface::detail

@@ -30,7 +30,8 @@ double fatness(const SmallPiece& p) { return p.area > 0 ? std::abs(p.volume) / s
 bool pieces_ok(const std::vector<SmallPiece>& before, const std::vector<SmallPiece>& after)
 {
     for (const SmallPiece& b : before) {
-        const auto a = std::find_if(after.begin(), after.end(), [&](const SmallPiece& p) { return p.tissue == b.tissue; });
+        const auto a =
+            std::find_if(after.begin(), after.end(), [&](const SmallPiece& p) { return p.tissue == b.tissue; });
         if (a == after.end() || !(a->volume / b.volume > flat_shell_ratio)) return false;
         if (fatness(*a) < fat_piece_ratio && fatness(*a) < fatness(b)) return false;
     }
@@ -62,10 +63,12 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     std::vector<std::uint32_t>& common = edit_.common;
     common.clear();
     for (const RingEntry& n : around_v)
-        if (n.vertex != w && std::any_of(around_w.begin(), around_w.end(), [&](const RingEntry& m) { return m.vertex == n.vertex; }))
+        if (n.vertex != w &&
+            std::any_of(around_w.begin(), around_w.end(), [&](const RingEntry& m) { return m.vertex == n.vertex; }))
             common.push_back(n.vertex);
     const auto triangle_with = [&](std::uint32_t a, std::uint32_t x, std::uint32_t y) {
-        return std::any_of(stars_[a].begin(), stars_[a].end(), [&](std::uint32_t t) { return has(triangles_[t], x) && has(triangles_[t], y); });
+        return std::any_of(stars_[a].begin(), stars_[a].end(),
+                           [&](std::uint32_t t) { return has(triangles_[t], x) && has(triangles_[t], y); });
     };
     for (const std::uint32_t x : common)
         if (!triangle_with(v, w, x)) {
@@ -129,9 +132,10 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     std::vector<SmallPiece>& pieces_at_w = edit_.pieces_at_w;
     std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
     small_pieces(v, pieces_before);
-    small_pieces(w, pieces_at_w);  // w's own pieces count too: the collapse may thin a piece at w alone
+    small_pieces(w, pieces_at_w); // w's own pieces count too: the collapse may thin a piece at w alone
     for (const SmallPiece& p : pieces_at_w)
-        if (std::none_of(pieces_before.begin(), pieces_before.end(), [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
+        if (std::none_of(pieces_before.begin(), pieces_before.end(),
+                         [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
             pieces_before.push_back(p);
     const double sectors_before = std::min(smallest_sector_deg(stars_[v]), smallest_sector_deg(stars_[w]));
     begin_edit();
@@ -281,8 +285,8 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
         const double old_cos = std::max(smallest_angle_cosine(o1), smallest_angle_cosine(o2));
         for (const TriangleCorners& n : {n1, n2}) {
             const Vec3 normal = cross(n[1] - n[0], n[2] - n[0]);
-            const double scale = std::max({dot(n[1] - n[0], n[1] - n[0]), dot(n[2] - n[0], n[2] - n[0]),
-                                           dot(n[2] - n[1], n[2] - n[1])});
+            const double scale =
+                std::max({dot(n[1] - n[0], n[1] - n[0]), dot(n[2] - n[0], n[2] - n[0]), dot(n[2] - n[1], n[2] - n[1])});
             if (!(dot(normal, normal) > 1e-20 * scale * scale)) {
                 ++counters_.shape;
                 return false;

@@ -24,8 +24,9 @@ TriangleCorners corners_at(const std::vector<Vec3>& positions, const Triangle& t
 
 } // namespace
 
-std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>& start, const std::vector<char>& judged,
-                                        const BoxIndex& index, std::vector<std::uint32_t>* partners) const
+std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>& start,
+                                        const std::vector<char>& judged, const BoxIndex& index,
+                                        std::vector<std::uint32_t>* partners) const
 {
     const Triangle& tri = triangles_[t];
     const TriangleCorners now = corners(t), before = corners_at(start, tri);
@@ -62,7 +63,8 @@ std::uint8_t ComplexEditor::judge_moved(std::uint32_t t, const std::vector<Vec3>
 }
 
 std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const TriangleCorners& now,
-                                      const TriangleCorners& before, const Box3& tight, const std::vector<Vec3>& start) const
+                                      const TriangleCorners& before, const Box3& tight,
+                                      const std::vector<Vec3>& start) const
 {
     const Triangle& a = triangles_[t];
     const Triangle& b = triangles_[u];
@@ -74,7 +76,8 @@ std::uint8_t ComplexEditor::pair_rule(std::uint32_t t, std::uint32_t u, const Tr
         if (closes_wedge(a, now, &before, b, other, corners_at(start, b), limits_.min_wedge_deg)) return wedge_rule;
         return none;
     }
-    if (boxes_overlap(tight, bounding_box(other)) && !certainly_apart(a, now, b, other) && triangles_intersect(positions_, a, b))
+    if (boxes_overlap(tight, bounding_box(other)) && !certainly_apart(a, now, b, other) &&
+        triangles_intersect(positions_, a, b))
         return intersection_rule;
     const double gap = limits_.min_gap_mm;
     if (gap > 0 && !(sides_[t] == sides_[u]) && !farther_than(now, other, gap) &&
@@ -95,8 +98,8 @@ void ComplexEditor::refresh_batch_index(const std::vector<std::uint32_t>& change
             if (inner.low[i] < outer.low[i] || outer.high[i] < inner.high[i]) return false;
         return true;
     };
-    if (batch_index_valid_ &&
-        std::all_of(changed.begin(), changed.end(), [&](std::uint32_t t) { return holds(batch_index_.filed_box(t), boxes_[t]); }))
+    if (batch_index_valid_ && std::all_of(changed.begin(), changed.end(),
+                                          [&](std::uint32_t t) { return holds(batch_index_.filed_box(t), boxes_[t]); }))
         return;
     std::vector<std::uint32_t> alive;
     for (std::uint32_t t = 0; t < triangles_.size(); ++t)
@@ -112,7 +115,7 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
         throw AlgorithmError("move_together: not available in tolerant mode (use try_move)");
     const std::vector<Vec3> start = positions_;
     std::vector<char> moved(positions_.size(), 0), judged(triangles_.size(), 0);
-    std::vector<std::uint32_t> round;  // triangles to judge, ascending
+    std::vector<std::uint32_t> round; // triangles to judge, ascending
     std::vector<char> listed(triangles_.size(), 0);
     // The triangles of the stars of `from` into `round`, ascending, each once (marks instead of a sort:
     // a batch lists the stars of millions of vertices).
@@ -158,7 +161,8 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
         // Later rounds judge a few triangles: waking the other threads would cost more than it saves.
 #pragma omp parallel for schedule(dynamic, 512) if (count > 4096)
         for (std::int64_t i = 0; i < count; ++i)
-            verdict[static_cast<std::size_t>(i)] = judge_moved(round[static_cast<std::size_t>(i)], start, judged, index, nullptr);
+            verdict[static_cast<std::size_t>(i)] =
+                judge_moved(round[static_cast<std::size_t>(i)], start, judged, index, nullptr);
         // Sequential, in index order: which vertices go back does not depend on the threads.
         std::vector<std::uint32_t> back, partners;
         for (std::size_t i = 0; i < round.size(); ++i) {
@@ -166,10 +170,10 @@ std::vector<char> ComplexEditor::move_together(const std::vector<std::uint32_t>&
             const std::uint32_t t = round[i];
             partners.assign(1, t);
             if (verdict[i] >= intersection_rule) judge_moved(t, start, judged, index, &partners);
-            ++(verdict[i] == shape_rule ? counters_.shape
-               : verdict[i] == normal_rule ? counters_.normal
+            ++(verdict[i] == shape_rule          ? counters_.shape
+               : verdict[i] == normal_rule       ? counters_.normal
                : verdict[i] == intersection_rule ? counters_.intersection
-               : verdict[i] == gap_rule        ? counters_.gap
+               : verdict[i] == gap_rule          ? counters_.gap
                                                  : counters_.wedge);
             for (const std::uint32_t p : partners)
                 for (const std::uint32_t v : triangles_[p])

@@ -100,7 +100,7 @@ private:
         std::vector<std::pair<std::uint32_t, std::uint32_t>> links, junction_edges;
         movable_.assign(vertex_count, 0);
         tissues_.assign(vertex_count, {});
-        std::vector<std::pair<std::uint32_t, int>> around;  // neighbour, triangles on the edge
+        std::vector<std::pair<std::uint32_t, int>> around; // neighbour, triangles on the edge
         for (std::uint32_t v = 0; v < vertex_count; ++v) {
             around.clear();
             auto& tissues = tissues_[v];
@@ -142,7 +142,8 @@ private:
         for (std::size_t v = 0; v < net_.positions.size(); ++v) {
             if (!movable_[v]) continue;
             const std::size_t cell = net_.cells[v];
-            const Index3 low{static_cast<std::int64_t>(cell % g[0]) - 1, static_cast<std::int64_t>(cell / g[0] % g[1]) - 1,
+            const Index3 low{static_cast<std::int64_t>(cell % g[0]) - 1,
+                             static_cast<std::int64_t>(cell / g[0] % g[1]) - 1,
                              static_cast<std::int64_t>(cell / g[0] / g[1]) - 1};
             std::array<Label, 8> corners{};
             for (int c = 0; c < 8; ++c) {
@@ -151,7 +152,8 @@ private:
             }
             for (std::size_t n = 0; n < tissues_[v].count; ++n)
                 for (int c = 0; c < 8; ++c)
-                    if (corners[c] == tissues_[v].labels[n]) masks_[v][n] = static_cast<std::uint8_t>(masks_[v][n] | 1 << c);
+                    if (corners[c] == tissues_[v].labels[n])
+                        masks_[v][n] = static_cast<std::uint8_t>(masks_[v][n] | 1 << c);
         }
     }
 
@@ -170,8 +172,8 @@ private:
         }
         std::uint8_t near = 0;
         for (int c = 0; c < 8; ++c) {
-            const double d2 = (c & 1 ? to_high[0] : to_low[0]) + (c & 2 ? to_high[1] : to_low[1]) +
-                              (c & 4 ? to_high[2] : to_low[2]);
+            const double d2 =
+                (c & 1 ? to_high[0] : to_low[0]) + (c & 2 ? to_high[1] : to_low[1]) + (c & 4 ? to_high[2] : to_low[2]);
             if (d2 < depth2) near = static_cast<std::uint8_t>(near | 1 << c);
         }
         const std::size_t count = tissues_[v].count;
@@ -190,7 +192,7 @@ private:
 
     Box reach(const Triangle& t) const
     {
-        constexpr double slack = 1e-9;  // so that points on a cube's boundary are filed in every cube they touch
+        constexpr double slack = 1e-9; // so that points on a cube's boundary are filed in every cube they touch
         Box box = reach(t[0]);
         for (int k = 1; k < 3; ++k) {
             const Box b = reach(t[k]);
@@ -236,7 +238,8 @@ private:
             const auto r = cells_of(t);
             for (std::size_t k = r[2]; k <= r[5]; ++k)
                 for (std::size_t j = r[1]; j <= r[4]; ++j)
-                    for (std::size_t i = r[0]; i <= r[3]; ++i) filed[next[cube_index(g, i, j, k)]++] = static_cast<std::uint32_t>(t);
+                    for (std::size_t i = r[0]; i <= r[3]; ++i)
+                        filed[next[cube_index(g, i, j, k)]++] = static_cast<std::uint32_t>(t);
         }
         next.clear();
         next.shrink_to_fit();
@@ -301,7 +304,8 @@ private:
     {
         const Triangle& tri = net_.triangles[t];
         const TriangleCorners now = world_corners(tri, net_.positions), before = world_corners(tri, start_);
-        const Vec3 n1 = cross(now[1] - now[0], now[2] - now[0]), n0 = cross(before[1] - before[0], before[2] - before[0]);
+        const Vec3 n1 = cross(now[1] - now[0], now[2] - now[0]),
+                   n0 = cross(before[1] - before[0], before[2] - before[0]);
         if (dot(n1, n0) < cos_tilt_ * norm(n1) * norm(n0)) return true;
         const double cosine = smallest_angle_cosine(now);
         return cosine > cos_min_angle_ && cosine > smallest_angle_cosine(before);
@@ -335,7 +339,7 @@ private:
     {
         const std::size_t vertex_count = net_.positions.size();
         std::vector<char> moved(vertex_count, 0), dirty(vertex_count, 0), seen(net_.triangles.size(), 0);
-        std::vector<std::uint32_t> changed;  // vertices whose surroundings are to be judged
+        std::vector<std::uint32_t> changed; // vertices whose surroundings are to be judged
         for (std::uint32_t v = 0; v < vertex_count; ++v)
             if (net_.positions[v] != start_[v]) moved[v] = 1, changed.push_back(v);
         std::size_t put_back = 0;
@@ -391,8 +395,9 @@ private:
                         ++put_back;
                     }
             if (changed.empty() && !offenders.empty())
-                throw AlgorithmError("surface nets smoothing: an offending triangle has no moved vertex; this is a bug, "
-                                     "please report it with the image");
+                throw AlgorithmError(
+                    "surface nets smoothing: an offending triangle has no moved vertex; this is a bug, "
+                    "please report it with the image");
         }
         return put_back;
     }
@@ -401,20 +406,20 @@ private:
     NetSmoothOptions options_;
     double cos_tilt_, cos_min_angle_;
     Mat3 to_world_{};
-    Rows stars_;     ///< triangles per vertex
+    Rows stars_; ///< triangles per vertex
     StarSheets sheets_;
-    Rows links_;     ///< the vertices each movable vertex is smoothed towards
-    Rows partners_;  ///< per triangle: the triangles sharing no vertex it could meet
+    Rows links_;    ///< the vertices each movable vertex is smoothed towards
+    Rows partners_; ///< per triangle: the triangles sharing no vertex it could meet
     std::vector<char> movable_;
-    Rows junction_links_;  ///< per vertex: its neighbours of larger index across junction edges
+    Rows junction_links_; ///< per vertex: its neighbours of larger index across junction edges
     struct Tissues {
         std::array<Label, 4> labels{};
         std::size_t count = 0;
     };
     std::vector<Tissues> tissues_;
-    std::vector<std::array<std::uint8_t, 4>> masks_;  ///< see build_evidence()
-    std::vector<Vec3> start_;  ///< positions at the start of the current run of pairs
-    std::vector<Vec3> spare_;  ///< the other buffer of the Jacobi steps
+    std::vector<std::array<std::uint8_t, 4>> masks_; ///< see build_evidence()
+    std::vector<Vec3> start_;                        ///< positions at the start of the current run of pairs
+    std::vector<Vec3> spare_;                        ///< the other buffer of the Jacobi steps
     std::size_t movable_count_ = 0, candidate_pairs_ = 0, refused_by_image_ = 0, moves_ = 0;
 };
 
@@ -422,7 +427,7 @@ private:
 
 std::size_t vertices_outside_boxes(const SurfaceNet& net, double margin_voxels)
 {
-    constexpr double slack = 1e-9;  // rounding of the clamp
+    constexpr double slack = 1e-9; // rounding of the clamp
     std::size_t outside = 0;
     for (std::size_t v = 0; v < net.positions.size(); ++v) {
         const VertexBox& box = net.boxes[v];
@@ -443,8 +448,10 @@ void smooth_net(SurfaceNet& net, const LabelImage& image, const std::vector<Labe
     validate(options);
     NetSmoother(net, image, label_map, background, options).run(progress, report);
     if (const std::size_t outside = vertices_outside_boxes(net, options.margin_voxels))
-        throw AlgorithmError(concat("surface nets smoothing: ", outside, " vertices left their cubes, where the local "
-                                    "checks cannot see what they meet; this is a bug, please report it with the image"));
+        throw AlgorithmError(
+            concat("surface nets smoothing: ", outside,
+                   " vertices left their cubes, where the local "
+                   "checks cannot see what they meet; this is a bug, please report it with the image"));
 }
 
 } // namespace tissuemesh::surface::detail

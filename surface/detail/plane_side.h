@@ -23,11 +23,11 @@ inline int certain_side(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3&
 /// any): the vertices of one that the other lacks lie strictly on one side of the other's plane (certain
 /// in floating point: certain_side()). False when unsure; the exact test then decides. Most pairs of a
 /// smooth surface are decided here, at a fraction of the exact test's cost.
-inline bool certainly_apart(const Triangle& a, const TriangleCorners& pa, const Triangle& b,
-                                       const TriangleCorners& pb)
+inline bool certainly_apart(const Triangle& a, const TriangleCorners& pa, const Triangle& b, const TriangleCorners& pb)
 {
     // The corners of `q` missing from `of`, all certainly on one side of the plane of `plane`.
-    const auto off_plane = [](const TriangleCorners& plane, const Triangle& q, const TriangleCorners& pq, const Triangle& of) {
+    const auto off_plane = [](const TriangleCorners& plane, const Triangle& q, const TriangleCorners& pq,
+                              const Triangle& of) {
         int side = 0;
         for (int k = 0; k < 3; ++k) {
             if (q[k] == of[0] || q[k] == of[1] || q[k] == of[2]) continue;

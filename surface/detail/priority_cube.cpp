@@ -31,9 +31,8 @@ Label PriorityRule::top_label(const std::array<Label, 8>& corners) const
     for (const Label label : corners) {
         int count = 0;
         for (const Label other : corners) count += other == label;
-        const bool better = rank(label) != rank(best)
-                                ? rank(label) > rank(best)
-                                : (count != best_count ? count > best_count : label < best);
+        const bool better = rank(label) != rank(best) ? rank(label) > rank(best)
+                                                      : (count != best_count ? count > best_count : label < best);
         if (best_count == 0 || better) best = label, best_count = count;
     }
     return best;
@@ -83,7 +82,7 @@ CubePlan PriorityRule::plan(const std::array<Label, 8>& corners) const
         any_anti = any_anti || plan.anti[f];
     }
     plan.centre = top_label(corners);
-    if (rank(plan.centre) == unlisted) return plan;  // no listed tissue: no face can be anti either
+    if (rank(plan.centre) == unlisted) return plan; // no listed tissue: no face can be anti either
     // Split when the top tissue's corners are not already joined by the cube's Kuhn edges (pairs of
     // corners one of which is a subset of the other), or when a face needs its other diagonal.
     int reached = 0, first = -1;

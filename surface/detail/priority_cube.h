@@ -17,7 +17,12 @@ namespace tissuemesh::surface::detail {
 /// c00 is the face's lowest corner and c11 its highest, so c00-c11 is the Kuhn diagonal and c10-c01 the
 /// other one.
 constexpr std::array<std::array<int, 4>, 6> cube_faces{{
-    {0, 2, 6, 4}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 5, 7, 6},
+    {0, 2, 6, 4},
+    {1, 3, 7, 5},
+    {0, 1, 5, 4},
+    {2, 3, 7, 6},
+    {0, 1, 3, 2},
+    {4, 5, 7, 6},
 }};
 
 /// A tetrahedron of a cube as cube vertices: corners 0-7 (bit 0: +x, bit 1: +y, bit 2: +z) and the centre, 8.
@@ -28,14 +33,19 @@ using CubeTet = std::array<int, 4>;
 /// non-negative grid direction. The tetrahedron holding a point of the cube is the one whose axes, in chain
 /// order, are the point's axes by decreasing fraction.
 constexpr std::array<CubeTet, 6> kuhn_tets{{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+    {0, 1, 3, 7},
+    {0, 1, 5, 7},
+    {0, 2, 3, 7},
+    {0, 2, 6, 7},
+    {0, 4, 5, 7},
+    {0, 4, 6, 7},
 }};
 
 /// How one cube is tetrahedralized.
 struct CubePlan {
-    bool split = false;          ///< 12 tetrahedra around the cube centre instead of the 6 Kuhn ones
-    std::array<bool, 6> anti{};  ///< face f (cube_faces order) uses its c10-c01 diagonal
-    Label centre = 0;            ///< label of the centre point (meaningful when split)
+    bool split = false;         ///< 12 tetrahedra around the cube centre instead of the 6 Kuhn ones
+    std::array<bool, 6> anti{}; ///< face f (cube_faces order) uses its c10-c01 diagonal
+    Label centre = 0;           ///< label of the centre point (meaningful when split)
 };
 
 /// The tetrahedra of a cube: tets[0 .. count).

@@ -38,7 +38,8 @@ public:
     {
         std::vector<CompactBox> boxes(input.triangle_count());
         std::vector<std::uint32_t> ids(input.triangle_count());
-        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) boxes[t] = compact(bounding_box(corners(t))), ids[t] = t;
+        for (std::uint32_t t = 0; t < input.triangle_count(); ++t)
+            boxes[t] = compact(bounding_box(corners(t))), ids[t] = t;
         triangles_ = BoxIndex(boxes, ids);
         std::map<std::pair<std::uint32_t, std::uint32_t>, int> count;
         for (const Triangle& t : input.triangles)
@@ -102,7 +103,8 @@ private:
     /// the box of half-width `reach` around p (p when none). The search box grows from a quarter cell until
     /// it holds the nearest point found (then nothing outside it can be nearer) or reaches `reach`: the same
     /// answer as a search of the whole reach at once, at the cost of the few items near p.
-    template <class Closest> Vec3 nearest(const BoxIndex& index, const Vec3& p, double reach, Closest closest) const
+    template <class Closest>
+    Vec3 nearest(const BoxIndex& index, const Vec3& p, double reach, Closest closest) const
     {
         for (double r = std::min(reach, 0.25 * cell_mm_);; r = std::min(reach, 2 * r)) {
             Vec3 best = p;
@@ -111,7 +113,8 @@ private:
             index.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t i) {
                 if (const std::optional<Vec3> q = closest(i, best_distance)) {
                     const double d = distance(p, *q);
-                    if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
+                    if (d < best_distance || (d == best_distance && i < best_item))
+                        best_distance = d, best = *q, best_item = i;
                 }
             });
             if (best_distance <= r || r >= reach) return best;
@@ -120,8 +123,8 @@ private:
 
     const InterfaceComplex& input_;
     double cell_mm_;
-    BoxIndex triangles_;  ///< the input's triangles by their boxes
-    BoxIndex segments_;   ///< its junction edges by their boxes
+    BoxIndex triangles_; ///< the input's triangles by their boxes
+    BoxIndex segments_;  ///< its junction edges by their boxes
     std::vector<std::pair<std::uint32_t, std::uint32_t>> junction_;
 };
 

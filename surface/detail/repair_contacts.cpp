@@ -40,17 +40,19 @@ public:
             ++log_.report().rounds;
             // Against terraced (voxel) surfaces a point just past the other side is not enough: the margin
             // doubles each round, up to an edge length.
-            margin_mm_ = std::min(0.55 * options_.gap_mm + 0.02 * edge_mm_ * std::pow(2.0, static_cast<double>(std::min<std::size_t>(round, 6))),
-                                  std::max(edge_mm_, 0.55 * options_.gap_mm));
+            margin_mm_ =
+                std::min(0.55 * options_.gap_mm +
+                             0.02 * edge_mm_ * std::pow(2.0, static_cast<double>(std::min<std::size_t>(round, 6))),
+                         std::max(edge_mm_, 0.55 * options_.gap_mm));
             move_apart(contacts, crossings, ring);
             contacts = of_kind(find_contacts(editor_, crossings ? 0 : options_.gap_mm), crossings);
             if (contacts.size() < best) best = contacts.size(), stalled = 0;
             else if (++stalled >= 2) ring = std::min<std::size_t>(ring + 1, 4), stalled = 0;
             const EditCounters& n = editor_.counters();
-            progress.debug("repair", concat(crossings ? "intersections" : "near-contacts", " left after round ",
-                                            round + 1, ": ", contacts.size(), " (edits made ", n.accepted,
-                                            ", refused: shape ", n.shape, ", tilt ", n.normal, ", intersection ",
-                                            n.intersection, ", gap ", n.gap, ")"));
+            progress.debug("repair",
+                           concat(crossings ? "intersections" : "near-contacts", " left after round ", round + 1, ": ",
+                                  contacts.size(), " (edits made ", n.accepted, ", refused: shape ", n.shape, ", tilt ",
+                                  n.normal, ", intersection ", n.intersection, ", gap ", n.gap, ")"));
         }
         log_resolved(first, contacts, crossings);
         return contacts;
@@ -83,7 +85,8 @@ private:
             const Vec3& p = editor_.position(v);
             const Vec3 q = closest_point_on_triangle(p, other);
             // Grow the tissue both patches bound (the layer between them); otherwise leave the other side.
-            const Vec3 away = shared.size() == 1 ? (s1.from == shared[0] ? n : -1.0 * n) : (dot(p - q, n) >= 0 ? n : -1.0 * n);
+            const Vec3 away =
+                shared.size() == 1 ? (s1.from == shared[0] ? n : -1.0 * n) : (dot(p - q, n) >= 0 ? n : -1.0 * n);
             Push& push = pushes[v];
             push.direction = push.direction + away;
             push.distance_mm = std::max(push.distance_mm, std::max(margin - dot(p - q, away), 0.25 * margin));
@@ -170,7 +173,8 @@ private:
             if (!editor_.triangle_alive(t)) continue;
             const Box3 box = bounding_box(editor_.corners(t));
             for (int i = 0; i < 3; ++i)
-                bounds.low[i] = std::min(bounds.low[i], box.low[i]), bounds.high[i] = std::max(bounds.high[i], box.high[i]);
+                bounds.low[i] = std::min(bounds.low[i], box.low[i]),
+                bounds.high[i] = std::max(bounds.high[i], box.high[i]);
         }
         grid_ = TriangleGrid(bounds, 2 * edge_mm_, editor_.triangle_slots());
         for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t)
@@ -193,7 +197,8 @@ private:
                     if (x == s2.from || x == s2.to) shared.push_back(x);
                 if (shared.size() != 1) continue;
                 for (const std::uint32_t v : editor_.triangle(t1))
-                    if (editor_.kind(v) != VertexKind::corner) seeds[{s1.from, s1.to, s2.from, s2.to, shared[0]}].insert(v);
+                    if (editor_.kind(v) != VertexKind::corner)
+                        seeds[{s1.from, s1.to, s2.from, s2.to, shared[0]}].insert(v);
             }
         const double margin = margin_mm_, reach = 4 * edge_mm_;
         bool moved = false;
@@ -212,7 +217,7 @@ private:
                 const double d = q ? dot(p - q->first, away) : margin;
                 const bool beyond = q && d < 0 && std::abs(dot(p - q->first, q->second)) > 0.5 * distance(p, q->first);
                 const std::optional<Vec3> by_image = where_image_allows(u, away);
-                if (!beyond && !by_image && !start.contains(u)) continue;  // on the right side: the region ends here
+                if (!beyond && !by_image && !start.contains(u)) continue; // on the right side: the region ends here
                 const Vec3 target = by_image ? *by_image : p + std::max(margin - d, 0.25 * margin) * away;
                 if (!allowed(u, target)) continue;
                 group.push_back(u);
@@ -237,7 +242,8 @@ private:
         for (const auto& [v, push] : pushes) {
             const double length = norm(push.direction);
             const double step = std::min(push.distance_mm, 0.5 * edge_mm_);
-            if (length == 0 || !move_towards(v, editor_.position(v) + (step / length) * push.direction)) smooth.insert(v);
+            if (length == 0 || !move_towards(v, editor_.position(v) + (step / length) * push.direction))
+                smooth.insert(v);
         }
         // A region that resists grows by rings of neighbours, smoothed so that the pushed vertices can follow.
         std::set<std::uint32_t> region = smooth;
@@ -260,11 +266,13 @@ private:
             const TriangleCorners a = editor_.corners(c.a), b = editor_.corners(c.b);
             const Vec3 where = 0.5 * ((1.0 / 3.0) * (a[0] + a[1] + a[2]) + (1.0 / 3.0) * (b[0] + b[1] + b[2]));
             // One action per place: pairs within two edge lengths of a logged one are the same region.
-            if (std::any_of(logged.begin(), logged.end(), [&](const Vec3& p) { return distance(p, where) < 2 * edge_mm_; }))
+            if (std::any_of(logged.begin(), logged.end(),
+                            [&](const Vec3& p) { return distance(p, where) < 2 * edge_mm_; }))
                 continue;
             logged.push_back(where);
             const LabelPair sa = editor_.side(c.a), sb = editor_.side(c.b);
-            log_.add(crossings ? RepairKind::intersection : RepairKind::near_contact, where, {sa.from, sa.to, sb.from, sb.to},
+            log_.add(crossings ? RepairKind::intersection : RepairKind::near_contact, where,
+                     {sa.from, sa.to, sb.from, sb.to},
                      concat(crossings ? "moved apart crossing " : "moved apart touching ", log_.patch(sa), " and ",
                             log_.patch(sb), " triangles"));
         }
@@ -274,10 +282,10 @@ private:
     const SeparateOptions& options_;
     RepairLog& log_;
     double edge_mm_;
-    double margin_mm_ = 0;  ///< how far past the other patch a crossing vertex goes, this round
+    double margin_mm_ = 0; ///< how far past the other patch a crossing vertex goes, this round
     std::optional<VoxelEvidence> evidence_;
-    TriangleGrid grid_;                  ///< all triangles, rebuilt each round of region moves
-    std::vector<std::uint32_t> nearby_;  ///< scratch for grid queries
+    TriangleGrid grid_;                 ///< all triangles, rebuilt each round of region moves
+    std::vector<std::uint32_t> nearby_; ///< scratch for grid queries
 };
 
 } // namespace
@@ -293,7 +301,8 @@ void collapse_degenerate_triangles(ComplexEditor& editor, RepairLog& log)
         // the other collapses, shortest edge first (a needle of two nearly coincident vertices).
         int middle = 0;
         for (int k = 1; k < 3; ++k)
-            if (distance(c[(k + 1) % 3], c[(k + 2) % 3]) > distance(c[(middle + 1) % 3], c[(middle + 2) % 3])) middle = k;
+            if (distance(c[(k + 1) % 3], c[(k + 2) % 3]) > distance(c[(middle + 1) % 3], c[(middle + 2) % 3]))
+                middle = k;
         std::vector<std::tuple<bool, double, std::pair<std::uint32_t, std::uint32_t>>> edges;
         for (int k = 0; k < 3; ++k) {
             const double length = distance(c[k], c[(k + 1) % 3]);
@@ -326,15 +335,14 @@ void separate_surfaces(ComplexEditor& editor, const SeparateOptions& options, Re
     const std::vector<Contact> crossing = separator.run(true, progress);
     if (!crossing.empty()) {
         const TriangleCorners a = editor.corners(crossing.front().a), b = editor.corners(crossing.front().b);
-        throw AlgorithmError(concat("repair: ", crossing.size(), " intersecting triangle pair",
-                                    crossing.size() == 1 ? "" : "s", " remain after ", options.max_rounds,
-                                    " rounds of local moves, first between ", log.patch(editor.side(crossing.front().a)),
-                                    " and ", log.patch(editor.side(crossing.front().b)), " near ",
-                                    concat('(', format_mm(intersection_point(a, b)[0]), ", ",
-                                           format_mm(intersection_point(a, b)[1]), ", ",
-                                           format_mm(intersection_point(a, b)[2]), ") mm"),
-                                    "; the surfaces cross over more than local moves can undo: re-extract the "
-                                    "interfaces from the label image with tm-extract"));
+        throw AlgorithmError(concat(
+            "repair: ", crossing.size(), " intersecting triangle pair", crossing.size() == 1 ? "" : "s",
+            " remain after ", options.max_rounds, " rounds of local moves, first between ",
+            log.patch(editor.side(crossing.front().a)), " and ", log.patch(editor.side(crossing.front().b)), " near ",
+            concat('(', format_mm(intersection_point(a, b)[0]), ", ", format_mm(intersection_point(a, b)[1]), ", ",
+                   format_mm(intersection_point(a, b)[2]), ") mm"),
+            "; the surfaces cross over more than local moves can undo: re-extract the "
+            "interfaces from the label image with tm-extract"));
     }
     if (options.gap_mm > 0) {
         EditLimits limits = editor.limits();

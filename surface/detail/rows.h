@@ -9,7 +9,7 @@
 namespace tissuemesh::surface::detail {
 
 struct Rows {
-    std::vector<std::uint32_t> offsets{0};  ///< #rows + 1
+    std::vector<std::uint32_t> offsets{0}; ///< #rows + 1
     std::vector<std::uint32_t> items;
     std::size_t size() const { return offsets.size() - 1; }
     std::span<const std::uint32_t> operator[](std::size_t i) const

@@ -34,7 +34,7 @@ std::vector<Slab> cut_into_slabs(const InterfaceComplex& complex, std::size_t co
     double from = -infinity;
     for (std::size_t k = 1; k <= count; ++k) {
         const double to = k == count || starts.empty() ? infinity : starts[k * starts.size() / count];
-        if (to > from) slabs.push_back({axis, from, to});  // equal cuts (many equal starts) merge
+        if (to > from) slabs.push_back({axis, from, to}); // equal cuts (many equal starts) merge
         from = std::max(from, to);
     }
     if (slabs.empty() || slabs.back().high != infinity) slabs.push_back({axis, from, infinity});
@@ -115,7 +115,8 @@ InterfaceComplex merge_slabs(const InterfaceComplex& whole, const std::vector<Ed
         const InterfaceComplex& source = slab.edited ? *slab.edited : whole;
         // New vertices of the piece go after the whole's (a vertex a piece moved or made lies inside its
         // fence, so no other piece holds it).
-        std::vector<std::uint32_t> added(slab.edited ? source.vertices.size() : 0, std::numeric_limits<std::uint32_t>::max());
+        std::vector<std::uint32_t> added(slab.edited ? source.vertices.size() : 0,
+                                         std::numeric_limits<std::uint32_t>::max());
         for (std::uint32_t t = 0; t < source.triangles.size(); ++t) {
             if (!slab.slab.owns(span(source, t, slab.slab.axis).first)) continue;
             Triangle tri = source.triangles[t];

@@ -76,7 +76,7 @@ void edit_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs,
 struct EditedSlab {
     Slab slab;
     std::optional<InterfaceComplex> edited;
-    std::vector<std::uint32_t> from_vertex;  ///< the piece's (SlabPiece::from_vertex)
+    std::vector<std::uint32_t> from_vertex; ///< the piece's (SlabPiece::from_vertex)
 };
 
 /// The whole complex again: each triangle from the slab that owns it (slabs of `slabs` cover the axis),

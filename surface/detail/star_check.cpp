@@ -19,7 +19,6 @@ std::pair<std::uint32_t, std::uint32_t> opposite(const Triangle& t, std::uint32_
     return {t[(k + 1) % 3], t[(k + 2) % 3]};
 }
 
-
 void pairwise(std::span<const std::uint32_t> first, std::span<const std::uint32_t> second, bool same,
               const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
               std::vector<std::uint32_t>& offenders)
@@ -117,16 +116,17 @@ bool order_sheets(std::uint32_t v, std::span<const std::uint32_t> star, const st
             uses += (a[j] == b[i]) + (b[j] == b[i]);
             if (j != i && a[j] == b[i]) follower = static_cast<int>(j);
         }
-        if (uses != 2) continue;  // a junction edge (or an open one): the fan ends here
-        if (follower < 0) return false;  // the other triangle on vb runs the same way: not a fan
+        if (uses != 2) continue;        // a junction edge (or an open one): the fan ends here
+        if (follower < 0) return false; // the other triangle on vb runs the same way: not a fan
         next[i] = static_cast<std::int8_t>(follower);
         previous[follower] = static_cast<std::int8_t>(i);
     }
     std::uint64_t used = 0;
     for (std::size_t s = 0; s < k; ++s) {
         if (used >> s & 1) continue;
-        std::size_t begin = s;  // back up to the start of the fan (or all the way round)
-        for (std::size_t steps = 0; steps < k && previous[begin] >= 0 && static_cast<std::size_t>(previous[begin]) != s; ++steps)
+        std::size_t begin = s; // back up to the start of the fan (or all the way round)
+        for (std::size_t steps = 0; steps < k && previous[begin] >= 0 && static_cast<std::size_t>(previous[begin]) != s;
+             ++steps)
             begin = static_cast<std::size_t>(previous[begin]);
         if (starts.size() >= 32) return false;
         starts.push_back(static_cast<std::uint32_t>(order.size()));
@@ -246,7 +246,8 @@ void star_offenders(std::uint32_t v, const StarSheets& sheets, const std::vector
         const bool closed = s < max_sheets && (sheets.closed_bits[v] >> s & 1);
         if (!fan_is_embedded(v, sheet(s), closed, positions, triangles))
             pairwise(sheet(s), sheet(s), true, positions, triangles, offenders);
-        for (std::size_t r = s + 1; r < count; ++r) pairwise(sheet(s), sheet(r), false, positions, triangles, offenders);
+        for (std::size_t r = s + 1; r < count; ++r)
+            pairwise(sheet(s), sheet(r), false, positions, triangles, offenders);
     }
 }
 

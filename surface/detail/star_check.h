@@ -19,10 +19,10 @@ namespace tissuemesh::surface::detail {
 /// The triangles around every vertex, as fans ("sheets"): triangles of one star that share an edge of
 /// multiplicity two (not a junction edge) are in one sheet, in the order they turn about the vertex.
 struct StarSheets {
-    Rows stars;   ///< per vertex: its triangles, sheet after sheet, each sheet in turning order
-    Rows sheets;  ///< per vertex: where each sheet starts in its row of `stars` (offsets within the row)
-    std::vector<std::uint8_t> closed_bits;  ///< per vertex: bit s set when sheet s closes on itself (first 8)
-    std::vector<char> irregular;            ///< per vertex: its star is not a set of fans (tested pairwise)
+    Rows stars;  ///< per vertex: its triangles, sheet after sheet, each sheet in turning order
+    Rows sheets; ///< per vertex: where each sheet starts in its row of `stars` (offsets within the row)
+    std::vector<std::uint8_t> closed_bits; ///< per vertex: bit s set when sheet s closes on itself (first 8)
+    std::vector<char> irregular;           ///< per vertex: its star is not a set of fans (tested pairwise)
 };
 
 /// Orders the triangles `star` (all around v) into fans: `order` the triangles sheet after sheet, `starts`

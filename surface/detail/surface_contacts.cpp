@@ -73,7 +73,8 @@ std::vector<Contact> find_contacts(const ComplexEditor& editor, double gap_mm)
             bounds.low[i] = std::min(bounds.low[i], box.low[i]), bounds.high[i] = std::max(bounds.high[i], box.high[i]);
     }
     std::vector<Contact> contacts;
-    for (const auto& [a, b] : find_intersecting_pairs(editor.positions(), triangles, alive)) contacts.push_back({a, b, true});
+    for (const auto& [a, b] : find_intersecting_pairs(editor.positions(), triangles, alive))
+        contacts.push_back({a, b, true});
     if (gap_mm <= 0 || alive.empty()) return contacts;
     const std::set<std::pair<std::uint32_t, std::uint32_t>> crossing = [&] {
         std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
@@ -89,11 +90,13 @@ std::vector<Contact> find_contacts(const ComplexEditor& editor, double gap_mm)
         grid.query(box, nearby);
         std::sort(nearby.begin(), nearby.end());
         for (const std::uint32_t u : nearby) {
-            if (u <= t || same_patch(editor.side(t), editor.side(u)) || shares_vertex(editor.triangle(t), editor.triangle(u)))
+            if (u <= t || same_patch(editor.side(t), editor.side(u)) ||
+                shares_vertex(editor.triangle(t), editor.triangle(u)))
                 continue;
             const TriangleCorners cu = editor.corners(u);
             if (!boxes_overlap(box, bounding_box(cu)) || crossing.contains({t, u})) continue;
-            if (vertex_face_distance(ct, cu) < gap_mm && !joined_by_edge(editor, editor.triangle(t), editor.triangle(u)))
+            if (vertex_face_distance(ct, cu) < gap_mm &&
+                !joined_by_edge(editor, editor.triangle(t), editor.triangle(u)))
                 contacts.push_back({t, u, false});
         }
     }

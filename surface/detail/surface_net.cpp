@@ -76,8 +76,8 @@ bool mergeable(const std::array<Label, 8>& corners, const CubePlan& plan)
 struct Fallback {
     std::array<std::size_t, 3> cube{};
     CubePlan plan;
-    std::uint32_t first_vertex = 0;  ///< vertex of its first mixed tetrahedron; the others follow in order
-    std::uint16_t mixed = 0;         ///< bit t: tetrahedron t is mixed
+    std::uint32_t first_vertex = 0; ///< vertex of its first mixed tetrahedron; the others follow in order
+    std::uint16_t mixed = 0;        ///< bit t: tetrahedron t is mixed
 };
 
 /// A vertex around an edge, with a point inside its wedge around the edge (half-voxel units) to order it by.
@@ -91,8 +91,8 @@ class NetBuilder {
 public:
     NetBuilder(const LabelImage& image, const std::vector<Label>& map, Label background,
                const std::map<Label, int>& priority)
-        : rule_(priority), background_(background),
-          padded_{image.dims()[0] + 2, image.dims()[1] + 2, image.dims()[2] + 2}
+        : rule_(priority),
+          background_(background), padded_{image.dims()[0] + 2, image.dims()[1] + 2, image.dims()[2] + 2}
     {
         net_.cube_grid = {padded_[0] - 1, padded_[1] - 1, padded_[2] - 1};
         const double cubes = static_cast<double>(net_.cube_grid[0]) * static_cast<double>(net_.cube_grid[1]) *
@@ -123,13 +123,20 @@ public:
     }
 
 private:
-    std::size_t padded(std::size_t i, std::size_t j, std::size_t k) const { return i + padded_[0] * (j + padded_[1] * k); }
-    std::uint32_t cube(const std::array<std::size_t, 3>& c) const { return cube_index(net_.cube_grid, c[0], c[1], c[2]); }
+    std::size_t padded(std::size_t i, std::size_t j, std::size_t k) const
+    {
+        return i + padded_[0] * (j + padded_[1] * k);
+    }
+    std::uint32_t cube(const std::array<std::size_t, 3>& c) const
+    {
+        return cube_index(net_.cube_grid, c[0], c[1], c[2]);
+    }
 
     std::array<Label, 8> corners(const std::array<std::size_t, 3>& c) const
     {
         std::array<Label, 8> labels{};
-        for (int v = 0; v < 8; ++v) labels[v] = labels_[padded(c[0] + (v & 1), c[1] + (v >> 1 & 1), c[2] + (v >> 2 & 1))];
+        for (int v = 0; v < 8; ++v)
+            labels[v] = labels_[padded(c[0] + (v & 1), c[1] + (v >> 1 & 1), c[2] + (v >> 2 & 1))];
         return labels;
     }
 
@@ -165,12 +172,14 @@ private:
                 for (std::size_t i = 0; i < g[0]; ++i) {
                     const std::array<std::size_t, 3> c{i, j, k};
                     const std::array<Label, 8> labels = corners(c);
-                    if (std::all_of(labels.begin() + 1, labels.end(), [&](Label l) { return l == labels[0]; })) continue;
+                    if (std::all_of(labels.begin() + 1, labels.end(), [&](Label l) { return l == labels[0]; }))
+                        continue;
                     ++net_.mixed_cubes;
                     const CubePlan plan = rule_.active() ? rule_.plan(labels) : CubePlan{};
                     const std::uint32_t cell = cube(c);
                     if (mergeable(labels, plan)) {
-                        const Vec3 low{static_cast<double>(i) - 1, static_cast<double>(j) - 1, static_cast<double>(k) - 1};
+                        const Vec3 low{static_cast<double>(i) - 1, static_cast<double>(j) - 1,
+                                       static_cast<double>(k) - 1};
                         const VertexBox box{low, {low[0] + 1, low[1] + 1, low[2] + 1}};
                         const Half centre = half_point(c, centre_vertex);
                         state_[cell] = add_vertex({static_cast<double>(centre[0]), static_cast<double>(centre[1]),
@@ -185,7 +194,8 @@ private:
                         bool mixed = false;
                         for (const int v : tets.tets[t]) {
                             const Half h = half_point(c, v);
-                            sum = sum + Vec3{static_cast<double>(h[0]), static_cast<double>(h[1]), static_cast<double>(h[2])};
+                            sum = sum +
+                                  Vec3{static_cast<double>(h[0]), static_cast<double>(h[1]), static_cast<double>(h[2])};
                             mixed = mixed || label_of(labels, plan, v) != label_of(labels, plan, tets.tets[t][0]);
                         }
                         if (!mixed) continue;
@@ -235,7 +245,7 @@ private:
     /// The polygon of the units around edge a-b, whose ends carry labels la and lb.
     void emit_polygon(const Half& a, const Half& b, Label la, Label lb)
     {
-        if (units_.size() < 3) return;  // the tetrahedra around the edge all merged into one or two vertices
+        if (units_.size() < 3) return; // the tetrahedra around the edge all merged into one or two vertices
         const Vec3 d{double(b[0] - a[0]), double(b[1] - a[1]), double(b[2] - a[2])};
         int least = 0;
         for (int axis = 1; axis < 3; ++axis)
@@ -246,7 +256,7 @@ private:
         const Vec3 origin{double(a[0]), double(a[1]), double(a[2])};
         for (Unit& unit : units_) {
             const Vec3 r = unit.point - origin;
-            unit.point[0] = std::atan2(dot(r, w), dot(r, u));  // the angle around the edge, counterclockwise about d
+            unit.point[0] = std::atan2(dot(r, w), dot(r, u)); // the angle around the edge, counterclockwise about d
         }
         std::sort(units_.begin(), units_.end(), [](const Unit& x, const Unit& y) { return x.point[0] < y.point[0]; });
         // Counterclockwise about a -> b, the polygon's normal points from a's label into b's.
@@ -343,10 +353,10 @@ private:
     PriorityRule rule_;
     Label background_;
     std::array<std::size_t, 3> padded_;
-    std::vector<Label> labels_;         ///< the padded grid's labels (mapped)
-    std::vector<std::uint32_t> state_;  ///< per cube: no_surface, its vertex, or fallback_flag | fallback index
+    std::vector<Label> labels_;        ///< the padded grid's labels (mapped)
+    std::vector<std::uint32_t> state_; ///< per cube: no_surface, its vertex, or fallback_flag | fallback index
     std::vector<Fallback> fallbacks_;
-    std::vector<Unit> units_;           ///< scratch: the vertices around the current edge
+    std::vector<Unit> units_; ///< scratch: the vertices around the current edge
     SurfaceNet net_;
 };
 

@@ -37,22 +37,22 @@ struct VertexBox {
 
 /// What a vertex of the net stands for.
 enum class NetVertexKind : std::uint8_t {
-    cube,         ///< a whole grid cube (its box: the cube)
-    tetrahedron,  ///< a mixed tetrahedron of a cube that could not be merged (fixed at its centroid)
-    edge,         ///< the centre of a fanned polygon, at its edge's midpoint (fixed)
+    cube,        ///< a whole grid cube (its box: the cube)
+    tetrahedron, ///< a mixed tetrahedron of a cube that could not be merged (fixed at its centroid)
+    edge,        ///< the centre of a fanned polygon, at its edge's midpoint (fixed)
 };
 
 /// The surface net in image index space (voxel centres at integer indices).
 struct SurfaceNet {
-    std::vector<Vec3> positions;         ///< #V
-    std::vector<VertexBox> boxes;        ///< #V: where each vertex may go
-    std::vector<NetVertexKind> kinds;    ///< #V
-    std::vector<std::uint32_t> cells;    ///< #V: index of the grid cube the vertex lies in (see cube_index)
-    std::vector<Triangle> triangles;     ///< #T, oriented in index space (right-hand normal from `from` to `to`)
-    std::vector<LabelPair> sides;        ///< #T
-    std::array<std::size_t, 3> cube_grid{0, 0, 0};  ///< cubes per axis: image dims + 1
-    std::size_t fallback_cubes = 0;      ///< mixed cubes kept as their tetrahedra
-    std::size_t mixed_cubes = 0;         ///< cubes whose corner labels differ
+    std::vector<Vec3> positions;      ///< #V
+    std::vector<VertexBox> boxes;     ///< #V: where each vertex may go
+    std::vector<NetVertexKind> kinds; ///< #V
+    std::vector<std::uint32_t> cells; ///< #V: index of the grid cube the vertex lies in (see cube_index)
+    std::vector<Triangle> triangles;  ///< #T, oriented in index space (right-hand normal from `from` to `to`)
+    std::vector<LabelPair> sides;     ///< #T
+    std::array<std::size_t, 3> cube_grid{0, 0, 0}; ///< cubes per axis: image dims + 1
+    std::size_t fallback_cubes = 0;                ///< mixed cubes kept as their tetrahedra
+    std::size_t mixed_cubes = 0;                   ///< cubes whose corner labels differ
 };
 
 /// Cube (i, j, k) spans image indices [i - 1, i] x [j - 1, j] x [k - 1, k]; its index in SurfaceNet::cells.

@@ -41,10 +41,9 @@ double segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Ve
     const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
     const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r), c = dot(d1, r), b = dot(d1, d2);
     const double denominator = a * e - b * b;
-    double best = std::min({distance(p0, closest_point_on_segment(p0, q0, q1)),
-                            distance(p1, closest_point_on_segment(p1, q0, q1)),
-                            distance(q0, closest_point_on_segment(q0, p0, p1)),
-                            distance(q1, closest_point_on_segment(q1, p0, p1))});
+    double best = std::min(
+        {distance(p0, closest_point_on_segment(p0, q0, q1)), distance(p1, closest_point_on_segment(p1, q0, q1)),
+         distance(q0, closest_point_on_segment(q0, p0, p1)), distance(q1, closest_point_on_segment(q1, p0, p1))});
     if (a > 0 && e > 0 && denominator > 1e-18 * a * e) {
         const double s = std::clamp((b * f - c * e) / denominator, 0.0, 1.0);
         const double t = std::clamp((b * s + f) / e, 0.0, 1.0);
@@ -60,8 +59,7 @@ double triangle_distance(const TriangleCorners& a, const TriangleCorners& b)
     for (int k = 0; k < 3; ++k) {
         best = std::min(best, distance(a[k], closest_point_on_triangle(a[k], b)));
         best = std::min(best, distance(b[k], closest_point_on_triangle(b[k], a)));
-        for (int m = 0; m < 3; ++m)
-            best = std::min(best, segment_distance(a[k], a[(k + 1) % 3], b[m], b[(m + 1) % 3]));
+        for (int m = 0; m < 3; ++m) best = std::min(best, segment_distance(a[k], a[(k + 1) % 3], b[m], b[(m + 1) % 3]));
     }
     return best;
 }

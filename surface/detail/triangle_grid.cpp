@@ -49,7 +49,8 @@ TriangleGrid::TriangleGrid(const Box3& bounds, double cell_mm, std::size_t trian
     const auto count_for = [&](double cell) {
         std::array<std::int64_t, 3> counts{};
         for (int i = 0; i < 3; ++i)
-            counts[i] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds.high[i] - bounds.low[i]) / cell)));
+            counts[i] = std::max<std::int64_t>(
+                1, static_cast<std::int64_t>(std::ceil((bounds.high[i] - bounds.low[i]) / cell)));
         return counts;
     };
     counts_ = count_for(cell_mm_);
@@ -71,7 +72,8 @@ std::array<std::int64_t, 3> TriangleGrid::cell_of(const Vec3& p) const
     return c;
 }
 
-template <class Visit> void TriangleGrid::for_cells(const Box3& box, Visit visit)
+template <class Visit>
+void TriangleGrid::for_cells(const Box3& box, Visit visit)
 {
     const auto low = cell_of(box.low), high = cell_of(box.high);
     for (std::int64_t k = low[2]; k <= high[2]; ++k)

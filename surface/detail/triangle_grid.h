@@ -45,26 +45,29 @@ public:
     /// Triangles whose cells overlap `box`, each once, in no particular order (boxes not compared).
     void query(const Box3& box, std::vector<std::uint32_t>& out);
     /// Calls visit(t) for every triangle of the cells `box` overlaps, repeats included. Reads only.
-    template <class Visit> void visit(const Box3& box, Visit visit) const
+    template <class Visit>
+    void visit(const Box3& box, Visit visit) const
     {
         const auto low = cell_of(box.low), high = cell_of(box.high);
         for (std::int64_t k = low[2]; k <= high[2]; ++k)
             for (std::int64_t j = low[1]; j <= high[1]; ++j)
                 for (std::int64_t i = low[0]; i <= high[0]; ++i)
-                    for (const std::uint32_t t : cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))])
+                    for (const std::uint32_t t :
+                         cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))])
                         visit(t);
     }
     double cell_mm() const { return cell_mm_; }
 
 private:
     std::array<std::int64_t, 3> cell_of(const Vec3& p) const;
-    template <class Visit> void for_cells(const Box3& box, Visit visit);
+    template <class Visit>
+    void for_cells(const Box3& box, Visit visit);
 
     Vec3 origin_{0, 0, 0};
     double cell_mm_ = 1;
     std::array<std::int64_t, 3> counts_{1, 1, 1};
     std::vector<std::vector<std::uint32_t>> cells_;
-    std::vector<std::uint32_t> seen_;  ///< per triangle slot: the last query that reported it
+    std::vector<std::uint32_t> seen_; ///< per triangle slot: the last query that reported it
     std::uint32_t query_id_ = 0;
 };
 

@@ -18,9 +18,12 @@ class VertexQueue {
 public:
     struct Entry {
         double cost = 0;
-        std::uint32_t v = 0;  ///< the vertex (the key: one entry per vertex)
-        std::uint32_t w = 0;  ///< payload, part of the order
-        bool operator<(const Entry& other) const { return std::tie(cost, v, w) < std::tie(other.cost, other.v, other.w); }
+        std::uint32_t v = 0; ///< the vertex (the key: one entry per vertex)
+        std::uint32_t w = 0; ///< payload, part of the order
+        bool operator<(const Entry& other) const
+        {
+            return std::tie(cost, v, w) < std::tie(other.cost, other.v, other.w);
+        }
     };
 
     bool empty() const { return heap_.empty(); }
@@ -100,7 +103,7 @@ private:
     }
 
     std::vector<Entry> heap_;
-    std::vector<std::uint32_t> where_;  ///< per vertex: its index in heap_, or none
+    std::vector<std::uint32_t> where_; ///< per vertex: its index in heap_, or none
 };
 
 } // namespace tissuemesh::surface::detail

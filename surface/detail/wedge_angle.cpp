@@ -61,8 +61,8 @@ double wedge_angle_deg(const Vec3& apex, const Vec3& a1, const Vec3& a2, const V
 {
     const Vec3 u1 = unit(a1 - apex), u2 = unit(a2 - apex), v1 = unit(b1 - apex), v2 = unit(b2 - apex);
     if (arcs_cross(u1, u2, v1, v2)) return 0;
-    const double closest = std::min({point_to_arc(v1, u1, u2), point_to_arc(v2, u1, u2), point_to_arc(u1, v1, v2),
-                                     point_to_arc(u2, v1, v2)});
+    const double closest = std::min(
+        {point_to_arc(v1, u1, u2), point_to_arc(v2, u1, u2), point_to_arc(u1, v1, v2), point_to_arc(u2, v1, v2)});
     return closest * degrees_per_radian;
 }
 

@@ -52,7 +52,7 @@ TEST(AssessHandCounted, SingleTetHistogramAndExactErrorVolume)
     EXPECT_EQ(a.error_volume_mm3[0], 1.25);
     EXPECT_EQ(a.total_error_volume_mm3, 1.25);
     EXPECT_EQ(a.sampled_tets, 0u);
-    EXPECT_NEAR(a.volume_mm3[0], 8.0 / 6.0, 1e-12);  // (2 mm)^3 / 6
+    EXPECT_NEAR(a.volume_mm3[0], 8.0 / 6.0, 1e-12); // (2 mm)^3 / 6
 }
 
 TEST(AssessHandCounted, PriorityWeightsFlipAFiftyFiftyTet)
@@ -156,7 +156,7 @@ TEST(AssessHandCounted, RegularTetShapeAndQualityKeyOrder)
     EXPECT_NEAR(clean.quality_key[0], 0.0, 1e-12);
     EXPECT_GT(clean.quality_key[1], 0.0);
     EXPECT_EQ(clean.worst_first, (std::vector<std::uint32_t>{1, 0}));
-    image.at(1, 1, 1) = 2;  // inside the regular tet (its centroid)
+    image.at(1, 1, 1) = 2; // inside the regular tet (its centroid)
     const Assessment dirty = assess_elements(mesh, image, {.shape_weight = 0.0});
     EXPECT_EQ(dirty.error_volume_mm3[0], 1.0);
     EXPECT_EQ(dirty.quality_key[0], 1.0) << "one misclassified voxel, shape weight 0";

@@ -41,10 +41,12 @@ TEST(AssessPhantom, DiceEqualsCheckMeshAndVoxelCountsAddUp)
     for (const auto& [label, stats] : check.tissues) {
         // Same counts, same formula: equal to the last bit.
         EXPECT_EQ(a.tissues.at(label).dice, stats.dice) << "tissue " << label;
-        EXPECT_NEAR(a.tissues.at(label).mesh_volume_mm3, stats.volume_mm3, 1e-9 * stats.volume_mm3) << "tissue " << label;
+        EXPECT_NEAR(a.tissues.at(label).mesh_volume_mm3, stats.volume_mm3, 1e-9 * stats.volume_mm3)
+            << "tissue " << label;
     }
     const std::vector<std::int32_t> owner = rasterize_tets(m.mesh, m.image);
-    const auto inside = static_cast<std::size_t>(std::count_if(owner.begin(), owner.end(), [](std::int32_t t) { return t >= 0; }));
+    const auto inside =
+        static_cast<std::size_t>(std::count_if(owner.begin(), owner.end(), [](std::int32_t t) { return t >= 0; }));
     std::size_t sum = 0, wrong = 0, binned = 0;
     for (std::size_t t = 0; t < m.mesh.tets.size(); ++t) {
         sum += a.voxel_count[t];
@@ -87,7 +89,8 @@ TEST(AssessPhantom, RelabelRestoresTheMajorityOfAScrambledMesh)
     const Meshed& m = junction();
     const Assessment original = assess_elements(m.mesh, m.image);
     TetMesh scrambled = m.mesh;
-    for (std::size_t t = 0; t < scrambled.tets.size(); t += 3) scrambled.tet_labels[t] = static_cast<Label>(1 + (t / 3) % 3);
+    for (std::size_t t = 0; t < scrambled.tets.size(); t += 3)
+        scrambled.tet_labels[t] = static_cast<Label>(1 + (t / 3) % 3);
     mark_interfaces(scrambled);
     const Assessment before = assess_elements(scrambled, m.image);
     EXPECT_GT(before.total_error_volume_mm3, original.total_error_volume_mm3);
@@ -109,7 +112,8 @@ TEST(AssessPhantom, RelabelRestoresTheMajorityOfAScrambledMesh)
     }
     EXPECT_LT(ties, scrambled.tets.size() / 100) << "ties are rare";
     const Assessment after = assess_elements(scrambled, m.image);
-    EXPECT_LE(after.total_error_volume_mm3, original.total_error_volume_mm3) << "the majority is the least error per tet";
+    EXPECT_LE(after.total_error_volume_mm3, original.total_error_volume_mm3)
+        << "the majority is the least error per tet";
 }
 
 } // namespace

@@ -69,7 +69,7 @@ TEST(KuhnRuleEncodedTwice, AssessSamplesAPrioritySplitCubeAsTheExtractionDoes)
     ASSERT_EQ(extracted, 1);
     const Assessment a = assess_elements(mesh, image, {.extract_priority = priority});
     ASSERT_EQ(a.sampled[0], 1);
-    EXPECT_EQ(a.majority[0], extracted);  // the old kuhn_label gave 2 here
+    EXPECT_EQ(a.majority[0], extracted); // the old kuhn_label gave 2 here
     EXPECT_GT(a.error_volume_mm3[0], 0.0);
 }
 

@@ -56,13 +56,14 @@ TEST(AssessCli, WritesCellDataAndSummary)
 {
     TempDir dir;
     write_inputs(dir);
-    const auto result = run_cli("tm-assess", {"-i", (dir / "cube.msh").string(), "--image", (dir / "cube.nii.gz").string(),
-                                              "-o", (dir / "out.vtu").string(), "--json", (dir / "s.json").string(), "-q"});
+    const auto result =
+        run_cli("tm-assess", {"-i", (dir / "cube.msh").string(), "--image", (dir / "cube.nii.gz").string(), "-o",
+                              (dir / "out.vtu").string(), "--json", (dir / "s.json").string(), "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const std::string vtu = read_text(dir / "out.vtu");
     EXPECT_NE(vtu.find("NumberOfCells=\"6\""), std::string::npos);
-    for (const char* field : {"tissue", "majority", "error_volume_mm3", "quality_key", "voxel_count", "min_dihedral_deg",
-                              "radius_edge_ratio"})
+    for (const char* field : {"tissue", "majority", "error_volume_mm3", "quality_key", "voxel_count",
+                              "min_dihedral_deg", "radius_edge_ratio"})
         EXPECT_NE(vtu.find(std::string("Name=\"") + field + "\""), std::string::npos) << field;
     const nlohmann::json s = read_json(dir / "s.json");
     EXPECT_EQ(s["voxels_inside"].get<int>(), 64);
@@ -81,8 +82,16 @@ TEST(AssessCli, RelabelWritesTheMajorityMeshWithRebuiltInterfaces)
     TempDir dir;
     write_inputs(dir);
     auto relabel = [&](const std::string& out, const std::vector<std::string>& extra) {
-        std::vector<std::string> args{"-i", (dir / "cube.msh").string(), "--image", (dir / "cube.nii.gz").string(), "-o",
-                                      (dir / out).string(), "--relabel", "--json", (dir / "s.json").string(), "-q"};
+        std::vector<std::string> args{"-i",
+                                      (dir / "cube.msh").string(),
+                                      "--image",
+                                      (dir / "cube.nii.gz").string(),
+                                      "-o",
+                                      (dir / out).string(),
+                                      "--relabel",
+                                      "--json",
+                                      (dir / "s.json").string(),
+                                      "-q"};
         args.insert(args.end(), extra.begin(), extra.end());
         const auto result = run_cli("tm-assess", args);
         EXPECT_EQ(result.exit_code, 0) << result.err;
@@ -107,10 +116,13 @@ TEST(AssessCli, BadInputExitsTwoWithOneLineAndNoOutput)
     write_inputs(dir);
     const std::string mesh = (dir / "cube.msh").string(), image = (dir / "cube.nii.gz").string();
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"-i", mesh, "--image", (dir / "missing.nii.gz").string(), "-o", (dir / "out.vtu").string()}, "missing.nii.gz"},
+        {{"-i", mesh, "--image", (dir / "missing.nii.gz").string(), "-o", (dir / "out.vtu").string()},
+         "missing.nii.gz"},
         {{"-i", (dir / "missing.msh").string(), "--image", image, "-o", (dir / "out.vtu").string()}, "missing.msh"},
-        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--priority", "liver=2"}, "unknown tissue \"liver\""},
-        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--priority", "outer=-1"}, "not tissue=positive"},
+        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--priority", "liver=2"},
+         "unknown tissue \"liver\""},
+        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--priority", "outer=-1"},
+         "not tissue=positive"},
         {{"-i", mesh, "--image", image, "-o", (dir / "out.xyz").string()}, "unknown output format"},
     };
     for (const auto& [args, expected] : cases) {

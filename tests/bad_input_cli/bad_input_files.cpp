@@ -47,11 +47,18 @@ void write_meshes(const std::filesystem::path& dir)
     write_text(dir / "bad.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n20 0 0 0\n");
     // .vtu: one ASCII tet, then a triangle instead, a cut file and a point index past the points.
     const auto vtu = [](const std::string& type, const std::string& corners) {
-        return "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>"
-               "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 20 0 0 0 20 0 0 0 20</DataArray></Points>"
-               "<Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" + corners + "</DataArray>"
-               "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4</DataArray><DataArray type=\"UInt8\" Name=\"types\" "
-               "format=\"ascii\">" + type + "</DataArray></Cells><CellData><DataArray type=\"UInt16\" Name=\"tissue\" format=\"ascii\">1"
+        return "<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece NumberOfPoints=\"4\" "
+               "NumberOfCells=\"1\"><Points>"
+               "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 20 0 0 0 20 0 0 0 "
+               "20</DataArray></Points>"
+               "<Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" +
+               corners +
+               "</DataArray>"
+               "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4</DataArray><DataArray type=\"UInt8\" "
+               "Name=\"types\" "
+               "format=\"ascii\">" +
+               type +
+               "</DataArray></Cells><CellData><DataArray type=\"UInt16\" Name=\"tissue\" format=\"ascii\">1"
                "</DataArray></CellData></Piece></UnstructuredGrid></VTKFile>\n";
     };
     write_text(dir / "ok.vtu", vtu("10", "0 1 2 3"));
@@ -87,8 +94,9 @@ void write_surfaces(const std::filesystem::path& dir)
     crossing.names[2] = "skull";
     io::write_surface(crossing, dir / "crossing.ply");
 
-    const std::string ascii_head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                   "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string ascii_head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
     write_text(dir / "nan.ply", ascii_head + "0 0 0\nnan 1 0\n0 1 0\n3 0 1 2\n");
     write_text(dir / "dangling.ply", ascii_head + "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
     write_text(dir / "magic.ply", "plx\n" + ascii_head.substr(4));
@@ -97,7 +105,7 @@ void write_surfaces(const std::filesystem::path& dir)
     write_text(dir / "truncated.ply", binary.substr(0, binary.size() - 20));
     write_text(dir / "counts.off", "OFF\n4 9 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
     std::string stl(80, ' ');
-    stl += std::string("\x0c\0\0\0", 4) + std::string(30, '\0');  // 12 triangles announced, 30 bytes given
+    stl += std::string("\x0c\0\0\0", 4) + std::string(30, '\0'); // 12 triangles announced, 30 bytes given
     write_text(dir / "truncated.stl", stl);
 }
 
@@ -112,11 +120,11 @@ void write_images(const std::filesystem::path& dir)
     NiftiSpec block;
     block.dims[1] = block.dims[2] = block.dims[3] = 4;
     std::vector<unsigned char> border(64, 0);
-    border[0] = 2;           // a corner voxel: on the border
-    border[1 + 4 + 16] = 1;  // an inner voxel
+    border[0] = 2;          // a corner voxel: on the border
+    border[1 + 4 + 16] = 1; // an inner voxel
     write_nifti(dir / "border.nii", block, border);
     NiftiSpec complex_type;
-    complex_type.datatype = 32;  // complex64
+    complex_type.datatype = 32; // complex64
     complex_type.bitpix = 64;
     write_nifti(dir / "complex.nii", complex_type, std::vector<unsigned char>(64, 0));
     NiftiSpec inf_spacing;

@@ -15,12 +15,12 @@ namespace tissuemesh::testing {
 namespace {
 
 struct BadCase {
-    std::string name;                  ///< test name
-    std::string tool;                  ///< tm-<verb>
-    std::vector<std::string> args;     ///< "@x" stands for the file x in the case folder
-    int exit_code;                     ///< 2: bad input or usage; 1: a checker found defects; 0: accepted
-    std::vector<std::string> message;  ///< parts the report must contain (stderr, or stdout for checkers)
-    std::string output = "out";        ///< a file the program must not leave behind on failure ("" none)
+    std::string name;                 ///< test name
+    std::string tool;                 ///< tm-<verb>
+    std::vector<std::string> args;    ///< "@x" stands for the file x in the case folder
+    int exit_code;                    ///< 2: bad input or usage; 1: a checker found defects; 0: accepted
+    std::vector<std::string> message; ///< parts the report must contain (stderr, or stdout for checkers)
+    std::string output = "out";       ///< a file the program must not leave behind on failure ("" none)
 };
 
 std::ostream& operator<<(std::ostream& out, const BadCase& c) { return out << c.name; }
@@ -51,8 +51,7 @@ TEST_P(BadInput, ExitsWithTheCodeAndOneLineAndLeavesNothing)
         EXPECT_EQ(error_lines, 1u) << result.err;
     }
     if (c.exit_code != 0 && !c.output.empty()) {
-        for (const std::string& name : dir.files())
-            EXPECT_FALSE(name.starts_with(c.output)) << name << " left behind";
+        for (const std::string& name : dir.files()) EXPECT_FALSE(name.starts_with(c.output)) << name << " left behind";
     }
 }
 
@@ -83,7 +82,10 @@ const std::vector<BadCase> image_cases{
     {"OnlyBackground", "tm-extract", {"-i", "@one-label.nii", "-o", "@out.ply"}, 2, {"one-label.nii", "background"}},
     {"UnknownTissueToKeep", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--tissues", "9"}, 2, {"9"}},
     {"PriorityOfAbsentTissue", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--priority", "9=1"}, 2, {"9"}},
-    {"BrokenNameTable", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--labels", "@names-broken.json"}, 2,
+    {"BrokenNameTable",
+     "tm-extract",
+     {"-i", "@ok.nii", "-o", "@out.ply", "--labels", "@names-broken.json"},
+     2,
      {"names-broken.json"}},
     {"OutputInMissingFolder", "tm-extract", {"-i", "@ok.nii", "-o", "@missing/out.ply"}, 2, {"missing"}},
     {"OutputIsAFolder", "tm-extract", {"-i", "@ok.nii", "-o", "@"}, 2, {}, ""},
@@ -92,11 +94,21 @@ const std::vector<BadCase> image_cases{
     {"PhantomVoxelZero", "tm-phantom", {"spheres4", "--voxel-mm", "0", "-o", "@out.nii.gz"}, 2, {"0"}},
     {"PrepNegativeIslandSize", "tm-prep", {"-i", "@ok.nii", "-o", "@out.nii", "--remove-islands", "-3"}, 2, {"-3"}},
     {"PrepNegativePad", "tm-prep", {"-i", "@ok.nii", "-o", "@out.nii", "--crop-pad", "-1"}, 2, {"-1"}},
-    {"SmoothNegativeIterations", "tm-smooth", {"-i", "@ok.ply", "--image", "@ok.nii", "-o", "@out.ply", "--iterations", "-2"},
-     2, {"-2"}},
+    {"SmoothNegativeIterations",
+     "tm-smooth",
+     {"-i", "@ok.ply", "--image", "@ok.nii", "-o", "@out.ply", "--iterations", "-2"},
+     2,
+     {"-2"}},
     {"RefineNegativeNodeBudget", "tm-refine", {"--image", "@ok.nii", "-o", "@out.msh", "--max-nodes", "-1"}, 2, {"-1"}},
-    {"DecimateNegativeTarget", "tm-decimate", {"-i", "@ok.ply", "-o", "@out.ply", "--target-triangles", "-5"}, 2, {"-5"}},
-    {"ExtractBackgroundOutOfRange", "tm-extract", {"-i", "@ok.nii", "-o", "@out.ply", "--background", "70000"}, 2,
+    {"DecimateNegativeTarget",
+     "tm-decimate",
+     {"-i", "@ok.ply", "-o", "@out.ply", "--target-triangles", "-5"},
+     2,
+     {"-5"}},
+    {"ExtractBackgroundOutOfRange",
+     "tm-extract",
+     {"-i", "@ok.nii", "-o", "@out.ply", "--background", "70000"},
+     2,
      {"70000"}},
 };
 
@@ -111,7 +123,11 @@ const std::vector<BadCase> surface_cases{
     {"PlyEmpty", "tm-check-surface", {"@empty.ply"}, 2, {"empty.ply"}},
     {"PlyWrongMagic", "tm-check-surface", {"@magic.ply"}, 2, {"magic.ply", "not a PLY file"}},
     {"PlyTruncated", "tm-check-surface", {"@truncated.ply"}, 2, {"truncated.ply", "truncated"}},
-    {"PlyDanglingIndex", "tm-tetra", {"-i", "@dangling.ply", "-o", "@out.msh"}, 2, {"dangling.ply", "refers to vertex 7"}},
+    {"PlyDanglingIndex",
+     "tm-tetra",
+     {"-i", "@dangling.ply", "-o", "@out.msh"},
+     2,
+     {"dangling.ply", "refers to vertex 7"}},
     {"PlyNanCoordinate", "tm-tetra", {"-i", "@nan.ply", "-o", "@out.msh"}, 2, {"nan.ply"}},
     {"OffCountsExceedData", "tm-check-surface", {"@counts.off"}, 2, {"counts.off"}},
     {"StlTruncated", "tm-check-surface", {"@truncated.stl"}, 2, {"truncated.stl"}},
@@ -126,8 +142,7 @@ const std::vector<BadCase> surface_cases{
     {"DecimateNeedsAFitInput", "tm-decimate", {"-i", "@crossing.ply", "-o", "@out.ply"}, 2, {"crossing.ply"}},
     {"RemeshNeedsAFitInput", "tm-remesh", {"-i", "@flipped.ply", "-o", "@out.ply"}, 2, {"flipped.ply"}},
     {"TetraNegativeVolume", "tm-tetra", {"-i", "@ok.ply", "-o", "@out.msh", "--max-volume", "-1"}, 2, {"-1"}},
-    {"TetraUnknownTissueSize", "tm-tetra", {"-i", "@ok.ply", "-o", "@out.msh", "--max-volume", "liver=2"}, 2,
-     {"liver"}},
+    {"TetraUnknownTissueSize", "tm-tetra", {"-i", "@ok.ply", "-o", "@out.msh", "--max-volume", "liver=2"}, 2, {"liver"}},
 };
 
 // Tet meshes and the solver's tables.
@@ -135,14 +150,32 @@ const std::vector<BadCase> mesh_cases{
     {"MshFlatTetIsReported", "tm-check-mesh", {"@flat.msh"}, 1, {"volume 0 mm^3", "NOT fit for FEM"}},
     {"MshDanglingNode", "tm-check-mesh", {"@dangling.msh"}, 2, {"dangling.msh"}},
     {"MshNanCoordinate", "tm-solve", {"-i", "@nan.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2, {"nan.msh"}},
-    {"MshTruncated", "tm-assess", {"-i", "@truncated.msh", "--image", "@ok.nii", "-o", "@out.vtu"}, 2, {"truncated.msh"}},
-    {"MshWithoutTets", "tm-solve", {"-i", "@no-tets.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2,
+    {"MshTruncated",
+     "tm-assess",
+     {"-i", "@truncated.msh", "--image", "@ok.nii", "-o", "@out.vtu"},
+     2,
+     {"truncated.msh"}},
+    {"MshWithoutTets",
+     "tm-solve",
+     {"-i", "@no-tets.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"},
+     2,
      {"no-tets.msh", "no tetrahedra"}},
     {"MeditTruncated", "tm-check-mesh", {"@bad.mesh"}, 2, {"bad.mesh"}},
-    {"VtuOtherCellType", "tm-convert", {"-i", "@triangle.vtu", "-o", "@out.msh"}, 2, {"triangle.vtu", "triangle (VTK type 5)", "only tetrahedra"}},
+    {"VtuOtherCellType",
+     "tm-convert",
+     {"-i", "@triangle.vtu", "-o", "@out.msh"},
+     2,
+     {"triangle.vtu", "triangle (VTK type 5)", "only tetrahedra"}},
     {"VtuDanglingIndex", "tm-check-mesh", {"@dangling.vtu"}, 2, {"dangling.vtu", "refers to point 9"}},
-    {"VtuTruncated", "tm-solve", {"-i", "@truncated.vtu", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}, 2, {"truncated.vtu", "truncated"}},
-    {"VtuFieldViewWithoutTheArray", "tm-render", {"--view", "field", "-i", "@ok.vtu", "-o", "@out.png"}, 2,
+    {"VtuTruncated",
+     "tm-solve",
+     {"-i", "@truncated.vtu", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"},
+     2,
+     {"truncated.vtu", "truncated"}},
+    {"VtuFieldViewWithoutTheArray",
+     "tm-render",
+     {"--view", "field", "-i", "@ok.vtu", "-o", "@out.png"},
+     2,
      {"ok.vtu", "no point or cell array \"potential_V\"", "tm-solve"}},
     solve_case("ConductivityUnknownName", with_dipole({"--conductivity", "@cond-unknown.json"}), {"liver"}),
     solve_case("ConductivityUnknownLabel", with_dipole({"--conductivity", "@cond-label.json"}), {"7"}),
@@ -155,13 +188,21 @@ const std::vector<BadCase> mesh_cases{
     solve_case("ElectrodeNegativeRadius", {"--electrode", "0,0,0,-2,1e-3", "--electrode", "20,0,0,2,-1e-3"}, {"-2"}),
     solve_case("DipoleNotFinite", {"--dipole", "5,5,nan,0,0,1e-8"}, {"nan"}),
     solve_case("NoSource", {}, {"no source"}),
-    solve_case("SensorsWrongHeader", with_dipole({"--sensors", "@sensors-header.csv", "--sensor-potentials", "@out.csv"}),
+    solve_case("SensorsWrongHeader",
+               with_dipole({"--sensors", "@sensors-header.csv", "--sensor-potentials", "@out.csv"}),
                {"sensors-header.csv"}),
-    solve_case("SensorsNotANumber", with_dipole({"--sensors", "@sensors-number.csv", "--sensor-potentials", "@out.csv"}),
+    solve_case("SensorsNotANumber",
+               with_dipole({"--sensors", "@sensors-number.csv", "--sensor-potentials", "@out.csv"}),
                {"sensors-number.csv"}),
-    {"RefineUnknownPlacement", "tm-refine", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@out.msh", "--placement", "random"},
-     2, {"random"}},
-    {"AssessOutputInMissingFolder", "tm-assess", {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@missing/out.vtu"}, 2,
+    {"RefineUnknownPlacement",
+     "tm-refine",
+     {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@out.msh", "--placement", "random"},
+     2,
+     {"random"}},
+    {"AssessOutputInMissingFolder",
+     "tm-assess",
+     {"-i", "@ok.msh", "--image", "@ok.nii", "-o", "@missing/out.vtu"},
+     2,
      {"missing"}},
 };
 
@@ -178,17 +219,23 @@ const std::vector<BadCase> solver_file_cases{
     solve_case("ConductivityNumberOverflows", with_dipole({"--conductivity", "@cond-overflow.json"}),
                {"cond-overflow.json: not valid JSON", "1e999"}),
     solve_case("MontageEmptyFile", {"--electrodes", "@montage-empty.csv"}, {"montage-empty.csv: the file is empty"}),
-    solve_case("MontageHeaderOnly", {"--electrodes", "@montage-header-only.csv"}, {"montage-header-only.csv: no electrodes"}),
+    solve_case("MontageHeaderOnly", {"--electrodes", "@montage-header-only.csv"},
+               {"montage-header-only.csv: no electrodes"}),
     solve_case("MontageCurrentInMilliampere", {"--electrodes", "@montage-ma.csv"},
                {"montage-ma.csv line 1: unknown column 'current_ma'", "current_a"}),
-    solve_case("MontageNegativeRadius", {"--electrodes", "@montage-negative.csv"}, {"montage-negative.csv line 2: radius_mm is -10"}),
-    solve_case("MontageNotANumber", {"--electrodes", "@montage-nan.csv"}, {"montage-nan.csv line 3, column current_a: 'nan'"}),
+    solve_case("MontageNegativeRadius", {"--electrodes", "@montage-negative.csv"},
+               {"montage-negative.csv line 2: radius_mm is -10"}),
+    solve_case("MontageNotANumber", {"--electrodes", "@montage-nan.csv"},
+               {"montage-nan.csv line 3, column current_a: 'nan'"}),
     solve_case("MontageTruncatedRow", {"--electrodes", "@montage-cut.csv"}, {"montage-cut.csv line 3: 3 fields"}),
-    solve_case("MontageNameTwice", {"--electrodes", "@montage-twice.csv"}, {"montage-twice.csv line 3: name 'Cz' is also on line 2"}),
+    solve_case("MontageNameTwice", {"--electrodes", "@montage-twice.csv"},
+               {"montage-twice.csv line 3: name 'Cz' is also on line 2"}),
     solve_case("MontageElectrodeOffTheScalp", {"--electrodes", "@montage-off.csv"},
                {"Oz (", "montage-off.csv line 3) at (100, 100, 100) mm"}),
-    solve_case("MontageCurrentsDoNotSumToZero", {"--electrodes", "@montage-unbalanced.csv"}, {"electrode currents sum to"}),
-    solve_case("MontageWithoutRowsEvenWithAFlag", {"--electrodes", "@montage-header-only.csv", "--electrode", "0,0,0,30,1e-3"},
+    solve_case("MontageCurrentsDoNotSumToZero", {"--electrodes", "@montage-unbalanced.csv"},
+               {"electrode currents sum to"}),
+    solve_case("MontageWithoutRowsEvenWithAFlag",
+               {"--electrodes", "@montage-header-only.csv", "--electrode", "0,0,0,30,1e-3"},
                {"montage-header-only.csv: no electrodes"}),
     solve_case("SensorsEmptyFile", with_dipole({"--sensors", "@sensors-empty.csv", "--sensor-potentials", "@out.csv"}),
                {"sensors-empty.csv: the file is empty"}),
@@ -206,7 +253,7 @@ const std::vector<BadCase> solver_file_cases{
 BadCase summary_case(const std::string& tool, std::vector<std::string> args)
 {
     args.insert(args.end(), {"--json", "@no/such/x.json"});
-    std::string name = "JsonSummaryInAMissingFolder";  // + the verb in CamelCase: tm-check-mesh -> CheckMesh
+    std::string name = "JsonSummaryInAMissingFolder"; // + the verb in CamelCase: tm-check-mesh -> CheckMesh
     bool word_start = true;
     for (const char c : tool.substr(3)) {
         if (c != '-') name += word_start ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
@@ -233,7 +280,8 @@ const std::vector<BadCase> summary_cases{
     summary_case("tm-refine", {"--image", "@ok.nii", "-o", "@out.msh"}),
     summary_case("tm-convert", {"-i", "@ok.msh", "-o", "@out.vtu"}),
     summary_case("tm-solve", {"-i", "@ok.msh", "-o", "@out.vtu", "--dipole", "5,5,5,0,0,1e-8"}),
-    summary_case("tm-leadfield", {"-i", "@ok.msh", "--sensors", "@sensors.csv", "--sources", "@sources.csv", "-o", "@out.npy"}),
+    summary_case("tm-leadfield",
+                 {"-i", "@ok.msh", "--sensors", "@sensors.csv", "--sources", "@sources.csv", "-o", "@out.npy"}),
     summary_case("tm-render", {"--view", "quality", "-i", "@ok.msh", "-o", "@out.png"}),
     summary_case("tm-report", {"-i", "@", "-o", "@out.html"}),
 };

@@ -36,7 +36,8 @@ void write_ball_image(const std::filesystem::path& path, std::int16_t n)
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
-                const double r = std::sqrt((i - centre) * (i - centre) + (j - centre) * (j - centre) + (k - centre) * (k - centre));
+                const double r =
+                    std::sqrt((i - centre) * (i - centre) + (j - centre) * (j - centre) + (k - centre) * (k - centre));
                 voxels[(static_cast<std::size_t>(k) * n + j) * n + i] = r < 0.3 * n ? 1 : r < 0.4 * n ? 2 : 0;
             }
     write_nifti(path, spec, voxels);
@@ -49,7 +50,8 @@ std::string kuhn_box_msh(int n, double h)
 {
     std::ostringstream out;
     const auto node = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i + 1; };
-    out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"brain\"\n$EndPhysicalNames\n$Nodes\n" << (n + 1) * (n + 1) * (n + 1) << "\n";
+    out << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"brain\"\n$EndPhysicalNames\n$Nodes\n"
+        << (n + 1) * (n + 1) * (n + 1) << "\n";
     for (int k = 0; k <= n; ++k)
         for (int j = 0; j <= n; ++j)
             for (int i = 0; i <= n; ++i) out << node(i, j, k) << ' ' << i * h << ' ' << j * h << ' ' << k * h << '\n';
@@ -80,7 +82,8 @@ std::string kuhn_box_msh(int n, double h)
 void expect_refused(const CliResult& result, const TempDir& dir, const std::vector<std::string>& parts)
 {
     EXPECT_EQ(result.exit_code, 2) << result.err;
-    for (const std::string& part : parts) EXPECT_NE(result.err.find(part), std::string::npos) << part << " in " << result.err;
+    for (const std::string& part : parts)
+        EXPECT_NE(result.err.find(part), std::string::npos) << part << " in " << result.err;
     std::istringstream lines(result.err);
     std::size_t error_lines = 0;
     for (std::string line; std::getline(lines, line);) error_lines += line.find("error:") != std::string::npos;
@@ -99,15 +102,18 @@ double peak_mib(const CliResult& result, const std::filesystem::path& summary)
 TEST(MemoryLimits, ExtractionRefusesAnImageOverTheLimitAndRunsUnderAFairOne)
 {
     TempDir dir;
-    write_ball_image(dir / "ball.nii", 160);  // 4.1 M voxels
+    write_ball_image(dir / "ball.nii", 160); // 4.1 M voxels
     const std::string input = (dir / "ball.nii").string(), output = (dir / "out.ply").string();
-    const double peak = peak_mib(run_cli("tm-extract", {"-i", input, "-o", (dir / "first.ply").string(), "--json", (dir / "run.json").string()}),
-                                 dir / "run.json");
+    const double peak = peak_mib(
+        run_cli("tm-extract", {"-i", input, "-o", (dir / "first.ply").string(), "--json", (dir / "run.json").string()}),
+        dir / "run.json");
     std::filesystem::remove(dir / "first.ply");
     std::filesystem::remove(dir / "run.json");
-    expect_refused(run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(sanitized ? 20 : peak / 2)}), dir,
-                   {"tm-extract: error: " + input + ": needs about", "4.1 M voxels x", "more than --max-memory",
-                    "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2) or raise --max-memory"});
+    expect_refused(
+        run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(sanitized ? 20 : peak / 2)}),
+        dir,
+        {"tm-extract: error: " + input + ": needs about", "4.1 M voxels x", "more than --max-memory",
+         "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2) or raise --max-memory"});
     const CliResult fair = run_cli("tm-extract", {"-i", input, "-o", output, "--max-memory", std::to_string(3 * peak)});
     EXPECT_EQ(fair.exit_code, 0) << fair.err;
 }
@@ -115,7 +121,7 @@ TEST(MemoryLimits, ExtractionRefusesAnImageOverTheLimitAndRunsUnderAFairOne)
 TEST(MemoryLimits, InfoAndPrepRefuseBeforeReadingTheVoxels)
 {
     TempDir dir;
-    write_ball_image(dir / "ball.nii", 100);  // 1 M voxels of 1 mm
+    write_ball_image(dir / "ball.nii", 100); // 1 M voxels of 1 mm
     const std::string input = (dir / "ball.nii").string();
     expect_refused(run_cli("tm-info", {"-i", input, "--max-memory", "1"}), dir,
                    {input + ": needs about", "1.0 M voxels x", "more than --max-memory 1.0 MiB"});
@@ -123,8 +129,8 @@ TEST(MemoryLimits, InfoAndPrepRefuseBeforeReadingTheVoxels)
     expect_refused(run_cli("tm-prep", {"-i", input, "-o", (dir / "out.nii.gz").string(), "--spacing-mm", "0.2",
                                        "--max-memory", "300"}),
                    dir, {input + ": needs about", "resampled to 125.0 M voxels", "choose a coarser --spacing-mm"});
-    const CliResult coarser = run_cli("tm-prep", {"-i", input, "-o", (dir / "coarse.nii.gz").string(), "--spacing-mm", "2",
-                                                  "--max-memory", "300"});
+    const CliResult coarser = run_cli(
+        "tm-prep", {"-i", input, "-o", (dir / "coarse.nii.gz").string(), "--spacing-mm", "2", "--max-memory", "300"});
     EXPECT_EQ(coarser.exit_code, 0) << coarser.err;
 }
 
@@ -138,31 +144,36 @@ TEST(MemoryLimits, TetrahedralizationRefusesTinyTetsBeforeTetgenRuns)
     InterfaceComplex ball = icosphere(4, 20, {0, 0, 0});
     io::write_surface(ball, dir / "ball.ply");
     const std::string input = (dir / "ball.ply").string(), output = (dir / "out.msh").string();
-    expect_refused(run_cli("tm-tetra", {"-i", input, "-o", output, "--max-volume", "1e-3", "--max-memory", "4000"}), dir,
+    expect_refused(run_cli("tm-tetra", {"-i", input, "-o", output, "--max-volume", "1e-3", "--max-memory", "4000"}),
+                   dir,
                    {input + ": needs about", "5120 triangles x 1.9 KiB and about", "M tets x 165 B",
                     "more than --max-memory 3.9 GiB", "give larger tets (--max-volume"});
     expect_refused(run_cli("tm-tetra", {"-i", input, "-o", output, "--max-volume", "1e-7"}), dir,
                    {input + ": needs about", "this machine has available", "set --max-memory (MiB) to try anyway"});
-    EXPECT_EQ(run_cli("tm-tetra", {"-i", input, "-o", output, "--max-volume", "10", "--max-memory", "4000"}).exit_code, 0);
+    EXPECT_EQ(run_cli("tm-tetra", {"-i", input, "-o", output, "--max-volume", "10", "--max-memory", "4000"}).exit_code,
+              0);
     InterfaceComplex box;
     add_box(box, {0, 0, 0}, {10, 10, 10}, 1, 0);
     io::write_surface(box, dir / "box.ply");
-    EXPECT_EQ(run_cli("tm-tetra", {"-i", (dir / "box.ply").string(), "-o", (dir / "box.msh").string(), "--max-volume", "1e-7",
-                                   "-q", "--max-memory", "4000"}).exit_code, 0);
+    EXPECT_EQ(run_cli("tm-tetra", {"-i", (dir / "box.ply").string(), "-o", (dir / "box.msh").string(), "--max-volume",
+                                   "1e-7", "-q", "--max-memory", "4000"})
+                  .exit_code,
+              0);
 }
 
 // The same bracket as for extraction: refused at half the real peak, run at three times it.
 TEST(MemoryLimits, SolveRefusesAMeshOverTheLimitAndRunsUnderAFairOne)
 {
     TempDir dir;
-    write_text(dir / "box.msh", kuhn_box_msh(40, 1.0));  // 68.9 k nodes, 384 k tets
+    write_text(dir / "box.msh", kuhn_box_msh(40, 1.0)); // 68.9 k nodes, 384 k tets
     const std::string input = (dir / "box.msh").string();
     const auto solve = [&](const std::string& output, const std::vector<std::string>& more) {
         std::vector<std::string> args{"-i", input, "-o", output, "--dipole", "20.3,20.1,19.7,0,0,1e-8"};
         args.insert(args.end(), more.begin(), more.end());
         return run_cli("tm-solve", args);
     };
-    const double peak = peak_mib(solve((dir / "first.vtu").string(), {"--json", (dir / "run.json").string()}), dir / "run.json");
+    const double peak =
+        peak_mib(solve((dir / "first.vtu").string(), {"--json", (dir / "run.json").string()}), dir / "run.json");
     std::filesystem::remove(dir / "first.vtu");
     std::filesystem::remove(dir / "run.json");
     expect_refused(solve((dir / "out.vtu").string(), {"--max-memory", std::to_string(sanitized ? 30 : peak / 2)}), dir,

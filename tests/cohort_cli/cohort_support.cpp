@@ -58,7 +58,8 @@ void make_bids_cohort(const fs::path& root)
         add_subject(root, subject, image, scratch / (std::string(phantom) + ".labels.json"));
     }
     const fs::path head = scratch / "head.nii.gz";
-    expect_ok(run_cli("tm-prep", {"-i", data_path("samples/usc19-5_head.nii.gz").string(), "-o", head.string(), "--spacing-mm", "8", "-q"}),
+    expect_ok(run_cli("tm-prep", {"-i", data_path("samples/usc19-5_head.nii.gz").string(), "-o", head.string(),
+                                  "--spacing-mm", "8", "-q"}),
               "tm-prep");
     add_subject(root, "sub-03", head, data_path("samples/usc19-5_head.json"));
 }
@@ -80,7 +81,8 @@ void add_broken_subject(const fs::path& root)
     std::ofstream(names / "sub-05_dseg.tsv") << "index\tlabel\n1\tcube\n";
 }
 
-CliResult run_snakemake(const fs::path& folder, const std::vector<std::string>& args, const std::vector<std::string>& environment)
+CliResult run_snakemake(const fs::path& folder, const std::vector<std::string>& args,
+                        const std::vector<std::string>& environment)
 {
     std::vector<std::string> command = environment;
     command.insert(command.end(), {"snakemake", "-s", (snakemake_folder() / "Snakefile").string()});
@@ -88,10 +90,15 @@ CliResult run_snakemake(const fs::path& folder, const std::vector<std::string>& 
     return run_program("env", command, folder);
 }
 
-CliResult run_make(const fs::path& image, const fs::path& labels, const fs::path& out, const std::vector<std::string>& extra)
+CliResult run_make(const fs::path& image, const fs::path& labels, const fs::path& out,
+                   const std::vector<std::string>& extra)
 {
-    std::vector<std::string> args{"-C", data_path("workflows").string(), "IMAGE=" + image.string(), "LABELS=" + labels.string(),
-                                  "OUT=" + out.string(), "BIN=" TM_TOOLS_DIR};
+    std::vector<std::string> args{"-C",
+                                  data_path("workflows").string(),
+                                  "IMAGE=" + image.string(),
+                                  "LABELS=" + labels.string(),
+                                  "OUT=" + out.string(),
+                                  "BIN=" TM_TOOLS_DIR};
     args.insert(args.end(), extra.begin(), extra.end());
     return run_program("make", args);
 }
@@ -101,15 +108,20 @@ std::vector<std::string> model_files(const fs::path& folder)
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(folder)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file() && entry.path().extension() != ".json" && name != "report.html" && name != "refine.csv")
+        if (entry.is_regular_file() && entry.path().extension() != ".json" && name != "report.html" &&
+            name != "refine.csv")
             names.push_back(name);
-        else if (entry.is_regular_file() && name == "clean.labels.json") names.push_back(name);  // tm-prep's output, no times
+        else if (entry.is_regular_file() && name == "clean.labels.json")
+            names.push_back(name); // tm-prep's output, no times
     }
     std::sort(names.begin(), names.end());
     return names;
 }
 
-bool same_bytes(const fs::path& a, const fs::path& b) { return fs::exists(a) && fs::exists(b) && read_text(a) == read_text(b); }
+bool same_bytes(const fs::path& a, const fs::path& b)
+{
+    return fs::exists(a) && fs::exists(b) && read_text(a) == read_text(b);
+}
 
 std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path)
 {
@@ -141,7 +153,8 @@ std::map<std::string, fs::file_time_type> json_times(const fs::path& folder)
 {
     std::map<std::string, fs::file_time_type> times;
     for (const auto& entry : fs::recursive_directory_iterator(folder))
-        if (entry.is_regular_file() && entry.path().extension() == ".json") times[entry.path().string()] = entry.last_write_time();
+        if (entry.is_regular_file() && entry.path().extension() == ".json")
+            times[entry.path().string()] = entry.last_write_time();
     return times;
 }
 

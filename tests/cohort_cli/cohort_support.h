@@ -32,8 +32,8 @@ CliResult run_snakemake(const std::filesystem::path& folder, const std::vector<s
                         const std::vector<std::string>& environment = {});
 
 /// make -C data/workflows for one subject as the Snakefile ran it: IMAGE, LABELS, OUT and `extra` variables.
-CliResult run_make(const std::filesystem::path& image, const std::filesystem::path& labels, const std::filesystem::path& out,
-                   const std::vector<std::string>& extra = {});
+CliResult run_make(const std::filesystem::path& image, const std::filesystem::path& labels,
+                   const std::filesystem::path& out, const std::vector<std::string>& extra = {});
 
 /// The files a step writes besides its --json summary, the report page and refine.csv (they hold times), by name,
 /// in `folder` (params/ and other folders left out).

@@ -24,7 +24,8 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
     TempDir dir;
     const fs::path bids = dir / "bids", out = bids / "derivatives" / "tissuemesh";
     make_bids_cohort(bids);
-    std::vector<std::string> run{"--cores", "2", "--keep-going", "--config", "bids=" + bids.string(), "bin=" TM_TOOLS_DIR};
+    std::vector<std::string> run{"--cores",          "2", "--keep-going", "--config", "bids=" + bids.string(),
+                                 "bin=" TM_TOOLS_DIR};
     for (const std::string& setting : cohort_config()) run.push_back(setting);
     CliResult result = run_snakemake(dir.path(), run);
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
@@ -61,12 +62,15 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
         const std::string name = std::string(subject) + "_dseg.nii.gz";
         std::vector<std::string> variables = cohort_make_variables();
         variables.push_back("-j2");
-        const CliResult make = run_make(bids / subject / "anat" / name, out / "labels" / (std::string(subject) + ".json"), made, variables);
+        const CliResult make = run_make(bids / subject / "anat" / name,
+                                        out / "labels" / (std::string(subject) + ".json"), made, variables);
         ASSERT_EQ(make.exit_code, 0) << make.out << make.err;
         const std::vector<std::string> files = model_files(made);
         EXPECT_EQ(model_files(out / subject), files) << subject;
-        EXPECT_EQ(files.size(), 12u);  // clean.nii.gz, clean.labels.json, 3 surfaces (surface nets: no smooth.ply), tetra.msh, refined.msh, assessed.vtu, 4 pictures
-        for (const std::string& file : files) EXPECT_TRUE(same_bytes(made / file, out / subject / file)) << subject << "/" << file;
+        EXPECT_EQ(files.size(), 12u); // clean.nii.gz, clean.labels.json, 3 surfaces (surface nets: no smooth.ply),
+                                      // tetra.msh, refined.msh, assessed.vtu, 4 pictures
+        for (const std::string& file : files)
+            EXPECT_TRUE(same_bytes(made / file, out / subject / file)) << subject << "/" << file;
     }
 
     // A second run does nothing.
@@ -85,7 +89,8 @@ TEST(CohortCli, SnakemakeMeshesLikeTheMakefileAndABrokenSubjectStaysInTheSummary
     ASSERT_EQ(rows.size(), 5u);
     EXPECT_EQ(rows[4]["status"], "failed");
     EXPECT_EQ(rows[4]["failed_step"], "labels");
-    EXPECT_NE(rows[4]["error"].find("sub-05_dseg.tsv: a BIDS dseg.tsv needs the columns index and name"), std::string::npos)
+    EXPECT_NE(rows[4]["error"].find("sub-05_dseg.tsv: a BIDS dseg.tsv needs the columns index and name"),
+              std::string::npos)
         << rows[4]["error"];
     for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(rows[i]["status"], "done") << rows[i]["subject"];
     EXPECT_EQ(rows[3]["subject"], "sub-04");
@@ -111,7 +116,7 @@ std::multiset<std::vector<std::string>> commands(const std::string& output, cons
     std::string line, joined;
     while (std::getline(lines, line)) {
         joined += line;
-        if (!joined.empty() && joined.back() == '\\') {  // make prints a recipe's continued lines as they are written
+        if (!joined.empty() && joined.back() == '\\') { // make prints a recipe's continued lines as they are written
             joined.pop_back();
             continue;
         }
@@ -122,7 +127,7 @@ std::multiset<std::vector<std::string>> commands(const std::string& output, cons
         words.erase(std::find(words.begin(), words.end(), ">"), words.end());
         for (std::string& word : words) {
             if (word.rfind(folder, 0) == 0 && (word.size() == folder.size() || word[folder.size()] == '/')) {
-                std::string short_word(1, '@');  // built, not replaced in place: GCC 12 warns of a false overlap
+                std::string short_word(1, '@'); // built, not replaced in place: GCC 12 warns of a false overlap
                 short_word.append(word, folder.size(), std::string::npos);
                 word.swap(short_word);
             }
@@ -146,22 +151,31 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
     const fs::path out = dir / "derivatives";
     struct Case {
         std::string name;
-        std::vector<std::string> config;  // --config for Snakemake
-        std::vector<std::string> make;    // the same as make variables
+        std::vector<std::string> config; // --config for Snakemake
+        std::vector<std::string> make;   // the same as make variables
     };
     const std::vector<Case> cases{
         {"defaults", {}, {}},
-        {"preset and an override", {"preset=usc19-5-head", "params={REMESH_ARGS: --edge-mm 5}"},
+        {"preset and an override",
+         {"preset=usc19-5-head", "params={REMESH_ARGS: --edge-mm 5}"},
          {"PRESET=usc19-5-head", "REMESH_ARGS=--edge-mm 5"}},
         {"surfaces only", {"params={STOP_AFTER: remesh}"}, {"STOP_AFTER=remesh"}},
     };
     for (const Case& c : cases) {
-        std::vector<std::string> args{"-n", "-p", "--forceall", "--cores", "2", "--config", "subjects=" + (dir / "subjects.tsv").string(),
-                                      "out=" + out.string(), "bin=" TM_TOOLS_DIR};
+        std::vector<std::string> args{"-n",
+                                      "-p",
+                                      "--forceall",
+                                      "--cores",
+                                      "2",
+                                      "--config",
+                                      "subjects=" + (dir / "subjects.tsv").string(),
+                                      "out=" + out.string(),
+                                      "bin=" TM_TOOLS_DIR};
         args.insert(args.end(), c.config.begin(), c.config.end());
         const CliResult snake = run_snakemake(dir.path(), args);
         ASSERT_EQ(snake.exit_code, 0) << c.name << "\n" << snake.out << snake.err;
-        for (const auto& [subject, image, solve] : {std::tuple{"sub-01", "a.nii.gz", ""}, std::tuple{"sub-02/ses-A", "b.nii.gz", "yes"}}) {
+        for (const auto& [subject, image, solve] :
+             {std::tuple{"sub-01", "a.nii.gz", ""}, std::tuple{"sub-02/ses-A", "b.nii.gz", "yes"}}) {
             std::vector<std::string> extra = c.make;
             extra.insert(extra.end(), {"-n", "-B"});
             if (*solve) extra.push_back("SOLVE_ARGS=" + electrodes);
@@ -172,18 +186,24 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
             // Snakemake prints the jobs of both subjects: keep this subject's (its folder, or its image for tm-prep).
             std::multiset<std::vector<std::string>> own;
             for (const auto& words : commands(snake.out, subject))
-                if (std::any_of(words.begin(), words.end(), [&](const std::string& w) { return w.rfind("@", 0) == 0 || w == (dir / image).string(); }))
+                if (std::any_of(words.begin(), words.end(), [&](const std::string& w) {
+                        return w.rfind("@", 0) == 0 || w == (dir / image).string();
+                    }))
                     own.insert(words);
             EXPECT_EQ(own, expected) << c.name << ", " << subject << ":\n" << snake.out << "\n---\n" << make.out;
-            EXPECT_GE(expected.size(), std::string(c.name) == "surfaces only" ? 6u : 13u) << c.name;  // surface nets: no smoothing step
+            EXPECT_GE(expected.size(), std::string(c.name) == "surfaces only" ? 6u : 13u)
+                << c.name; // surface nets: no smoothing step
         }
     }
 
     // A misspelt parameter is refused as such.
-    CliResult refused = run_snakemake(dir.path(), {"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
-                                                   "out=" + out.string(), "params={REMSH_ARGS: --edge-mm 2}"});
+    CliResult refused =
+        run_snakemake(dir.path(), {"-n", "--cores", "1", "--config", "subjects=" + (dir / "subjects.tsv").string(),
+                                   "out=" + out.string(), "params={REMSH_ARGS: --edge-mm 2}"});
     EXPECT_NE(refused.exit_code, 0);
-    EXPECT_NE((refused.out + refused.err).find("params: REMSH_ARGS are no parameters of the Makefile"), std::string::npos) << refused.err;
+    EXPECT_NE((refused.out + refused.err).find("params: REMSH_ARGS are no parameters of the Makefile"),
+              std::string::npos)
+        << refused.err;
 
     // When the Makefile gains a step variable (here a copy of data/workflows with one more), the Snakefile stops
     // before anything runs and says which.
@@ -192,11 +212,14 @@ TEST(CohortCli, SnakefileRunsTheMakefilesCommandLines)
     fs::copy(data_path("workflows/snakemake"), copy / "snakemake", fs::copy_options::recursive);
     fs::copy_file(data_path("workflows/Makefile"), copy / "Makefile");
     std::ofstream(copy / "Makefile", std::ios::app) << "NETS_ARGS ?= --level 1\n";
-    refused = run_program("snakemake", {"-s", (copy / "snakemake" / "Snakefile").string(), "-n", "--cores", "1", "--config",
-                                        "subjects=" + (dir / "subjects.tsv").string(), "out=" + out.string()},
+    refused = run_program("snakemake",
+                          {"-s", (copy / "snakemake" / "Snakefile").string(), "-n", "--cores", "1", "--config",
+                           "subjects=" + (dir / "subjects.tsv").string(), "out=" + out.string()},
                           dir.path());
     EXPECT_NE(refused.exit_code, 0);
-    EXPECT_NE((refused.out + refused.err).find("the Makefile has NETS_ARGS, which no rule here takes"), std::string::npos) << refused.err;
+    EXPECT_NE((refused.out + refused.err).find("the Makefile has NETS_ARGS, which no rule here takes"),
+              std::string::npos)
+        << refused.err;
 }
 
 } // namespace

@@ -19,17 +19,20 @@ protected:
     void SetUp() override
     {
         ASSERT_EQ(::geteuid(), 0u) << "slurmd starts jobs as their users: the SLURM test runs as root (CI does)";
-        const CliResult start = run_program((snakemake_folder() / "one-node-slurm").string(), {"start", cluster.string()});
+        const CliResult start =
+            run_program((snakemake_folder() / "one-node-slurm").string(), {"start", cluster.string()});
         started = true;
         ASSERT_EQ(start.exit_code, 0) << start.out << start.err;
     }
     void TearDown() override
     {
         if (!started) return;
-        const CliResult stop = run_program((snakemake_folder() / "one-node-slurm").string(), {"stop", cluster.string()});
+        const CliResult stop =
+            run_program((snakemake_folder() / "one-node-slurm").string(), {"stop", cluster.string()});
         EXPECT_EQ(stop.exit_code, 0) << stop.err;
         for (const char* daemon : {"munged", "slurmctld", "slurmd"})
-            EXPECT_FALSE(fs::exists(cluster / "run" / (std::string(daemon) + ".pid"))) << daemon << " still recorded as running";
+            EXPECT_FALSE(fs::exists(cluster / "run" / (std::string(daemon) + ".pid")))
+                << daemon << " still recorded as running";
     }
     /// A SLURM client command against the test's cluster.
     CliResult slurm(const std::string& program, const std::vector<std::string>& args)
@@ -65,7 +68,7 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
     EXPECT_EQ(rows[3]["status"], "failed");
     EXPECT_EQ(rows[3]["failed_step"], "prep");
     EXPECT_EQ(rows[3]["error"].rfind("tm-prep: error: ", 0), 0u) << rows[3]["error"];
-    EXPECT_EQ(rows[4]["failed_step"], "labels");  // run on the login node (a local rule): no job
+    EXPECT_EQ(rows[4]["failed_step"], "labels"); // run on the login node (a local rule): no job
 
     // The steps ran as SLURM jobs: the controller knows 14 completed jobs per finished subject (9 steps, 4 pictures,
     // the report), and sub-04's prep failed twice (the profile retries once); each job left its sbatch log.
@@ -73,7 +76,8 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
     ASSERT_EQ(jobs.exit_code, 0) << jobs.err;
     const auto count = [&](const std::string& pattern) {
         const std::regex expression(pattern);
-        return std::distance(std::sregex_iterator(jobs.out.begin(), jobs.out.end(), expression), std::sregex_iterator());
+        return std::distance(std::sregex_iterator(jobs.out.begin(), jobs.out.end(), expression),
+                             std::sregex_iterator());
     };
     // 13 jobs a subject: prep to check-mesh by surface nets (8, no smoothing step), tm-render 4 times, tm-report
     EXPECT_EQ(count("JobName=tm\\.[a-z_]+ .*JobState=COMPLETED"), 3 * 13) << jobs.out;
@@ -86,9 +90,11 @@ TEST_F(SlurmCohortLong, ProfileRunsEveryStepThroughSbatch)
     const fs::path made = dir / "make" / "sub-03";
     std::vector<std::string> variables = cohort_make_variables();
     variables.push_back("-j2");
-    const CliResult make = run_make(bids / "sub-03" / "anat" / "sub-03_dseg.nii.gz", out / "labels" / "sub-03.json", made, variables);
+    const CliResult make =
+        run_make(bids / "sub-03" / "anat" / "sub-03_dseg.nii.gz", out / "labels" / "sub-03.json", made, variables);
     ASSERT_EQ(make.exit_code, 0) << make.err;
-    for (const std::string& file : model_files(made)) EXPECT_TRUE(same_bytes(made / file, out / "sub-03" / file)) << file;
+    for (const std::string& file : model_files(made))
+        EXPECT_TRUE(same_bytes(made / file, out / "sub-03" / file)) << file;
 }
 
 } // namespace

@@ -20,12 +20,17 @@ TEST(ConvertCli, TetMeshesThroughEveryFormatKeepCountsAndVolumes)
     const TetMesh mesh = testing::nested_cubes_mesh();
     io::write_tet_mesh(mesh, dir / "start.msh");
     // A chain through every readable variant: each step reads the previous step's output.
-    const std::vector<std::vector<std::string>> steps{{"a.msh", "--msh-version", "4.1", "--binary"}, {"b.mesh"}, {"c.node"},
-                                                      {"d.msh", "--binary"}, {"e.msh", "--msh-version", "4.1"}, {"f.inp"}};
+    const std::vector<std::vector<std::string>> steps{{"a.msh", "--msh-version", "4.1", "--binary"},
+                                                      {"b.mesh"},
+                                                      {"c.node"},
+                                                      {"d.msh", "--binary"},
+                                                      {"e.msh", "--msh-version", "4.1"},
+                                                      {"f.inp"}};
     std::string previous = "start.msh";
     for (const auto& step : steps) {
         SCOPED_TRACE(previous + " -> " + step[0]);
-        std::vector<std::string> args{"-i", (dir / previous).string(), "-o", (dir / step[0]).string(), "--json", (dir / "s.json").string(), "-q"};
+        std::vector<std::string> args{"-i",     (dir / previous).string(), "-o", (dir / step[0]).string(),
+                                      "--json", (dir / "s.json").string(), "-q"};
         args.insert(args.end(), step.begin() + 1, step.end());
         const auto result = run_cli("tm-convert", args);
         ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -60,7 +65,8 @@ TEST(ConvertCli, SurfacesAndTheFacesOfAMesh)
         EXPECT_EQ(io::read_surface(dir / name).triangles.size(), 12u) << name;
     }
     io::write_tet_mesh(testing::nested_cubes_mesh(), dir / "m.msh");
-    const auto faces = run_cli("tm-convert", {"-i", (dir / "m.msh").string(), "-o", (dir / "faces.ply").string(), "-q"});
+    const auto faces =
+        run_cli("tm-convert", {"-i", (dir / "m.msh").string(), "-o", (dir / "faces.ply").string(), "-q"});
     ASSERT_EQ(faces.exit_code, 0) << faces.err;
     const InterfaceComplex interfaces = io::read_surface(dir / "faces.ply");
     EXPECT_EQ(interfaces.triangles.size(), testing::nested_cubes_mesh().faces.size());

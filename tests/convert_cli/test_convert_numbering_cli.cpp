@@ -36,17 +36,20 @@ TEST(ConvertNumberingCli, SimnibsNamesTheTissuesWithoutATagUntilATableMapsThem)
 {
     testing::TempDir dir;
     const std::string head = write_head(dir).string(), out = (dir / "simnibs.msh").string();
-    expect_refused(run_cli("tm-convert", {"-i", head, "-o", out, "--tissue-numbering", "simnibs"}), "\"air cavities\" (label 2)");
+    expect_refused(run_cli("tm-convert", {"-i", head, "-o", out, "--tissue-numbering", "simnibs"}),
+                   "\"air cavities\" (label 2)");
     EXPECT_FALSE(std::filesystem::exists(out));
     std::ofstream(dir / "tags.json") << "{\"Air Cavities\": 13}";
-    const auto done = run_cli("tm-convert", {"-i", head, "-o", out, "--tissue-numbering", "simnibs", "--tissue-tags", (dir / "tags.json").string()});
+    const auto done = run_cli("tm-convert", {"-i", head, "-o", out, "--tissue-numbering", "simnibs", "--tissue-tags",
+                                             (dir / "tags.json").string()});
     ASSERT_EQ(done.exit_code, 0) << done.err;
     const TetMesh back = io::read_tet_mesh(out);
     const std::set<Label> tags(back.tet_labels.begin(), back.tet_labels.end());
     EXPECT_EQ(tags, (std::set<Label>{5, 13}));
     std::set<Label> face_tags;
     for (const LabelPair& pair : back.face_sides) face_tags.insert(pair.from);
-    EXPECT_EQ(face_tags, (std::set<Label>{5})) << "the outside 1005, the air's surface against scalp 1005 (scalp ranks before 13)";
+    EXPECT_EQ(face_tags, (std::set<Label>{5}))
+        << "the outside 1005, the air's surface against scalp 1005 (scalp ranks before 13)";
 }
 
 TEST(ConvertNumberingCli, DuneuroWritesItsConductivityFileBeside)
@@ -77,11 +80,14 @@ TEST(ConvertNumberingCli, FlagsThatDoNotFitAreRefusedBeforeReading)
     const std::string missing = (dir / "missing.msh").string(), out = (dir / "o.msh").string();
     expect_refused(run_cli("tm-convert", {"-i", missing, "-o", out, "--tissue-tags", (dir / "t.json").string()}),
                    "--tissue-numbering simnibs");
-    expect_refused(run_cli("tm-convert", {"-i", missing, "-o", out, "--tissue-numbering", "duneuro", "--binary"}), "drop --binary");
-    expect_refused(run_cli("tm-convert", {"-i", missing, "-o", out, "--tissue-numbering", "simnibs", "--msh-version", "4.1"}),
-                   "drop --msh-version 4.1");
+    expect_refused(run_cli("tm-convert", {"-i", missing, "-o", out, "--tissue-numbering", "duneuro", "--binary"}),
+                   "drop --binary");
+    expect_refused(
+        run_cli("tm-convert", {"-i", missing, "-o", out, "--tissue-numbering", "simnibs", "--msh-version", "4.1"}),
+        "drop --msh-version 4.1");
     const std::string head = write_head(dir).string();
-    expect_refused(run_cli("tm-convert", {"-i", head, "-o", (dir / "o.vtu").string(), "--tissue-numbering", "simnibs"}), "write a .msh");
+    expect_refused(run_cli("tm-convert", {"-i", head, "-o", (dir / "o.vtu").string(), "--tissue-numbering", "simnibs"}),
+                   "write a .msh");
     EXPECT_EQ(dir.files(), (std::vector<std::string>{"head.msh", "t.json"}));
 }
 

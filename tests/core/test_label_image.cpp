@@ -43,8 +43,7 @@ TEST(LabelImage, RejectsBadGeometryWithMessage)
         validate_geometry("head.nii", {2, 2, 2}, {1, 1, 0}, identity_matrix());
         FAIL() << "zero spacing accepted";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("head.nii: spacing along axis 2 is 0 mm"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("head.nii: spacing along axis 2 is 0 mm"), std::string::npos) << e.what();
     }
 }
 
@@ -63,10 +62,12 @@ TEST(LabelImage, CountsLabels)
 TEST(AtomicFile, FailedWriteLeavesNothing)
 {
     testing::TempDir dir;
-    EXPECT_THROW(write_atomically(dir / "out.txt", [](const std::filesystem::path& tmp) {
-        write_text_atomically(tmp, "partial");
-        throw AlgorithmError("stop");
-    }), AlgorithmError);
+    EXPECT_THROW(write_atomically(dir / "out.txt",
+                                  [](const std::filesystem::path& tmp) {
+                                      write_text_atomically(tmp, "partial");
+                                      throw AlgorithmError("stop");
+                                  }),
+                 AlgorithmError);
     EXPECT_TRUE(dir.files().empty());
     write_text_atomically(dir / "out.txt", "done");
     EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});

@@ -14,7 +14,9 @@ namespace {
 /// An n^3 block of unit cubes, each cut into the 6 Kuhn tets (corner 0 to corner 7): conforming.
 std::vector<Tet> kuhn_block(std::uint32_t n)
 {
-    const auto node = [n](std::uint32_t i, std::uint32_t j, std::uint32_t k) { return (k * (n + 1) + j) * (n + 1) + i; };
+    const auto node = [n](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
+        return (k * (n + 1) + j) * (n + 1) + i;
+    };
     const int chains[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
     std::vector<Tet> tets;
     for (std::uint32_t k = 0; k < n; ++k)
@@ -45,7 +47,8 @@ TEST(TetFaceAdjacencyTwice, KuhnBlockPairsEveryInnerFaceBothWaysAndLeavesTheBoun
             }
             EXPECT_EQ(adjacency.holders(t, k), 2u);
             // The tet across holds the same three vertices, and sees t across that face.
-            const std::set<std::uint32_t> face{tets[t][tet_faces[k][0]], tets[t][tet_faces[k][1]], tets[t][tet_faces[k][2]]};
+            const std::set<std::uint32_t> face{tets[t][tet_faces[k][0]], tets[t][tet_faces[k][1]],
+                                               tets[t][tet_faces[k][2]]};
             int back = -1;
             for (int m = 0; m < 4; ++m)
                 if (std::set<std::uint32_t>{tets[other][tet_faces[m][0]], tets[other][tet_faces[m][1]],
@@ -54,7 +57,7 @@ TEST(TetFaceAdjacencyTwice, KuhnBlockPairsEveryInnerFaceBothWaysAndLeavesTheBoun
             ASSERT_GE(back, 0) << "tet " << t << " face " << k;
             EXPECT_EQ(adjacency.across(other, back), t);
         }
-    EXPECT_EQ(boundary, 6u * 2u * n * n);  // each of the block's 6 sides: n^2 squares of 2 triangles
+    EXPECT_EQ(boundary, 6u * 2u * n * n); // each of the block's 6 sides: n^2 squares of 2 triangles
     const std::vector<TetAdjacency::Face> faces = adjacency.faces();
     EXPECT_EQ(faces.size(), (4 * tets.size() + boundary) / 2);
     for (std::size_t f = 1; f < faces.size(); ++f) EXPECT_LT(faces[f - 1].vertices, faces[f].vertices);
@@ -73,8 +76,8 @@ TEST(TetFaceAdjacencyTwice, FindAndIntTetsAgreeWithTheFaceList)
     EXPECT_EQ(adjacency.find(0, 1, 4).holders, 0u);
     EXPECT_EQ(adjacency.find(7, 8, 9).holders, 0u) << "vertices beyond the mesh are in no face";
     EXPECT_EQ(adjacency.faces().size(), 7u);
-    EXPECT_EQ(adjacency.across(0, 0), 1u);  // face 0 of tet 0 is opposite corner 0: {1, 2, 3}
-    EXPECT_EQ(adjacency.across(1, 3), 0u);  // face 3 of tet 1 is opposite corner 3 (vertex 4): {1, 2, 3}
+    EXPECT_EQ(adjacency.across(0, 0), 1u); // face 0 of tet 0 is opposite corner 0: {1, 2, 3}
+    EXPECT_EQ(adjacency.across(1, 3), 0u); // face 3 of tet 1 is opposite corner 3 (vertex 4): {1, 2, 3}
 }
 
 TEST(TetFaceAdjacencyTwice, AFaceOfThreeTetsIsCountedAndOnlyItsFirstTwoArePaired)

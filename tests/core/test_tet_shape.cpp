@@ -23,10 +23,10 @@ TEST(TetShape, TetShapeLivesInCoreAndARegularTetHasItsKnownAngles)
 {
     const double s = 1 / std::sqrt(2.0);
     const TetShape shape = tet_shape(one_tet({Vec3{1, 0, -s}, Vec3{-1, 0, -s}, Vec3{0, 1, s}, Vec3{0, -1, s}}), 0);
-    const double regular = std::acos(1.0 / 3) * 180 / 3.14159265358979323846;  // 70.53 degrees
+    const double regular = std::acos(1.0 / 3) * 180 / 3.14159265358979323846; // 70.53 degrees
     EXPECT_NEAR(shape.min_dihedral_deg, regular, 1e-9);
     EXPECT_NEAR(shape.max_dihedral_deg, regular, 1e-9);
-    EXPECT_NEAR(shape.radius_edge_ratio, std::sqrt(6.0) / 4, 1e-12);  // circumradius sqrt(6)/4 of edge 1
+    EXPECT_NEAR(shape.radius_edge_ratio, std::sqrt(6.0) / 4, 1e-12); // circumradius sqrt(6)/4 of edge 1
 }
 
 TEST(TetShape, TheCornerTetHasRightAndSixtyDegreeAnglesAndAFlatTetHasNoRatio)

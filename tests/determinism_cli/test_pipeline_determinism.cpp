@@ -40,23 +40,27 @@ void run_pipeline(const TempDir& dir, const std::string& threads)
     const std::vector<std::pair<std::string, std::vector<std::string>>> steps{
         {"tm-phantom", {"junction", "--voxel-mm", "3", "-o", at("image.nii.gz")}},
         {"tm-prep", {"-i", at("image.nii.gz"), "-o", at("clean.nii.gz"), "--remove-islands", "5", "--crop-pad", "2"}},
-        {"tm-extract", {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("interfaces.ply"),
-                        "--per-tissue", at("tissues")}},
+        {"tm-extract",
+         {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("interfaces.ply"), "--per-tissue",
+          at("tissues")}},
         {"tm-smooth", {"-i", at("interfaces.ply"), "--image", at("clean.nii.gz"), "-o", at("smooth.ply")}},
         // Surface nets: extraction with its smoothing (Jacobi steps, checked on all threads), then decimated.
-        {"tm-extract", {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("nets.ply"),
-                        "--method", "surface-nets"}},
-        {"tm-decimate", {"-i", at("nets.ply"), "-o", at("nets-decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
+        {"tm-extract",
+         {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("nets.ply"), "--method",
+          "surface-nets"}},
+        {"tm-decimate",
+         {"-i", at("nets.ply"), "-o", at("nets-decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
         // Decimation and remeshing in slabs (in parallel): the bytes must not depend on the threads.
         {"tm-decimate", {"-i", at("smooth.ply"), "-o", at("decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
         {"tm-remesh", {"-i", at("decimated.ply"), "-o", at("remeshed.ply"), "--edge-mm", "4", "--slabs", "2"}},
         {"tm-tetra", {"-i", at("remeshed.ply"), "-o", at("mesh.msh")}},
         {"tm-assess", {"-i", at("mesh.msh"), "--image", at("clean.nii.gz"), "-o", at("assessed.vtu")}},
-        {"tm-refine", {"-i", at("mesh.msh"), "--image", at("clean.nii.gz"), "-o", at("refined.msh"), "--iterations", "2",
-                       "--log", at("refine.csv"), "--plot", at("refine.svg")}},
-        {"tm-solve", {"-i", at("refined.msh"), "-o", at("fields.vtu"), "--conductivity", at("conductivity.json"),
-                      "--dipole", "0,0,0,0,0,1e-8",
-                      "--dipole", "5,-3,2,1e-8,0,0"}},
+        {"tm-refine",
+         {"-i", at("mesh.msh"), "--image", at("clean.nii.gz"), "-o", at("refined.msh"), "--iterations", "2", "--log",
+          at("refine.csv"), "--plot", at("refine.svg")}},
+        {"tm-solve",
+         {"-i", at("refined.msh"), "-o", at("fields.vtu"), "--conductivity", at("conductivity.json"), "--dipole",
+          "0,0,0,0,0,1e-8", "--dipole", "5,-3,2,1e-8,0,0"}},
     };
     for (const auto& [tool, args] : steps) {
         std::vector<std::string> quiet = args;
@@ -91,10 +95,8 @@ TEST(PipelineDeterminism, SameBytesWithOneAndTwoThreads)
     for (const auto& file : files) {
         const std::string a = read_bytes(one.path() / file), b = read_bytes(two.path() / file);
         EXPECT_GT(a.size(), 0u) << file;
-        if (file.extension() == ".csv")
-            EXPECT_EQ(without_timings(a), without_timings(b)) << file;
-        else
-            EXPECT_TRUE(a == b) << file << " differs between the runs";
+        if (file.extension() == ".csv") EXPECT_EQ(without_timings(a), without_timings(b)) << file;
+        else EXPECT_TRUE(a == b) << file << " differs between the runs";
     }
 }
 

@@ -40,7 +40,8 @@ TetMesh box_mesh(int n, double size_mm, double jitter, const std::function<Label
                         tet[s + 1] = index(corner[0], corner[1], corner[2]);
                     }
                     mesh.tets.push_back(tet);
-                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0)
+                        std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
                     Vec3 centroid{0, 0, 0};
                     for (std::uint32_t v : mesh.tets.back()) centroid = centroid + 0.25 * mesh.vertices[v];
                     mesh.tet_labels.push_back(label_of ? label_of(centroid) : Label{1});
@@ -53,16 +54,17 @@ InterfaceComplex icosphere(int levels, double radius_mm)
 {
     const double g = (1 + std::sqrt(5.0)) / 2;
     InterfaceComplex sphere;
-    sphere.vertices = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                       {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    sphere.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+    sphere.vertices = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                       {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+    sphere.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                        {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (int level = 0; level < levels; ++level) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
         const auto midpoint = [&](std::uint32_t a, std::uint32_t b) {
             const auto key = std::minmax(a, b);
-            const auto [found, inserted] = midpoints.try_emplace(key, static_cast<std::uint32_t>(sphere.vertices.size()));
+            const auto [found, inserted] =
+                midpoints.try_emplace(key, static_cast<std::uint32_t>(sphere.vertices.size()));
             if (inserted) sphere.vertices.push_back(0.5 * (sphere.vertices[a] + sphere.vertices[b]));
             return found->second;
         };
@@ -109,7 +111,7 @@ TetMesh four_shell_head(int levels, double max_volume_mm3)
         const InterfaceComplex sphere = icosphere(levels, radii[k]);
         const auto base = static_cast<std::uint32_t>(complex.vertices.size());
         complex.vertices.insert(complex.vertices.end(), sphere.vertices.begin(), sphere.vertices.end());
-        const LabelPair pair{static_cast<Label>(4 - k), static_cast<Label>(3 - k)};  // inside -> outside
+        const LabelPair pair{static_cast<Label>(4 - k), static_cast<Label>(3 - k)}; // inside -> outside
         for (const Triangle& t : sphere.triangles) complex.add_triangle({base + t[0], base + t[1], base + t[2]}, pair);
     }
     complex.names = {{0, "background"}, {1, "scalp"}, {2, "skull"}, {3, "csf"}, {4, "brain"}};
@@ -121,7 +123,7 @@ TetMesh four_shell_head(int levels, double max_volume_mm3)
 TetMesh ball_mesh(double radius_mm, int levels, double max_volume_mm3)
 {
     InterfaceComplex complex = icosphere(levels, radius_mm);
-    complex.sides.assign(complex.triangles.size(), LabelPair{1, 0});  // brain inside, background outside
+    complex.sides.assign(complex.triangles.size(), LabelPair{1, 0}); // brain inside, background outside
     complex.names = {{0, "background"}, {1, "brain"}};
     volume::TetrahedralizeOptions options;
     options.max_volume_mm3 = max_volume_mm3;

@@ -12,8 +12,7 @@ namespace tissuemesh::testing {
 /// [0, size]^3 mm cut into n^3 cubes of 6 tets each (Kuhn subdivision, positively oriented); interior
 /// nodes moved by up to `jitter` times the cube edge (deterministic pseudo-random, < 0.25 keeps tets
 /// valid). Tissue per tet from `label_of(centroid_mm)` (default: 1 everywhere).
-TetMesh box_mesh(int n, double size_mm, double jitter = 0,
-                 const std::function<Label(const Vec3&)>& label_of = nullptr);
+TetMesh box_mesh(int n, double size_mm, double jitter = 0, const std::function<Label(const Vec3&)>& label_of = nullptr);
 
 /// Icosahedron subdivided `levels` times, projected on the sphere; normals point outwards.
 InterfaceComplex icosphere(int levels, double radius_mm);

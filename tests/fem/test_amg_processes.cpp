@@ -46,11 +46,12 @@ TEST(AmgProcesses, TwoProcessesGiveTheOneProcessPotential)
     const SolverOptions one{.relative_tolerance = 1e-10, .processes = 1};
     SolverOptions two = one;
     two.processes = 2;
-    two.min_unknowns_per_process = 5'000;  // the box has 29 791 nodes
+    two.min_unknowns_per_process = 5'000; // the box has 29 791 nodes
     PotentialReport report_one, report_two;
     Warnings warnings;
     const std::vector<double> phi_one = solve_potential(box.mesh, box.sigma, box.problem, one, {}, &report_one);
-    const std::vector<double> phi_two = solve_potential(box.mesh, box.sigma, box.problem, two, warnings.progress(), &report_two);
+    const std::vector<double> phi_two =
+        solve_potential(box.mesh, box.sigma, box.problem, two, warnings.progress(), &report_two);
     EXPECT_EQ(warnings.text, "");
     EXPECT_EQ(report_one.solver.processes, 1);
     ASSERT_EQ(report_two.solver.processes, 2) << warnings.text;
@@ -68,7 +69,7 @@ TEST(AmgProcesses, FewUnknownsStayInOneProcess)
 {
     const BoxCurrent box;
     PotentialReport report;
-    solve_potential(box.mesh, box.sigma, box.problem, {.processes = 4}, {}, &report);  // 29 791 < 2 x 100 000
+    solve_potential(box.mesh, box.sigma, box.problem, {.processes = 4}, {}, &report); // 29 791 < 2 x 100 000
     EXPECT_EQ(report.solver.processes, 1);
 }
 
@@ -94,9 +95,9 @@ TEST(OuterBoundaryNear, IsTheWholeBoundaryCutToTheBall)
 {
     const TetMesh mesh = testing::box_mesh(8, 16.0, 0.2);
     const OuterBoundary whole = outer_boundary(mesh);
-    for (const auto& [centre, radius] : {std::pair{Vec3{0, 0, 0}, 5.0}, std::pair{Vec3{8, 8, 16}, 4.5},
-                                         std::pair{Vec3{8, 8, 8}, 3.0}, std::pair{Vec3{8, 8, 8}, 100.0},
-                                         std::pair{Vec3{50, 0, 0}, 10.0}, std::pair{Vec3{16, 3, 7}, 0.0}}) {
+    for (const auto& [centre, radius] :
+         {std::pair{Vec3{0, 0, 0}, 5.0}, std::pair{Vec3{8, 8, 16}, 4.5}, std::pair{Vec3{8, 8, 8}, 3.0},
+          std::pair{Vec3{8, 8, 8}, 100.0}, std::pair{Vec3{50, 0, 0}, 10.0}, std::pair{Vec3{16, 3, 7}, 0.0}}) {
         const auto inside = [&](std::uint32_t node) { return distance(mesh.vertices[node], centre) <= radius; };
         OuterBoundary expected;
         for (const Triangle& face : whole.faces)
@@ -106,7 +107,7 @@ TEST(OuterBoundaryNear, IsTheWholeBoundaryCutToTheBall)
         EXPECT_EQ(near.faces, expected.faces) << "ball at " << centre[0] << "," << centre[1] << "," << centre[2];
         EXPECT_EQ(near.nodes, expected.nodes);
     }
-    EXPECT_EQ(outer_boundary_near(mesh, {8, 8, 8}, 3.0).faces.size(), 0u);  // inside, no boundary face
+    EXPECT_EQ(outer_boundary_near(mesh, {8, 8, 8}, 3.0).faces.size(), 0u); // inside, no boundary face
     EXPECT_EQ(outer_boundary_near(mesh, {8, 8, 8}, 100.0).faces, whole.faces);
 }
 

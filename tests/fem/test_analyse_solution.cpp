@@ -35,7 +35,7 @@ TEST(SolveMainWithOpenMpInsideTheTool, AnalyseSolutionGivesTheFieldsAndStatistic
         EXPECT_NEAR(tissue.mean_j_a_per_m2, 1000.0 * conductivity, 1e-6);
         volume += tissue.volume_mm3, tets += tissue.tets;
     }
-    EXPECT_NEAR(volume, 1000.0, 1e-9);  // the 10 mm box
+    EXPECT_NEAR(volume, 1000.0, 1e-9); // the 10 mm box
     EXPECT_EQ(tets, mesh.tet_count());
     // The indicator is estimate_error()'s, and its total the root of the sum of squares.
     EXPECT_EQ(a.error_indicator, estimate_error(mesh, sigma, phi));
@@ -44,7 +44,8 @@ TEST(SolveMainWithOpenMpInsideTheTool, AnalyseSolutionGivesTheFieldsAndStatistic
     EXPECT_DOUBLE_EQ(a.error_indicator_total, std::sqrt(squares));
     EXPECT_GT(a.error_indicator_total, 0.0) << "the normal current jumps where sigma does";
     double smallest = 180;
-    for (std::size_t t = 0; t < mesh.tet_count(); ++t) smallest = std::min(smallest, tet_shape(mesh, t).min_dihedral_deg);
+    for (std::size_t t = 0; t < mesh.tet_count(); ++t)
+        smallest = std::min(smallest, tet_shape(mesh, t).min_dihedral_deg);
     EXPECT_EQ(a.min_dihedral_deg, smallest);
     // Without the indicator: none computed.
     const SolutionAnalysis plain = analyse_solution(mesh, sigma, phi);

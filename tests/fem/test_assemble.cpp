@@ -21,7 +21,7 @@ TEST(Conductivities, DefaultsByNameAndTableByLabelOrName)
 {
     const TetMesh mesh = two_tissue_box();
     const Conductivities defaults = resolve_conductivities(mesh, {});
-    EXPECT_EQ(defaults.by_label.at(1)[0], 0.01);  // "Skull" matches "skull" case-insensitively
+    EXPECT_EQ(defaults.by_label.at(1)[0], 0.01); // "Skull" matches "skull" case-insensitively
     EXPECT_EQ(defaults.by_label.at(2)[4], 1.79);
     const Conductivities table = resolve_conductivities(mesh, {{"1", isotropic(0.02)}, {"CSF", isotropic(1.5)}});
     EXPECT_EQ(table.by_label.at(1)[8], 0.02);
@@ -36,7 +36,8 @@ TEST(Conductivities, UnknownAndMissingTissuesAreInputErrors)
         resolve_conductivities(mesh, {{"scalp", isotropic(0.43)}});
         FAIL() << "a tissue the mesh does not have must be refused";
     } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("'scalp' is no tissue of the mesh"), std::string::npos) << error.what();
+        EXPECT_NE(std::string(error.what()).find("'scalp' is no tissue of the mesh"), std::string::npos)
+            << error.what();
         EXPECT_NE(std::string(error.what()).find("2 (csf)"), std::string::npos) << error.what();
     }
     try {
@@ -47,21 +48,26 @@ TEST(Conductivities, UnknownAndMissingTissuesAreInputErrors)
             << error.what();
     }
     EXPECT_THROW(resolve_conductivities(mesh, {{"1", isotropic(-1)}}), InputError);
-    EXPECT_THROW(resolve_conductivities(mesh, {{"1", {1, 0.5, 0, 0, 1, 0, 0, 0, 1}}}), InputError);  // not symmetric
+    EXPECT_THROW(resolve_conductivities(mesh, {{"1", {1, 0.5, 0, 0, 1, 0, 0, 0, 1}}}), InputError); // not symmetric
 }
 
 TEST(Conductivities, PatternsFillWhatPlainKeysLeaveMostSpecificFirst)
 {
     // A torso-like set of names: patterns for families of tissues, "*" for the rest.
-    TetMesh mesh = testing::box_mesh(4, 40.0, 0.2, [](const Vec3& c) { return Label(1 + (c[0] < 20) + 2 * (c[1] < 20)); });
+    TetMesh mesh =
+        testing::box_mesh(4, 40.0, 0.2, [](const Vec3& c) { return Label(1 + (c[0] < 20) + 2 * (c[1] < 20)); });
     mesh.names = {{1, "rib_left_7"}, {2, "rib_right_7"}, {3, "Lung_upper_lobe_left"}, {4, "liver"}};
-    const Conductivities sigma = resolve_conductivities(
-        mesh, {{"rib_*", isotropic(0.02)}, {"rib_right_*", isotropic(0.03)}, {"lung*", isotropic(0.04)},
-               {"*", isotropic(0.2)}, {"liver", isotropic(0.028)}}, false);
-    EXPECT_EQ(sigma.by_label.at(1)[0], 0.02);   // rib_* (and *)
-    EXPECT_EQ(sigma.by_label.at(2)[0], 0.03);   // rib_right_* is more specific than rib_*
-    EXPECT_EQ(sigma.by_label.at(3)[0], 0.04);   // case-insensitive
-    EXPECT_EQ(sigma.by_label.at(4)[0], 0.028);  // a plain key beats every pattern
+    const Conductivities sigma = resolve_conductivities(mesh,
+                                                        {{"rib_*", isotropic(0.02)},
+                                                         {"rib_right_*", isotropic(0.03)},
+                                                         {"lung*", isotropic(0.04)},
+                                                         {"*", isotropic(0.2)},
+                                                         {"liver", isotropic(0.028)}},
+                                                        false);
+    EXPECT_EQ(sigma.by_label.at(1)[0], 0.02);  // rib_* (and *)
+    EXPECT_EQ(sigma.by_label.at(2)[0], 0.03);  // rib_right_* is more specific than rib_*
+    EXPECT_EQ(sigma.by_label.at(3)[0], 0.04);  // case-insensitive
+    EXPECT_EQ(sigma.by_label.at(4)[0], 0.028); // a plain key beats every pattern
     try {
         resolve_conductivities(mesh, {{"r*", isotropic(0.02)}, {"*7", isotropic(0.03)}, {"*", isotropic(0.2)}}, false);
         FAIL() << "two equally specific patterns with different values must be refused";
@@ -84,7 +90,8 @@ TEST(Conductivities, ATissueNamedTwiceIsAnInputError)
         resolve_conductivities(mesh, {{"2", isotropic(1.79)}, {"CSF", isotropic(0.3)}});
         FAIL() << "csf named twice must be refused";
     } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("'2' and 'CSF' both name tissue 2 (csf); give it once"), std::string::npos)
+        EXPECT_NE(std::string(error.what()).find("'2' and 'CSF' both name tissue 2 (csf); give it once"),
+                  std::string::npos)
             << error.what();
     }
 }
@@ -100,9 +107,10 @@ TEST(Assemble, SymmetricRowsSumToZeroAndEnergyOfALinearField)
     EXPECT_LT((dense - dense.transpose()).cwiseAbs().maxCoeff(), 1e-15);
     EXPECT_LT(dense.rowwise().sum().cwiseAbs().maxCoeff(), 1e-15);
     // u = g . x (x in m): u^T K u = sum over tets of V * g^T sigma g, here a box split in two halves.
-    const Vec3 g{3.0, -1.0, 2.0};  // V/m
+    const Vec3 g{3.0, -1.0, 2.0}; // V/m
     Eigen::VectorXd u(static_cast<Eigen::Index>(mesh.vertex_count()));
-    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) u[static_cast<Eigen::Index>(v)] = dot(g, metres_per_mm * mesh.vertices[v]);
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        u[static_cast<Eigen::Index>(v)] = dot(g, metres_per_mm * mesh.vertices[v]);
     double expected = 0;
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
         const Mat3& s = sigma.by_label.at(mesh.tet_labels[t]);
@@ -119,7 +127,8 @@ TEST(Assemble, SameBytesOnEveryRun)
     const SparseMatrix b = assemble_stiffness(mesh, sigma);
     ASSERT_EQ(a.nonZeros(), b.nonZeros());
     EXPECT_EQ(std::memcmp(a.valuePtr(), b.valuePtr(), sizeof(double) * static_cast<std::size_t>(a.nonZeros())), 0);
-    EXPECT_EQ(std::memcmp(a.innerIndexPtr(), b.innerIndexPtr(), sizeof(int) * static_cast<std::size_t>(a.nonZeros())), 0);
+    EXPECT_EQ(std::memcmp(a.innerIndexPtr(), b.innerIndexPtr(), sizeof(int) * static_cast<std::size_t>(a.nonZeros())),
+              0);
 }
 
 TEST(Assemble, InvertedTetIsAnInputError)

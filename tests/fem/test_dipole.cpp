@@ -20,9 +20,9 @@ TEST(Dipole, CentredDipoleInAHomogeneousSphere)
     const double radius_mm = 50;
     // Surface edges ~3.3 mm (icosphere level 4), tets up to 5 mm^3: 30 k nodes, ~2 s.
     const TetMesh mesh = testing::ball_mesh(radius_mm, 4, 5.0);
-    const Conductivities sigma = resolve_conductivities(mesh, {});  // brain: 0.33 S/m by default
+    const Conductivities sigma = resolve_conductivities(mesh, {}); // brain: 0.33 S/m by default
     PotentialProblem problem;
-    const Vec3 moment{0, 0.6e-8, 0.8e-8};  // A*m (10 nA m, oblique)
+    const Vec3 moment{0, 0.6e-8, 0.8e-8}; // A*m (10 nA m, oblique)
     problem.dipoles = {{.position_mm = {0, 0, 0}, .moment_am = moment}};
     PotentialReport report;
     const std::vector<double> phi = solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-12}, {}, &report);
@@ -57,7 +57,8 @@ TEST(Dipole, OffCentreDipoleBySubtraction)
     const Vec3 position{1.2, -0.8, 1.4}, moment{0, 0.6e-8, 0.8e-8};
     problem.dipoles = {{.position_mm = position, .moment_am = moment}};
     problem.dipole_model = DipoleModel::subtraction;
-    const std::vector<double> phi = solve_potential(mesh, resolve_conductivities(mesh, {}), problem, {.relative_tolerance = 1e-12});
+    const std::vector<double> phi =
+        solve_potential(mesh, resolve_conductivities(mesh, {}), problem, {.relative_tolerance = 1e-12});
     std::vector<double> numeric;
     std::vector<Vec3> points;
     for (std::uint32_t node : outer_boundary(mesh).nodes)

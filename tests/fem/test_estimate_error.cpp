@@ -51,8 +51,8 @@ TEST(EstimateError, ShrinksUnderRefinementAndPointsAtTheSteepRegion)
     double coarse_inner = 0, fine_inner = 0;
     const double coarse = shell_indicator(2, 8.0, &coarse_inner);
     const double fine = shell_indicator(3, 1.0, &fine_inner);
-    std::printf("[estimate] total indicator %.3e -> %.3e (ratio %.2f); share of r < 15 mm %.2f, %.2f\n", coarse,
-                fine, coarse / fine, coarse_inner, fine_inner);
+    std::printf("[estimate] total indicator %.3e -> %.3e (ratio %.2f); share of r < 15 mm %.2f, %.2f\n", coarse, fine,
+                coarse / fine, coarse_inner, fine_inner);
     // Energy-norm error is O(h): halving the nominal size should about halve the indicator.
     EXPECT_GT(coarse / fine, 1.5);
     // The potential bends most near the inner sphere (1/r): the shell r < 15 mm holds 9% of the volume

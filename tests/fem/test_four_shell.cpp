@@ -48,9 +48,11 @@ void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Ve
     const char* name = model == DipoleModel::subtraction ? "subtraction"
                        : model == DipoleModel::venant    ? "Venant"
                                                          : "partial integration";
-    std::printf("[4-shell] %s dipole at (%.0f, %.0f, %.0f) mm moment (%.0e, %.0e, %.0e): %zu nodes, RDM %.4f, MAG %.4f, "
-                "%d AMG-CG iterations\n", name, position[0], position[1], position[2], moment[0], moment[1], moment[2],
-                mesh.vertex_count(), a.rdm, a.mag, report.solver.iterations);
+    std::printf(
+        "[4-shell] %s dipole at (%.0f, %.0f, %.0f) mm moment (%.0e, %.0e, %.0e): %zu nodes, RDM %.4f, MAG %.4f, "
+        "%d AMG-CG iterations\n",
+        name, position[0], position[1], position[2], moment[0], moment[1], moment[2], mesh.vertex_count(), a.rdm, a.mag,
+        report.solver.iterations);
     EXPECT_LT(a.rdm, max_rdm);
     EXPECT_NEAR(a.mag, 1.0, max_mag_error);
 }

@@ -61,7 +61,8 @@ void expect_direct_solves_agree(const SmallHead& head, DipoleModel model, double
     options.dipole_model = model;
     options.solver = {.relative_tolerance = 1e-12, .processes = 1};
     LeadFieldReport report;
-    const LeadFields fields = compute_lead_fields(head.mesh, head.sigma, head.electrodes, head.meg, head.sources, options, {}, &report);
+    const LeadFields fields =
+        compute_lead_fields(head.mesh, head.sigma, head.electrodes, head.meg, head.sources, options, {}, &report);
     ASSERT_EQ(fields.eeg.rows(), 12);
     ASSERT_EQ(fields.eeg.cols(), 7);
     ASSERT_EQ(fields.meg.rows(), 4);
@@ -70,28 +71,33 @@ void expect_direct_solves_agree(const SmallHead& head, DipoleModel model, double
     Eigen::Index column = 0;
     double worst_eeg = 0, worst_meg = 0;
     for (const LeadFieldSource& source : head.sources) {
-        const std::vector<Vec3> moments =
-            source.orientation ? std::vector<Vec3>{*source.orientation} : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        const std::vector<Vec3> moments = source.orientation ? std::vector<Vec3>{*source.orientation}
+                                                             : std::vector<Vec3>{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
         for (const Vec3& moment : moments) {
             PotentialProblem problem;
             problem.dipoles = {{source.position_mm, moment}};
             problem.dipole_model = model;
-            const std::vector<double> phi = solve_potential(head.mesh, head.sigma, problem, {.relative_tolerance = 1e-12, .processes = 1});
+            const std::vector<double> phi =
+                solve_potential(head.mesh, head.sigma, problem, {.relative_tolerance = 1e-12, .processes = 1});
             Eigen::VectorXd eeg(12), meg(4);
             for (std::size_t e = 0; e < 12; ++e) {
                 const SurfacePoint& point = report.electrodes[e];
-                eeg[static_cast<Eigen::Index>(e)] = point.weights[0] * phi[point.nodes[0]] + point.weights[1] * phi[point.nodes[1]] +
+                eeg[static_cast<Eigen::Index>(e)] = point.weights[0] * phi[point.nodes[0]] +
+                                                    point.weights[1] * phi[point.nodes[1]] +
                                                     point.weights[2] * phi[point.nodes[2]];
             }
             eeg.array() -= eeg.mean();
             for (std::size_t s = 0; s < 4; ++s)
-                meg[static_cast<Eigen::Index>(s)] = magnetic_field(head.mesh, head.sigma, phi, problem.dipoles, head.meg[s]);
+                meg[static_cast<Eigen::Index>(s)] =
+                    magnetic_field(head.mesh, head.sigma, phi, problem.dipoles, head.meg[s]);
             worst_eeg = std::max(worst_eeg, relative_difference(fields.eeg.col(column), eeg));
             worst_meg = std::max(worst_meg, relative_difference(fields.meg.col(column), meg));
             ++column;
         }
     }
-    const char* name = model == DipoleModel::venant ? "Venant" : model == DipoleModel::subtraction ? "subtraction" : "partial integration";
+    const char* name = model == DipoleModel::venant        ? "Venant"
+                       : model == DipoleModel::subtraction ? "subtraction"
+                                                           : "partial integration";
     std::printf("[lead field] %s: %zu unknowns, worst relative difference to direct solves: EEG %.2e, MEG %.2e\n", name,
                 report.unknowns, worst_eeg, worst_meg);
     EXPECT_LT(worst_eeg, bound);
@@ -122,7 +128,8 @@ TEST(LeadField, TwoProcessesGiveTheSameLeadField)
     options.solver.processes = 2;
     options.solver.min_unknowns_per_process = 1000;
     LeadFieldReport report;
-    const LeadFields two = compute_lead_fields(head.mesh, head.sigma, head.electrodes, head.meg, head.sources, options, {}, &report);
+    const LeadFields two =
+        compute_lead_fields(head.mesh, head.sigma, head.electrodes, head.meg, head.sources, options, {}, &report);
     ASSERT_EQ(report.solver.processes, 2);
     EXPECT_LT((two.eeg - one.eeg).norm(), 1e-9 * one.eeg.norm());
     EXPECT_LT((two.meg - one.meg).norm(), 1e-9 * one.meg.norm());
@@ -137,11 +144,13 @@ TEST(LeadField, ReferenceElectrodeRowIsZeroAndTheRestShiftsByIt)
     options.solver = {.relative_tolerance = 1e-12, .processes = 1};
     const LeadFields average = compute_lead_fields(head.mesh, head.sigma, head.electrodes, {}, head.sources, options);
     options.reference_electrode = 4;
-    const LeadFields referenced = compute_lead_fields(head.mesh, head.sigma, head.electrodes, {}, head.sources, options);
+    const LeadFields referenced =
+        compute_lead_fields(head.mesh, head.sigma, head.electrodes, {}, head.sources, options);
     EXPECT_EQ(referenced.eeg.row(4).norm(), 0.0);
     EXPECT_EQ(referenced.meg.size(), 0);
     for (Eigen::Index e = 0; e < 12; ++e)
-        EXPECT_LT((referenced.eeg.row(e) - (average.eeg.row(e) - average.eeg.row(4))).norm(), 1e-9 * average.eeg.norm());
+        EXPECT_LT((referenced.eeg.row(e) - (average.eeg.row(e) - average.eeg.row(4))).norm(),
+                  1e-9 * average.eeg.norm());
 }
 
 // Bad requests name the item: a source outside, a source in an excluded tissue, an electrode off the scalp,
@@ -150,7 +159,8 @@ TEST(LeadField, BadInputNamesTheItem)
 {
     const SmallHead head;
     const auto expect_message = [&](std::vector<EegElectrode> electrodes, std::vector<MegSensor> meg,
-                                    std::vector<LeadFieldSource> sources, const std::string& expected, LeadFieldOptions options = {}) {
+                                    std::vector<LeadFieldSource> sources, const std::string& expected,
+                                    LeadFieldOptions options = {}) {
         std::string message = "no error";
         try {
             compute_lead_fields(head.mesh, head.sigma, electrodes, meg, sources, options);
@@ -160,7 +170,8 @@ TEST(LeadField, BadInputNamesTheItem)
         EXPECT_NE(message.find(expected), std::string::npos) << message;
     };
     const std::vector<LeadFieldSource> inside{{{0, 0, 10}, std::nullopt, "deep"}};
-    expect_message(head.electrodes, {}, {{{0, 0, 10}, std::nullopt, "deep"}, {{0, 0, 95}, std::nullopt, "S2 (src.csv line 3)"}},
+    expect_message(head.electrodes, {},
+                   {{{0, 0, 10}, std::nullopt, "deep"}, {{0, 0, 95}, std::nullopt, "S2 (src.csv line 3)"}},
                    "S2 (src.csv line 3) at (0, 0, 95) mm lies outside the mesh");
     LeadFieldOptions brain_only;
     brain_only.source_tissues = {4};
@@ -171,8 +182,10 @@ TEST(LeadField, BadInputNamesTheItem)
     expect_message(far, {}, inside, "Cz (eeg.csv line 5) at (0, 0, 120) mm is 28");
     far[3] = {{0, 0, 50}, ""};
     expect_message(far, {}, inside, "electrode 4 at (0, 0, 50) mm is 4");
-    expect_message({}, {{{0, 0, 90}, {0, 0, 1}, std::nullopt, "MEG0113"}}, inside, "MEG0113 has a coil at (0, 0, 90) mm inside the head");
-    expect_message({}, {{{0, 0, 92.5}, {0, 0, 1}, std::nullopt, ""}}, inside, "MEG sensor 1 has a coil at (0, 0, 92.5) mm 0.");
+    expect_message({}, {{{0, 0, 90}, {0, 0, 1}, std::nullopt, "MEG0113"}}, inside,
+                   "MEG0113 has a coil at (0, 0, 90) mm inside the head");
+    expect_message({}, {{{0, 0, 92.5}, {0, 0, 1}, std::nullopt, ""}}, inside,
+                   "MEG sensor 1 has a coil at (0, 0, 92.5) mm 0.");
     expect_message({head.electrodes[0]}, {}, inside, "one EEG electrode");
     expect_message({}, {}, inside, "no EEG electrode and no MEG sensor");
 }

@@ -53,7 +53,7 @@ TEST(LocalityOrder, RenumberedMeshIsTheSameMesh)
 TEST(LocalityOrder, SolverMessagesNameTheCallersNodes)
 {
     TetMesh mesh = testing::box_mesh(4, 20.0);
-    std::reverse(mesh.vertices.begin(), mesh.vertices.end());  // a numbering far from Z-order
+    std::reverse(mesh.vertices.begin(), mesh.vertices.end()); // a numbering far from Z-order
     const auto n = static_cast<std::uint32_t>(mesh.vertex_count());
     for (Tet& tet : mesh.tets) {
         for (std::uint32_t& v : tet) v = n - 1 - v;
@@ -74,7 +74,7 @@ TEST(LocalityOrder, SolverMessagesNameTheCallersNodes)
     const std::vector<double> phi = solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-12});
     EXPECT_EQ(phi[3], 0.0);
     EXPECT_EQ(phi[n - 4], 1.0);
-    for (const double value : phi) EXPECT_TRUE(value >= -1e-9 && value <= 1 + 1e-9) << value;  // maximum principle
+    for (const double value : phi) EXPECT_TRUE(value >= -1e-9 && value <= 1 + 1e-9) << value; // maximum principle
 }
 
 } // namespace

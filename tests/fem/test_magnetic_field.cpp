@@ -32,15 +32,16 @@ TEST(SarvasField, IsDivergenceAndCurlFreeWithThePrimaryRadialPart)
         const double h = 1e-3;
         double divergence = 0;
         Vec3 curl{0, 0, 0};
-        std::array<Vec3, 3> derivative{};  // d B / d x_a
+        std::array<Vec3, 3> derivative{}; // d B / d x_a
         for (int a = 0; a < 3; ++a) {
             Vec3 step{0, 0, 0};
             step[static_cast<std::size_t>(a)] = h;
-            derivative[static_cast<std::size_t>(a)] =
-                (0.5 / h) * (sarvas_field(sensor + step, position, moment) - sarvas_field(sensor - step, position, moment));
+            derivative[static_cast<std::size_t>(a)] = (0.5 / h) * (sarvas_field(sensor + step, position, moment) -
+                                                                   sarvas_field(sensor - step, position, moment));
             divergence += derivative[static_cast<std::size_t>(a)][static_cast<std::size_t>(a)];
         }
-        curl = {derivative[1][2] - derivative[2][1], derivative[2][0] - derivative[0][2], derivative[0][1] - derivative[1][0]};
+        curl = {derivative[1][2] - derivative[2][1], derivative[2][0] - derivative[0][2],
+                derivative[0][1] - derivative[1][0]};
         const double scale = norm(derivative[0]) + norm(derivative[1]) + norm(derivative[2]);
         EXPECT_LT(std::abs(divergence), 1e-6 * scale);
         EXPECT_LT(norm(curl), 1e-6 * scale);
@@ -54,7 +55,8 @@ TEST(MagneticField, VolumeCurrentKernelSumsToZero)
 {
     const TetMesh mesh = testing::four_shell_head(2, 100.0);
     const Conductivities sigma = resolve_conductivities(mesh, {});
-    const std::vector<double> kernel = volume_current_kernel(mesh, sigma, {{0, 20, 100}, {0, 0.6, 0.8}, std::nullopt, ""});
+    const std::vector<double> kernel =
+        volume_current_kernel(mesh, sigma, {{0, 20, 100}, {0, 0.6, 0.8}, std::nullopt, ""});
     double sum = 0, size = 0;
     for (const double value : kernel) sum += value, size += std::abs(value);
     EXPECT_LT(std::abs(sum), 1e-12 * size);
@@ -82,7 +84,7 @@ TEST(LeadField, FourShellHeadAgreesWithTheSeriesAndSarvas)
     const LayeredSphere series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
     std::vector<EegElectrode> electrodes;
     const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
-    for (int k = 0; k < 32; ++k) {  // the upper part of the head, as a cap covers it
+    for (int k = 0; k < 32; ++k) { // the upper part of the head, as a cap covers it
         const double z = 1 - (k + 0.5) / 32 * 1.3, r = std::sqrt(1 - z * z);
         electrodes.push_back({92.5 * Vec3{r * std::cos(golden * k), r * std::sin(golden * k), z}, ""});
     }
@@ -112,14 +114,16 @@ TEST(LeadField, FourShellHeadAgreesWithTheSeriesAndSarvas)
             const auto column = static_cast<Eigen::Index>(3 * s) + axis;
             std::vector<double> eeg(32);
             for (Eigen::Index e = 0; e < 32; ++e) eeg[static_cast<std::size_t>(e)] = fields.eeg(e, column);
-            const Agreement a = compare_potentials(eeg, sphere_surface_potentials(series, sources[s].position_mm, moment, on_sphere));
+            const Agreement a =
+                compare_potentials(eeg, sphere_surface_potentials(series, sources[s].position_mm, moment, on_sphere));
             eeg_rdm.push_back(a.rdm);
             eeg_mag.push_back(std::abs(a.mag - 1));
             Eigen::VectorXd fe(40), exact(40);
             for (Eigen::Index j = 0; j < 40; ++j) {
                 fe[j] = fields.meg(j, column);
-                exact[j] = dot(sarvas_field(meg[static_cast<std::size_t>(j)].position_mm, sources[s].position_mm, moment),
-                               meg[static_cast<std::size_t>(j)].normal);
+                exact[j] =
+                    dot(sarvas_field(meg[static_cast<std::size_t>(j)].position_mm, sources[s].position_mm, moment),
+                        meg[static_cast<std::size_t>(j)].normal);
             }
             meg_rdm.push_back((fe / fe.norm() - exact / exact.norm()).norm());
             // The tangential magnetometers see the volume currents: without them the field is far off.
@@ -128,15 +132,17 @@ TEST(LeadField, FourShellHeadAgreesWithTheSeriesAndSarvas)
                 primary[j] = primary_field(meg[static_cast<std::size_t>(30 + j)], {sources[s].position_mm, moment});
             primary_only_rdm.push_back((primary / primary.norm() - tangential / tangential.norm()).norm());
         }
-    std::printf("[lead field] 4-shell head, %zu nodes, %zu columns: EEG median RDM %.4f, worst %.4f, median |MAG - 1| %.4f; "
-                "MEG median RDM %.4f, worst %.4f\n", mesh.vertex_count(), report.columns, median(eeg_rdm),
-                *std::max_element(eeg_rdm.begin(), eeg_rdm.end()), median(eeg_mag), median(meg_rdm),
-                *std::max_element(meg_rdm.begin(), meg_rdm.end()));
+    std::printf(
+        "[lead field] 4-shell head, %zu nodes, %zu columns: EEG median RDM %.4f, worst %.4f, median |MAG - 1| %.4f; "
+        "MEG median RDM %.4f, worst %.4f\n",
+        mesh.vertex_count(), report.columns, median(eeg_rdm), *std::max_element(eeg_rdm.begin(), eeg_rdm.end()),
+        median(eeg_mag), median(meg_rdm), *std::max_element(meg_rdm.begin(), meg_rdm.end()));
     EXPECT_LT(median(eeg_rdm), 0.01);
     EXPECT_LT(*std::max_element(eeg_rdm.begin(), eeg_rdm.end()), 0.03);
     EXPECT_LT(median(eeg_mag), 0.02);
     EXPECT_LT(median(meg_rdm), 0.01);
-    std::printf("[lead field] tangential magnetometers, primary field alone: median RDM %.3f\n", median(primary_only_rdm));
+    std::printf("[lead field] tangential magnetometers, primary field alone: median RDM %.3f\n",
+                median(primary_only_rdm));
     EXPECT_GT(median(primary_only_rdm), 10 * median(meg_rdm));
     EXPECT_LT(*std::max_element(meg_rdm.begin(), meg_rdm.end()), 0.03);
 }

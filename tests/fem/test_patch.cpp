@@ -13,7 +13,7 @@
 namespace tissuemesh::fem {
 namespace {
 
-double linear(const Vec3& p) { return 0.7 + 0.01 * p[0] - 0.02 * p[1] + 0.005 * p[2]; }  // V, p in mm
+double linear(const Vec3& p) { return 0.7 + 0.01 * p[0] - 0.02 * p[1] + 0.005 * p[2]; } // V, p in mm
 
 // A linear potential imposed on the boundary is reproduced inside, on a jittered mesh with two tissues of
 // the same anisotropic tensor (a constant tensor keeps every linear field a solution).
@@ -28,11 +28,12 @@ void expect_patch_test(Preconditioner preconditioner)
         problem.fixed.values_v.push_back(linear(mesh.vertices[node]));
     }
     PotentialReport report;
-    const std::vector<double> phi = solve_potential(mesh, sigma, problem, {.preconditioner = preconditioner,
-                                                                           .relative_tolerance = 1e-14}, {}, &report);
-    EXPECT_EQ(report.unknowns, 5u * 5u * 5u);  // interior nodes of a 7^3 grid
+    const std::vector<double> phi = solve_potential(
+        mesh, sigma, problem, {.preconditioner = preconditioner, .relative_tolerance = 1e-14}, {}, &report);
+    EXPECT_EQ(report.unknowns, 5u * 5u * 5u); // interior nodes of a 7^3 grid
     double worst = 0;
-    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) worst = std::max(worst, std::abs(phi[v] - linear(mesh.vertices[v])));
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        worst = std::max(worst, std::abs(phi[v] - linear(mesh.vertices[v])));
     // Potentials are O(1) V; residual 1e-14 on a well-conditioned 125-unknown system: 1e-12 V is round-off.
     EXPECT_LT(worst, 1e-12) << report.solver.preconditioner << " " << report.solver.iterations << " iterations";
 }
@@ -45,7 +46,7 @@ TEST(PatchTest, LinearPotentialReproducedAmg) { expect_patch_test(Preconditioner
 // phi(0) - phi(L) = I L / (sigma A) with L and A in metres.
 Electrode face_electrode(double x_mm, double size_mm, double outward)
 {
-    const double away = 10 * size_mm;  // centre far behind the face: the sphere cuts only that face
+    const double away = 10 * size_mm; // centre far behind the face: the sphere cuts only that face
     Electrode electrode;
     electrode.centre_mm = {x_mm + outward * away, size_mm / 2, size_mm / 2};
     electrode.radius_mm = std::sqrt(away * away + size_mm * size_mm / 2) * (1 + 1e-9);
@@ -64,10 +65,10 @@ TEST(Electrodes, CurrentThroughABoxGivesTheExactOhmicDrop)
     PotentialReport report;
     const std::vector<double> phi = solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-13}, {}, &report);
     ASSERT_EQ(report.electrode_nodes.size(), 2u);
-    EXPECT_EQ(report.electrode_nodes[0], 36u);  // the 6 x 6 nodes of the face x = 0
+    EXPECT_EQ(report.electrode_nodes[0], 36u); // the 6 x 6 nodes of the face x = 0
     EXPECT_NEAR(report.electrode_area_mm2[1], size_mm * size_mm, 1e-9);
     const double length_m = size_mm * 1e-3;
-    const double drop_v = 2e-3 * length_m / (0.5 * length_m * length_m);  // 0.2 V
+    const double drop_v = 2e-3 * length_m / (0.5 * length_m * length_m); // 0.2 V
     // Zero nodal mean: the exact linear potential shifted by the nodes' mean x (interior nodes are jittered).
     double mean_x = 0;
     for (const Vec3& p : mesh.vertices) mean_x += p[0] / static_cast<double>(mesh.vertex_count());
@@ -84,7 +85,7 @@ TEST(Electrodes, CurrentThroughABoxGivesTheExactOhmicDrop)
     for (std::size_t t = 0; t < mesh.tet_count(); ++t) {
         EXPECT_NEAR(fields.current_a_per_m2[t][0], 5.0, 1e-9);
         EXPECT_NEAR(fields.current_a_per_m2[t][1], 0.0, 1e-9);
-        EXPECT_NEAR(fields.electric_v_per_m[t][0], 10.0, 2e-9);  // E = J / sigma
+        EXPECT_NEAR(fields.electric_v_per_m[t][0], 10.0, 2e-9); // E = J / sigma
     }
 }
 
@@ -95,8 +96,8 @@ TEST(Electrodes, FixedPotentialElectrodes)
     problem.electrodes = {face_electrode(0, 10, -1), face_electrode(10, 10, 1)};
     problem.electrodes[0].mode = problem.electrodes[1].mode = Electrode::Mode::potential;
     problem.electrodes[0].potential_v = 1.0;
-    const std::vector<double> phi =
-        solve_potential(mesh, resolve_conductivities(mesh, {{"1", isotropic(0.3)}}), problem, {.relative_tolerance = 1e-14});
+    const std::vector<double> phi = solve_potential(mesh, resolve_conductivities(mesh, {{"1", isotropic(0.3)}}),
+                                                    problem, {.relative_tolerance = 1e-14});
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) EXPECT_NEAR(phi[v], 1 - mesh.vertices[v][0] / 10, 1e-12);
 }
 
@@ -119,7 +120,8 @@ TEST(Electrodes, UnbalancedCurrentsAndMissedSurfaceAreInputErrors)
         FAIL() << "an electrode off the surface must be refused";
     } catch (const InputError& error) {
         EXPECT_NE(std::string(error.what()).find("electrode 1 at (50, 50, 50) mm with radius 3 mm covers 0 boundary"),
-                  std::string::npos) << error.what();
+                  std::string::npos)
+            << error.what();
     }
 }
 

@@ -14,24 +14,24 @@
 namespace tissuemesh::fem {
 namespace {
 
-constexpr double r1 = 10, r2 = 20, r3 = 30;        // mm
-constexpr double sigma1 = 1.0, sigma2 = 0.25;      // S/m, inner and outer layer
+constexpr double r1 = 10, r2 = 20, r3 = 30;   // mm
+constexpr double sigma1 = 1.0, sigma2 = 0.25; // S/m, inner and outer layer
 
 double exact(double r)
 {
     // Series resistances (1/r_in - 1/r_out) / (4 pi sigma) in any consistent unit: the ratio is what counts.
     const double rho1 = (1 / r1 - 1 / r2) / sigma1, rho2 = (1 / r2 - 1 / r3) / sigma2;
-    const double current = 1 / (rho1 + rho2);  // 1 V over both layers
+    const double current = 1 / (rho1 + rho2); // 1 V over both layers
     return r <= r2 ? 1 - current * (1 / r1 - 1 / r) / sigma1 : current * (1 / r - 1 / r3) / sigma2;
 }
 
 struct ShellRun {
     std::size_t nodes = 0;
-    double h_mm = 0;         // mean edge length
-    double l2_error = 0;     // ||phi_h - phi|| / ||phi|| over the mesh
+    double h_mm = 0;     // mean edge length
+    double l2_error = 0; // ||phi_h - phi|| / ||phi|| over the mesh
     double max_nodal_error = 0;
     PotentialReport report;
-    std::vector<double> phi;  // V per node
+    std::vector<double> phi; // V per node
 };
 
 ShellRun run_shells(int levels, double max_volume_mm3, Preconditioner preconditioner)
@@ -87,8 +87,9 @@ void expect_second_order(const std::vector<std::pair<int, double>>& levels, doub
         runs.push_back(run_shells(level, volume, Preconditioner::amg));
         const ShellRun& r = runs.back();
         std::printf("[shells] level %d: %zu nodes, mean edge %.2f mm, L2 error %.3e, max nodal error %.3e V, "
-                    "%d AMG-CG iterations, %.2f s\n", level, r.nodes, r.h_mm, r.l2_error, r.max_nodal_error,
-                    r.report.solver.iterations, r.report.solver.seconds);
+                    "%d AMG-CG iterations, %.2f s\n",
+                    level, r.nodes, r.h_mm, r.l2_error, r.max_nodal_error, r.report.solver.iterations,
+                    r.report.solver.seconds);
     }
     for (std::size_t k = 1; k < runs.size(); ++k) {
         const double ratio = runs[k - 1].l2_error / runs[k].l2_error;
@@ -103,10 +104,7 @@ void expect_second_order(const std::vector<std::pair<int, double>>& levels, doub
     }
 }
 
-TEST(ConcentricShells, SecondOrderInL2)
-{
-    expect_second_order({{2, 8.0}, {3, 1.0}}, 1.6);
-}
+TEST(ConcentricShells, SecondOrderInL2) { expect_second_order({{2, 8.0}, {3, 1.0}}, 1.6); }
 
 TEST(ConcentricShells, JacobiAndAmgAgree)
 {
@@ -123,10 +121,7 @@ TEST(ConcentricShells, JacobiAndAmgAgree)
     EXPECT_LT(amg.report.solver.iterations, jacobi.report.solver.iterations);
 }
 
-TEST(ConcentricShells, SecondOrderInL2Long)
-{
-    expect_second_order({{3, 1.0}, {4, 0.125}}, 1.8);
-}
+TEST(ConcentricShells, SecondOrderInL2Long) { expect_second_order({{3, 1.0}, {4, 0.125}}, 1.8); }
 
 } // namespace
 } // namespace tissuemesh::fem

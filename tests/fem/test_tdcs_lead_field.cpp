@@ -29,8 +29,9 @@ TEST(TdcsLeadField, MontageSumsEqualDirectSolves)
     ASSERT_EQ(lead_field.electrodes, (std::vector<std::size_t>{0, 1, 3}));
     ASSERT_EQ(lead_field.potentials_v_per_a.rows(), 3);
     EXPECT_EQ(report.solver.columns, 3u);
-    for (const std::vector<double>& currents : {std::vector<double>{1e-3, -1e-3, 0, 0}, std::vector<double>{1e-3, 0, -2.5e-4, -7.5e-4},
-                                                std::vector<double>{0, 2e-3, 0, -2e-3}}) {
+    for (const std::vector<double>& currents :
+         {std::vector<double>{1e-3, -1e-3, 0, 0}, std::vector<double>{1e-3, 0, -2.5e-4, -7.5e-4},
+          std::vector<double>{0, 2e-3, 0, -2e-3}}) {
         PotentialProblem problem;
         for (std::size_t e = 0; e < patches.size(); ++e)
             if (currents[e] != 0) {
@@ -45,7 +46,7 @@ TEST(TdcsLeadField, MontageSumsEqualDirectSolves)
         for (std::size_t i = 0; i < direct.size(); ++i) worst = std::max(worst, std::abs(direct[i] - summed[i]));
         EXPECT_LT(worst, 1e-9 * (*high - *low)) << worst << " V of " << *high - *low << " V";
     }
-    EXPECT_THROW(montage_potential(lead_field, {1e-3, 0, 0, 0}), InputError);  // nothing comes out
+    EXPECT_THROW(montage_potential(lead_field, {1e-3, 0, 0, 0}), InputError); // nothing comes out
     EXPECT_THROW(montage_potential(lead_field, {1e-3, -1e-3}), InputError);
 }
 
@@ -72,7 +73,7 @@ TEST(SourceGrid, PointsLieInTheirTissueAwayFromItsBoundary)
     for (const Vec3& p : skull) EXPECT_GE(norm(p), 79.0);
     EXPECT_THROW(source_grid(mesh, {.spacing_mm = 10, .tissues = {}}), InputError);
     EXPECT_THROW(source_grid(mesh, {.spacing_mm = 10, .tissues = {7}}), InputError);
-    EXPECT_THROW(source_grid(mesh, {.spacing_mm = 0.05, .tissues = {4}}), InputError);  // 2.7e10 grid points
+    EXPECT_THROW(source_grid(mesh, {.spacing_mm = 0.05, .tissues = {4}}), InputError); // 2.7e10 grid points
 }
 
 } // namespace

@@ -77,7 +77,7 @@ TEST(Venant, MonopolesCarryTheDipoleMomentAndNoNetCurrent)
 TEST(Venant, MonopolesStayInTheSourceTissue)
 {
     const TetMesh mesh = testing::box_mesh(6, 12.0, 0.0, [](const Vec3& c) { return Label(c[0] < 6 ? 1 : 2); });
-    const Vec3 position{5.7, 6.3, 5.9};  // nearest node (6, 6, 6) lies on the interface
+    const Vec3 position{5.7, 6.3, 5.9}; // nearest node (6, 6, 6) lies on the interface
     const Dipole dipole{position, {1e-8, 0, 0}};
     const auto nodes_of = [&](Label tissue) {
         std::vector<bool> has(mesh.vertex_count(), false);
@@ -108,7 +108,7 @@ TEST(Venant, CentredDipoleInAHomogeneousSphere)
     const TetMesh mesh = testing::ball_mesh(radius_mm, 4, 5.0);
     PotentialProblem problem;
     const Vec3 moment{0, 0.6e-8, 0.8e-8};
-    problem.dipoles = {{.position_mm = {0, 0, 0}, .moment_am = moment}};  // on a node: Venant does not mind
+    problem.dipoles = {{.position_mm = {0, 0, 0}, .moment_am = moment}}; // on a node: Venant does not mind
     problem.dipole_model = DipoleModel::venant;
     const std::vector<double> phi =
         solve_potential(mesh, resolve_conductivities(mesh, {}), problem, {.relative_tolerance = 1e-12});

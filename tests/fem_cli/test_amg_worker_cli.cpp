@@ -20,9 +20,9 @@ TEST(AmgWorkerCli, TruncatedSystemFileIsAnErrorWithNoResult)
 {
     const TempDir dir;
     std::ofstream(dir.path() / "system.bin", std::ios::binary) << "TMAMGSY2" << std::string(12, '\0');
-    const CliResult result = run_cli("tm-amg-worker", {(dir.path() / "system.bin").string(),
-                                                       (dir.path() / "result.bin").string(),
-                                                       (dir.path() / "started").string()});
+    const CliResult result =
+        run_cli("tm-amg-worker", {(dir.path() / "system.bin").string(), (dir.path() / "result.bin").string(),
+                                  (dir.path() / "started").string()});
     EXPECT_NE(result.exit_code, 0);
     EXPECT_NE(result.err.find("truncated solver exchange file"), std::string::npos) << result.err;
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "result.bin"));

@@ -26,8 +26,8 @@ std::string electrode_csv(int n, double radius_mm)
     const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
     for (int k = 0; k < n; ++k) {
         const double z = 1 - (k + 0.5) / n * 1.3, r = std::sqrt(1 - z * z);
-        csv += concat("E", k + 1, ",", radius_mm * r * std::cos(golden * k), ",", radius_mm * r * std::sin(golden * k), ",",
-                      radius_mm * z, "\n");
+        csv += concat("E", k + 1, ",", radius_mm * r * std::cos(golden * k), ",", radius_mm * r * std::sin(golden * k),
+                      ",", radius_mm * z, "\n");
     }
     return csv;
 }
@@ -51,16 +51,17 @@ struct HeadFolder {
 TEST(LeadfieldCli, WritesEegAndMegLeadFieldsWithSidecars)
 {
     const HeadFolder head;
-    const CliResult result = run_cli("tm-leadfield", {"-i", head.mesh, "--sensors", head.path("eeg.csv"), "--sources", head.path("src.csv"),
-                                                      "-o", head.path("eeg.npy"), "--meg-sensors", head.path("meg.csv"),
-                                                      "--meg-output", head.path("meg.npy"), "--json", head.path("run.json")});
+    const CliResult result =
+        run_cli("tm-leadfield", {"-i", head.mesh, "--sensors", head.path("eeg.csv"), "--sources", head.path("src.csv"),
+                                 "-o", head.path("eeg.npy"), "--meg-sensors", head.path("meg.csv"), "--meg-output",
+                                 head.path("meg.npy"), "--json", head.path("run.json")});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const io::NpyMatrix eeg = io::read_npy(head.path("eeg.npy")), meg = io::read_npy(head.path("meg.npy"));
     ASSERT_EQ(eeg.rows, 16u);
     ASSERT_EQ(eeg.columns, 9u);
     ASSERT_EQ(meg.rows, 4u);
     ASSERT_EQ(meg.columns, 9u);
-    for (std::size_t c = 0; c < 9; ++c) {  // average reference: every column sums to zero
+    for (std::size_t c = 0; c < 9; ++c) { // average reference: every column sums to zero
         double sum = 0, size = 0;
         for (std::size_t r = 0; r < 16; ++r) sum += eeg.values[r * 9 + c], size += std::abs(eeg.values[r * 9 + c]);
         EXPECT_LT(std::abs(sum), 1e-12 * size);
@@ -85,8 +86,9 @@ TEST(LeadfieldCli, WritesEegAndMegLeadFieldsWithSidecars)
     const nlohmann::json run = read_json(head.path("run.json"));
     EXPECT_EQ(run["solves"], 15 + 4);
     EXPECT_EQ(run["columns"], 9);
-    EXPECT_LE(run["relative_residual_max"].get<double>(), 1e-5);  // 10 x the default tolerance, as solve_spd_columns allows
-    EXPECT_NE(result.err.find("solves done"), std::string::npos) << result.err;  // progress: 19 solves, a line per tenth
+    EXPECT_LE(run["relative_residual_max"].get<double>(),
+              1e-5); // 10 x the default tolerance, as solve_spd_columns allows
+    EXPECT_NE(result.err.find("solves done"), std::string::npos) << result.err; // progress: 19 solves, a line per tenth
 }
 
 // The tDCS lead field of a 4-electrode cap, then tm-solve sums two montages from it: the potentials equal
@@ -95,18 +97,21 @@ TEST(LeadfieldCli, TmSolveSumsAMontageFromTheTdcsLeadField)
 {
     const HeadFolder head;
     write(head.dir / "cap.csv", "name,x,y,z,radius_mm\nT7,-92,0,0,15\nT8,92,0,0,15\nCz,0,0,92,15\nFpz,0,92,0,20\n");
-    const CliResult built = run_cli("tm-leadfield", {"-i", head.mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-reference", "Cz",
-                                                     "--tdcs-output", head.path("tdcs.npy"), "--tolerance", "1e-12"});
+    const CliResult built =
+        run_cli("tm-leadfield", {"-i", head.mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-reference", "Cz",
+                                 "--tdcs-output", head.path("tdcs.npy"), "--tolerance", "1e-12"});
     ASSERT_EQ(built.exit_code, 0) << built.err;
     EXPECT_EQ(read_json(head.path("tdcs.json"))["reference"], "Cz");
-    for (const char* montage : {"name,x,y,z,radius_mm,current_a\nT7,-92,0,0,15,1e-3\nT8,92,0,0,15,-1e-3\n",
-                                       "name,x,y,z,radius_mm,current_a\nFpz,0,92,0,20,2e-3\nCz,0,0,92,15,-1.5e-3\nT8,92,0,0,15,-0.5e-3\n"}) {
+    for (const char* montage :
+         {"name,x,y,z,radius_mm,current_a\nT7,-92,0,0,15,1e-3\nT8,92,0,0,15,-1e-3\n",
+          "name,x,y,z,radius_mm,current_a\nFpz,0,92,0,20,2e-3\nCz,0,0,92,15,-1.5e-3\nT8,92,0,0,15,-0.5e-3\n"}) {
         write(head.dir / "montage.csv", montage);
-        const CliResult summed = run_cli("tm-solve", {"-i", head.mesh, "-o", head.path("summed.vtu"), "--leadfield", head.path("tdcs.npy"),
-                                                      "--electrodes", head.path("montage.csv")});
+        const CliResult summed = run_cli("tm-solve", {"-i", head.mesh, "-o", head.path("summed.vtu"), "--leadfield",
+                                                      head.path("tdcs.npy"), "--electrodes", head.path("montage.csv")});
         ASSERT_EQ(summed.exit_code, 0) << summed.err;
-        const CliResult direct = run_cli("tm-solve", {"-i", head.mesh, "-o", head.path("direct.vtu"), "--electrodes", head.path("montage.csv"),
-                                                      "--tolerance", "1e-12", "--processes", "1"});
+        const CliResult direct =
+            run_cli("tm-solve", {"-i", head.mesh, "-o", head.path("direct.vtu"), "--electrodes",
+                                 head.path("montage.csv"), "--tolerance", "1e-12", "--processes", "1"});
         ASSERT_EQ(direct.exit_code, 0) << direct.err;
         const std::vector<double> a = io::read_vtu(head.path("summed.vtu")).point_array("potential_V")->values;
         const std::vector<double> b = io::read_vtu(head.path("direct.vtu")).point_array("potential_V")->values;
@@ -129,24 +134,30 @@ TEST(LeadfieldCli, BadInputExitsTwoWithOneLineAndNoOutput)
     write(head.dir / "bad.npy", "\x93NUMPY\x01\x00\x10\x00{'descr'");
     write(head.dir / "cap.csv", "name,x,y,z,radius_mm\nT7,-92,0,0,15\nT8,92,0,0,15\n");
     write(head.dir / "montage.csv", "name,x,y,z,radius_mm,current_a\nT7,-92,0,0,15,1e-3\nC3,-60,0,60,15,-1e-3\n");
-    const std::string mesh = head.mesh, eeg = head.path("eeg.csv"), src = head.path("src.csv"), out = head.path("out.npy");
+    const std::string mesh = head.mesh, eeg = head.path("eeg.csv"), src = head.path("src.csv"),
+                      out = head.path("out.npy");
     struct Case {
         std::vector<std::string> args;
         std::string expected;
     };
     const std::vector<Case> cases{
-        {{"-i", mesh, "--sensors", head.path("off.csv"), "--sources", src, "-o", out}, "Fz (" + head.path("off.csv") + " line 6) at (0, 0, 150) mm is 58"},
+        {{"-i", mesh, "--sensors", head.path("off.csv"), "--sources", src, "-o", out},
+         "Fz (" + head.path("off.csv") + " line 6) at (0, 0, 150) mm is 58"},
         {{"-i", mesh, "--sensors", eeg, "--sources", head.path("outside.csv"), "-o", out},
          "source 2 (" + head.path("outside.csv") + " line 3) at (0, 0, 95) mm lies outside the mesh"},
-        {{"-i", mesh, "--sensors", eeg, "--sources", head.path("skull.csv"), "--source-tissues", "brain,csf", "-o", out},
+        {{"-i", mesh, "--sensors", eeg, "--sources", head.path("skull.csv"), "--source-tissues", "brain,csf", "-o",
+          out},
          "line 3) at (0, 0, 83) mm lies in skull (2), not in the source tissues (brain (4), csf (3))"},
         {{"-i", mesh, "--meg-sensors", head.path("inside.csv"), "--sources", src, "--meg-output", out},
          "MEG0111 (" + head.path("inside.csv") + " line 2) has a coil at (0, 0, 50) mm inside the head"},
         {{"-i", mesh, "--sensors", eeg, "--source-grid-mm", "10", "--source-tissues", "gray_matter", "-o", out},
-         "--source-tissues: unknown tissue \"gray_matter\"; the tissues of " + mesh + " are 1 scalp, 2 skull, 3 csf, 4 brain"},
+         "--source-tissues: unknown tissue \"gray_matter\"; the tissues of " + mesh +
+             " are 1 scalp, 2 skull, 3 csf, 4 brain"},
         {{"-i", mesh, "--sensors", eeg, "-o", out}, "the EEG and MEG lead fields need sources"},
-        {{"-i", mesh, "--sensors", eeg, "--sources", src, "-o", out, "--reference", "Cz"}, "--reference Cz: no electrode of"},
-        {{"-i", mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-output", out, "--tdcs-reference", "Oz"}, "--tdcs-reference Oz"},
+        {{"-i", mesh, "--sensors", eeg, "--sources", src, "-o", out, "--reference", "Cz"},
+         "--reference Cz: no electrode of"},
+        {{"-i", mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-output", out, "--tdcs-reference", "Oz"},
+         "--tdcs-reference Oz"},
     };
     for (const Case& c : cases) {
         const CliResult result = run_cli("tm-leadfield", c.args);
@@ -157,12 +168,17 @@ TEST(LeadfieldCli, BadInputExitsTwoWithOneLineAndNoOutput)
         EXPECT_FALSE(std::filesystem::exists(head.path("out.json"))) << c.expected;
     }
     // tm-solve --leadfield: a damaged .npy, and a montage electrode the lead field does not have.
-    ASSERT_EQ(run_cli("tm-leadfield", {"-i", mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-output", head.path("tdcs.npy")}).exit_code, 0);
+    ASSERT_EQ(run_cli("tm-leadfield",
+                      {"-i", mesh, "--tdcs-electrodes", head.path("cap.csv"), "--tdcs-output", head.path("tdcs.npy")})
+                  .exit_code,
+              0);
     std::filesystem::copy_file(head.path("tdcs.json"), head.path("bad.json"));
-    for (const auto& [lead_field, expected] : {std::pair{head.path("bad.npy"), std::string("bad.npy")},
-                                               std::pair{head.path("tdcs.npy"), "C3 (" + head.path("montage.csv") + " line 3): not an electrode of the lead field"}}) {
-        const CliResult result = run_cli("tm-solve", {"-i", mesh, "-o", head.path("sum.vtu"), "--leadfield", lead_field, "--electrodes",
-                                                      head.path("montage.csv")});
+    for (const auto& [lead_field, expected] :
+         {std::pair{head.path("bad.npy"), std::string("bad.npy")},
+          std::pair{head.path("tdcs.npy"),
+                    "C3 (" + head.path("montage.csv") + " line 3): not an electrode of the lead field"}}) {
+        const CliResult result = run_cli("tm-solve", {"-i", mesh, "-o", head.path("sum.vtu"), "--leadfield", lead_field,
+                                                      "--electrodes", head.path("montage.csv")});
         EXPECT_EQ(result.exit_code, 2);
         EXPECT_NE(result.err.find(expected), std::string::npos) << result.err;
         EXPECT_FALSE(std::filesystem::exists(head.path("sum.vtu")));
@@ -177,13 +193,15 @@ TEST(LeadfieldCli, MneLocalisesDipolesWithOurLeadField)
 {
     const HeadFolder head;
     write(head.dir / "cap.csv", electrode_csv(64, 92.3));
-    const CliResult built = run_cli("tm-leadfield", {"-i", head.mesh, "--sensors", head.path("cap.csv"), "--source-grid-mm", "7",
-                                                     "--source-tissues", "brain", "--source-min-distance-mm", "5", "-o",
-                                                     head.path("eeg.npy"), "-q"});
+    const CliResult built =
+        run_cli("tm-leadfield",
+                {"-i", head.mesh, "--sensors", head.path("cap.csv"), "--source-grid-mm", "7", "--source-tissues",
+                 "brain", "--source-min-distance-mm", "5", "-o", head.path("eeg.npy"), "-q"});
     ASSERT_EQ(built.exit_code, 0) << built.err;
-    const CliResult mne = run_program("/usr/bin/python3", {data_path("../python/examples/mne_forward.py").string(), head.path("eeg.npy"),
-                                                           "--dipole=21.8,-7.9,48.3,3e-8,0,4e-8", "--dipole=-33.9,15.2,-7.6,0,2e-8,1e-8",
-                                                           "--dipole=6.2,48.1,36.1,-1e-8,1e-8,3e-8"});
+    const CliResult mne =
+        run_program("/usr/bin/python3", {data_path("../python/examples/mne_forward.py").string(), head.path("eeg.npy"),
+                                         "--dipole=21.8,-7.9,48.3,3e-8,0,4e-8", "--dipole=-33.9,15.2,-7.6,0,2e-8,1e-8",
+                                         "--dipole=6.2,48.1,36.1,-1e-8,1e-8,3e-8"});
     ASSERT_EQ(mne.exit_code, 0) << mne.err;
     const nlohmann::json result = nlohmann::json::parse(mne.out);
     EXPECT_EQ(result["channels"], 64);
@@ -191,7 +209,8 @@ TEST(LeadfieldCli, MneLocalisesDipolesWithOurLeadField)
     ASSERT_EQ(result["dipoles"].size(), 3u);
     for (const nlohmann::json& dipole : result["dipoles"]) {
         EXPECT_LE(dipole["error_mm"].get<double>(), 5.0) << dipole.dump();
-        for (const nlohmann::json& rdm : dipole["rdm_at_peak_vs_mne_sphere"]) EXPECT_LT(rdm.get<double>(), 0.05) << dipole.dump();
+        for (const nlohmann::json& rdm : dipole["rdm_at_peak_vs_mne_sphere"])
+            EXPECT_LT(rdm.get<double>(), 0.05) << dipole.dump();
     }
 }
 

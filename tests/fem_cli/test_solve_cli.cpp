@@ -35,7 +35,8 @@ TetMesh brain_box()
                         tet[s + 1] = index(c[0], c[1], c[2]);
                     }
                     mesh.tets.push_back(tet);
-                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0)
+                        std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
                     mesh.tet_labels.push_back(1);
                 }
     mesh.names = {{0, "background"}, {1, "brain"}};
@@ -52,19 +53,18 @@ TEST(SolveCli, ElectrodesOnABoxGiveTheOhmicDrop)
     write(dir / "sensors.csv", "x,y,z\n0,10,10\n20,10,10\n");
     // Centres 200 mm behind the faces x = 0 and x = 20; the radius reaches the whole face and nothing else.
     const std::string radius = std::to_string(std::sqrt(200.0 * 200.0 + 200.0) + 1e-6);
-    const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                                  "--conductivity", (dir / "cond.json").string(),
-                                                  "--electrode", "-200,10,10," + radius + ",0.002",
-                                                  "--electrode", "220,10,10," + radius + ",-0.002",
-                                                  "--sensors", (dir / "sensors.csv").string(),
-                                                  "--sensor-potentials", (dir / "eeg.csv").string(),
-                                                  "--error-indicator", "--json", (dir / "summary.json").string()});
+    const CliResult result =
+        run_cli("tm-solve",
+                {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--conductivity",
+                 (dir / "cond.json").string(), "--electrode", "-200,10,10," + radius + ",0.002", "--electrode",
+                 "220,10,10," + radius + ",-0.002", "--sensors", (dir / "sensors.csv").string(), "--sensor-potentials",
+                 (dir / "eeg.csv").string(), "--error-indicator", "--json", (dir / "summary.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const nlohmann::json summary = read_json(dir / "summary.json");
     EXPECT_EQ(summary["nodes"], 125);
     EXPECT_GT(summary["iterations"].get<int>(), 0);
-    EXPECT_EQ(summary["processes"], 1);  // --processes 0 (one per core), but 125 nodes are too few to share
-    EXPECT_NEAR(summary["min_dihedral_deg"].get<double>(), 45.0, 1e-6);  // Kuhn tets: dihedrals 45, 60, 90 deg
+    EXPECT_EQ(summary["processes"], 1); // --processes 0 (one per core), but 125 nodes are too few to share
+    EXPECT_NEAR(summary["min_dihedral_deg"].get<double>(), 45.0, 1e-6); // Kuhn tets: dihedrals 45, 60, 90 deg
     EXPECT_LE(summary["relative_residual"].get<double>(), 1e-9);
     // J = 2e-3 A / 4e-4 m^2 = 5 A/m^2 everywhere, E = 10 V/m (1e-9: round-off).
     EXPECT_NEAR(summary["tissues"]["1"]["mean_J_A_per_m2"].get<double>(), 5.0, 1e-9);
@@ -97,15 +97,16 @@ TEST(SolveCli, MontageFileAndFlagsAddUp)
     TempDir dir;
     io::write_tet_mesh(brain_box(), dir / "box.msh");
     const std::string radius = std::to_string(std::sqrt(200.0 * 200.0 + 200.0) + 1e-6);
-    write(dir / "montage.csv", "# anode only; the cathode is a flag\nname,x,y,z,radius_mm,current_a\nanode,-200,10,10," + radius +
-                                   ",+0.002\n");
+    write(dir / "montage.csv",
+          "# anode only; the cathode is a flag\nname,x,y,z,radius_mm,current_a\nanode,-200,10,10," + radius +
+              ",+0.002\n");
     write(dir / "sensors.csv", "x,y,z,name\n0,10,10,left\n20,10,10,right\n");
     write(dir / "cond.json", "{\"brain\": 0.5}");
-    const CliResult solved = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                                  "--conductivity", (dir / "cond.json").string(), "--electrodes",
-                                                  (dir / "montage.csv").string(), "--electrode", "220,10,10," + radius + ",-0.002",
-                                                  "--sensors", (dir / "sensors.csv").string(), "--sensor-potentials",
-                                                  (dir / "eeg.csv").string(), "--json", (dir / "summary.json").string()});
+    const CliResult solved = run_cli(
+        "tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--conductivity",
+                     (dir / "cond.json").string(), "--electrodes", (dir / "montage.csv").string(), "--electrode",
+                     "220,10,10," + radius + ",-0.002", "--sensors", (dir / "sensors.csv").string(),
+                     "--sensor-potentials", (dir / "eeg.csv").string(), "--json", (dir / "summary.json").string()});
     ASSERT_EQ(solved.exit_code, 0) << solved.err;
     EXPECT_EQ(read_json(dir / "summary.json")["electrode_nodes"].size(), 2u);
     std::ifstream eeg(dir / "eeg.csv");
@@ -136,9 +137,9 @@ TEST(SolveCli, SameBytesOnEveryRun)
     // One and two OpenMP threads: assembly, fields and the indicator sum in a fixed order.
     for (const auto& [name, threads] : {std::pair{"a.vtu", "1"}, std::pair{"b.vtu", "2"}}) {
         setenv("OMP_NUM_THREADS", threads, 1);
-        const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / name).string(),
-                                                      "--dipole", "10,10,10,0,0,1e-8", "--dipole", "7,12,9,1e-8,0,0",
-                                                      "--error-indicator"});
+        const CliResult result =
+            run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / name).string(), "--dipole",
+                                 "10,10,10,0,0,1e-8", "--dipole", "7,12,9,1e-8,0,0", "--error-indicator"});
         unsetenv("OMP_NUM_THREADS");
         ASSERT_EQ(result.exit_code, 0) << result.err;
     }
@@ -151,8 +152,9 @@ TEST(SolveCli, ErrorIndicatorAndPhaseTimesInTheSummary)
 {
     TempDir dir;
     io::write_tet_mesh(brain_box(), dir / "box.msh");
-    const CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                                  "--dipole", "10,10,10,0,0,1e-8", "--json", (dir / "summary.json").string()});
+    const CliResult result =
+        run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--dipole",
+                             "10,10,10,0,0,1e-8", "--json", (dir / "summary.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     // Without --error-indicator the indicator is neither computed nor written.
     EXPECT_EQ(read_file(dir / "out.vtu").find("Name=\"error_indicator\""), std::string::npos);
@@ -174,10 +176,10 @@ TEST(SolveCli, VenantDipoleOnTheCentreNodeGivesAnOddPotential)
     TempDir dir;
     io::write_tet_mesh(brain_box(), dir / "box.msh");
     write(dir / "sensors.csv", "x,y,z\n0,10,10\n20,10,10\n10,0,10\n10,20,10\n");
-    CliResult result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                            "--dipole", "10,10,10,1e-8,0,0", "--dipole-model", "venant",
-                                            "--sensors", (dir / "sensors.csv").string(),
-                                            "--sensor-potentials", (dir / "eeg.csv").string()});
+    CliResult result =
+        run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--dipole",
+                             "10,10,10,1e-8,0,0", "--dipole-model", "venant", "--sensors",
+                             (dir / "sensors.csv").string(), "--sensor-potentials", (dir / "eeg.csv").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     std::stringstream text(read_file(dir / "eeg.csv"));
     std::string line;
@@ -190,8 +192,8 @@ TEST(SolveCli, VenantDipoleOnTheCentreNodeGivesAnOddPotential)
     EXPECT_LT(potential[0], 0.0);
     EXPECT_NEAR(potential[0], -potential[1], 1e-8 * std::abs(potential[0]));
     EXPECT_NEAR(potential[2], -potential[3], 1e-8 * std::abs(potential[0]));
-    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "sub.vtu").string(),
-                                  "--dipole", "10,10,10,1e-8,0,0", "--dipole-model", "subtraction"});
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "sub.vtu").string(), "--dipole",
+                                  "10,10,10,1e-8,0,0", "--dipole-model", "subtraction"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("lies on a mesh node"), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("use the Venant model"), std::string::npos) << result.err;
@@ -209,12 +211,12 @@ TEST(SolveCli, BadInputExitsTwoWithTheReason)
                                             "--conductivity", (dir / "cond.json").string()});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("'skull' is no tissue of the mesh"), std::string::npos) << result.err;
-    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                  "--dipole", "10,10,10,0,1e-8"});
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--dipole",
+                                  "10,10,10,0,1e-8"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("has 5 numbers, not 6"), std::string::npos) << result.err;
-    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(),
-                                  "--dipole", "10,10,30,0,0,1e-8"});
+    result = run_cli("tm-solve", {"-i", (dir / "box.msh").string(), "-o", (dir / "out.vtu").string(), "--dipole",
+                                  "10,10,30,0,0,1e-8"});
     EXPECT_EQ(result.exit_code, 2);
     EXPECT_NE(result.err.find("lies outside the mesh"), std::string::npos) << result.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.vtu"));

@@ -34,8 +34,8 @@ CliResult solve_with(const TempDir& dir, const fs::path& parameters, const std::
     const std::string radius = std::to_string(std::sqrt(200.0 * 200.0 + 200.0) + 1e-6);
     return run_program("env", {"OMPI_MCA_mca_base_param_files=" + parameters.string(), TM_TOOLS_DIR "/tm-solve", "-i",
                                (dir / "box.msh").string(), "-o", (dir / (name + ".vtu")).string(), "--processes", "2",
-                               "--electrode", "-200,10,10," + radius + ",0.002", "--electrode", "220,10,10," + radius + ",-0.002",
-                               "--json", (dir / (name + ".json")).string()});
+                               "--electrode", "-200,10,10," + radius + ",0.002", "--electrode",
+                               "220,10,10," + radius + ",-0.002", "--json", (dir / (name + ".json")).string()});
 }
 
 TEST(SolveHostfileCli, RunsOnTheSlotsOfAnMpiHostFile)
@@ -60,7 +60,8 @@ TEST(SolveHostfileCli, RunsOnTheSlotsOfAnMpiHostFile)
     // The host file is what mpiexec used: one naming an unknown node fails, and tm-solve says so and solves alone.
     result = solve_with(dir, dir / "unknown.conf", "one");
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    EXPECT_NE(result.err.find("AMG-CG on 2 processes failed (mpiexec exited with status"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("AMG-CG on 2 processes failed (mpiexec exited with status"), std::string::npos)
+        << result.err;
     EXPECT_NE(result.err.find("solving in one process instead"), std::string::npos) << result.err;
     summary = read_json(dir / "one.json");
     EXPECT_EQ(summary["processes"], 1);

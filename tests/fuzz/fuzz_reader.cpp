@@ -63,7 +63,8 @@ void read_as_format(const fs::path& file)
 #elif defined(TM_FUZZ_NPY)
     (void)tissuemesh::io::read_npy(file);
 #else
-#error "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES, TM_FUZZ_CONDUCTIVITY, TM_FUZZ_ELECTRODES, TM_FUZZ_SENSORS, TM_FUZZ_SOURCES, TM_FUZZ_MEG_SENSORS, TM_FUZZ_NPY"
+#error                                                                                                                 \
+    "define one of TM_FUZZ_IMAGE, TM_FUZZ_SURFACE, TM_FUZZ_MESH, TM_FUZZ_NAMES, TM_FUZZ_CONDUCTIVITY, TM_FUZZ_ELECTRODES, TM_FUZZ_SENSORS, TM_FUZZ_SOURCES, TM_FUZZ_MEG_SENSORS, TM_FUZZ_NPY"
 #endif
 }
 

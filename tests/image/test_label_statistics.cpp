@@ -38,7 +38,7 @@ TEST(LabelStatistics, DiagonalPairIsOneComponentOnlyWith26Neighbours)
     EXPECT_EQ(s.voxels, 2u);
     EXPECT_EQ(s.components6, 2u);
     EXPECT_EQ(s.components26, 1u);
-    EXPECT_DOUBLE_EQ(s.volume_mm3, 4.0);  // two voxels of 1 x 1 x 2 mm
+    EXPECT_DOUBLE_EQ(s.volume_mm3, 4.0); // two voxels of 1 x 1 x 2 mm
     EXPECT_EQ(s.index_min, (std::array<std::size_t, 3>{2, 2, 2}));
     EXPECT_EQ(s.index_max, (std::array<std::size_t, 3>{3, 3, 3}));
     // The cells span index 1.5 .. 3.5: along z (2 mm voxels) that is 3 .. 7 mm.
@@ -70,7 +70,7 @@ TEST(LabelStatistics, WarnsAboutTissueOnTheBorder)
     ASSERT_FALSE(summary_of(stats, 1).warnings.empty());
     EXPECT_NE(summary_of(stats, 1).warnings[0].find("2 voxels on the image border"), std::string::npos);
     EXPECT_NE(summary_of(stats, 1).warnings[0].find("tm-prep --crop-pad"), std::string::npos);
-    EXPECT_EQ(summary_of(stats, 0).warnings.size(), 0u);  // the background may touch the border
+    EXPECT_EQ(summary_of(stats, 0).warnings.size(), 0u); // the background may touch the border
 }
 
 TEST(LabelStatistics, CountsOneVoxelThinPlaces)
@@ -103,7 +103,7 @@ TEST(LabelStatistics, FlagsTheOneVoxelShellOfTheThinPhantom)
     EXPECT_GT(shell.thin_voxels, shell.voxels / 2);
     EXPECT_EQ(summary_of(stats, 2).thin_voxels, 0u);
     EXPECT_EQ(summary_of(stats, 0).thin_voxels, 0u);
-    EXPECT_EQ(summary_of(stats, 2).touches, (std::vector<Label>{1}));  // the shell is closed through faces
+    EXPECT_EQ(summary_of(stats, 2).touches, (std::vector<Label>{1})); // the shell is closed through faces
 }
 
 TEST(LabelStatistics, FindsTinyIslands)
@@ -145,7 +145,7 @@ TEST(LabelStatistics, DescribesGridAndOrientation)
 {
     EXPECT_EQ(orientation_code(identity_matrix()), "RAS");
     EXPECT_EQ(orientation_code({-1, 0, 0, 0, -1, 0, 0, 0, 1}), "LPS");
-    EXPECT_EQ(orientation_code({0, 0, 1, -1, 0, 0, 0, 1, 0}), "PSR");  // i -> -y, j -> +z, k -> +x
+    EXPECT_EQ(orientation_code({0, 0, 1, -1, 0, 0, 0, 1, 0}), "PSR"); // i -> -y, j -> +z, k -> +x
     const Phantom phantom = make_phantom("spheres4", {.voxel_mm = 4});
     const LabelStatistics stats = analyze_labels(phantom.image);
     EXPECT_EQ(stats.dims, phantom.image.dims());

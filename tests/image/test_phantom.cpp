@@ -146,12 +146,12 @@ TEST(Phantom, JunctionDistancesToDiskAndHalfSpheres)
     const Phantom phantom = make_phantom("junction", {.voxel_mm = 2.0});
     const auto& g = phantom.geometry;
     const Vec3 n = Vec3{0.3, 0.2, 1.0} * (1 / std::sqrt(0.09 + 0.04 + 1.0));
-    const Vec3 above = 10.0 * n;  // inside tissue 3, 10 mm from the splitting disk
+    const Vec3 above = 10.0 * n; // inside tissue 3, 10 mm from the splitting disk
     EXPECT_EQ(g.label_at(above), 3);
     EXPECT_EQ(g.label_at(-1.0 * above), 2);
     EXPECT_NEAR(g.distance_to_interface(above, {2, 3}), 10, 1e-12);
     EXPECT_NEAR(g.distance_to_interface(above, {1, 3}), 20, 1e-12);                     // radially out
-    EXPECT_NEAR(g.distance_to_interface(above, {1, 2}), std::hypot(30.0, 10.0), 1e-12);  // to the rim
+    EXPECT_NEAR(g.distance_to_interface(above, {1, 2}), std::hypot(30.0, 10.0), 1e-12); // to the rim
     const Vec3 in_plane = cross(n, {1, 0, 0}) * (50 / norm(cross(n, {1, 0, 0})));
     EXPECT_NEAR(g.distance_to_interface(in_plane, {2, 3}), 20, 1e-12);
     EXPECT_NEAR(g.distance_to_interface(in_plane, {0, 1}), 10, 1e-12);
@@ -162,7 +162,7 @@ TEST(Phantom, ThinShellIsOneVoxelThick)
     for (const double h : {0.7, 1.0, 2.0}) {
         const Phantom phantom = make_phantom("thin", {.voxel_mm = h});
         const LabelImage& image = phantom.image;
-        const std::size_t mid = image.dims()[0] / 2;  // the rows nearest the centre, h/2 off it
+        const std::size_t mid = image.dims()[0] / 2; // the rows nearest the centre, h/2 off it
         for (int axis = 0; axis < 3; ++axis) {
             std::size_t shell = 0;
             for (std::size_t t = 0; t < image.dims()[0]; ++t) {
@@ -170,7 +170,7 @@ TEST(Phantom, ThinShellIsOneVoxelThick)
                 index[axis] = t;
                 shell += image.at(index[0], index[1], index[2]) == 1;
             }
-            EXPECT_EQ(shell, 2u) << "voxel " << h << " mm, axis " << axis;  // one voxel on each side
+            EXPECT_EQ(shell, 2u) << "voxel " << h << " mm, axis " << axis; // one voxel on each side
         }
         EXPECT_NEAR(phantom.geometry.distance_to_interface({0, 0, 0}, {0, 1}) -
                         phantom.geometry.distance_to_interface({0, 0, 0}, {1, 2}),
@@ -190,9 +190,10 @@ TEST(Phantom, BoxFacesAvoidVoxelCentres)
         for (std::size_t j = 0; j < image.dims()[1]; j += 3)
             for (std::size_t i = 0; i < image.dims()[0]; i += 3)
                 for (const LabelPair& pair : phantom.geometry.interfaces())
-                    closest = std::min(closest, phantom.geometry.distance_to_interface(centre_of(image, i, j, k), pair));
+                    closest =
+                        std::min(closest, phantom.geometry.distance_to_interface(centre_of(image, i, j, k), pair));
     EXPECT_GT(closest, 0.3 * h - 1e-9);
-    EXPECT_LT(closest, 0.3 * h + 1e-9);  // and the closest face is exactly 0.3 voxel away
+    EXPECT_LT(closest, 0.3 * h + 1e-9); // and the closest face is exactly 0.3 voxel away
 }
 
 TEST(Phantom, EllipsoidsUseAnisotropicRotatedGrid)
@@ -215,7 +216,8 @@ double brute_force_ellipsoid(const std::array<double, 3>& e, const Vec3& p)
     double d_theta = M_PI / 400, d_phi = 2 * M_PI / 800;
     for (int a = 0; a <= 400; ++a)
         for (int b = 0; b < 800; ++b)
-            if (const double d = at(a * d_theta, b * d_phi); d < best) best = d, best_theta = a * d_theta, best_phi = b * d_phi;
+            if (const double d = at(a * d_theta, b * d_phi); d < best)
+                best = d, best_theta = a * d_theta, best_phi = b * d_phi;
     for (int round = 0; round < 8; ++round) {
         const double t0 = best_theta, p0 = best_phi;
         for (int a = -20; a <= 20; ++a)
@@ -230,8 +232,8 @@ double brute_force_ellipsoid(const std::array<double, 3>& e, const Vec3& p)
 TEST(Phantom, EllipsoidDistanceMatchesBruteForce)
 {
     const std::array<double, 3> e{45, 35, 25};
-    std::vector<Vec3> points{{0, 0, 0},     {10, 0, 0},  {0, 10, 0},   {0, 0, 10},  {44, 0, 0},  {60, 0, 0},
-                             {0, 0, 30},    {20, 15, 0}, {30, -10, 5}, {-50, 40, 30}, {45, 0, 0}, {5, 5, 24}};
+    std::vector<Vec3> points{{0, 0, 0},  {10, 0, 0},  {0, 10, 0},   {0, 0, 10},    {44, 0, 0}, {60, 0, 0},
+                             {0, 0, 30}, {20, 15, 0}, {30, -10, 5}, {-50, 40, 30}, {45, 0, 0}, {5, 5, 24}};
     std::mt19937 random(11);
     std::uniform_real_distribution<double> coordinate(-60, 60);
     for (int n = 0; n < 20; ++n) points.push_back({coordinate(random), coordinate(random), coordinate(random)});

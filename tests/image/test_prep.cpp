@@ -34,8 +34,8 @@ std::string message_of(const std::function<void()>& action)
 TEST(Relabel, SwapsAtOnceAndCarriesNames)
 {
     LabelImage image({4, 4, 4}, {1, 1, 1});
-    fill_box(image, {0, 0, 0}, {1, 3, 3}, 1);  // 32 voxels
-    fill_box(image, {2, 0, 0}, {2, 3, 3}, 2);  // 16 voxels
+    fill_box(image, {0, 0, 0}, {1, 3, 3}, 1); // 32 voxels
+    fill_box(image, {2, 0, 0}, {2, 3, 3}, 2); // 16 voxels
     image.names() = {{1, "scalp"}, {2, "skull"}};
     const PrepReport report = relabel(image, {{1, 2}, {2, 1}});
     EXPECT_EQ(count_labels(image).at(2), 32u);
@@ -44,7 +44,9 @@ TEST(Relabel, SwapsAtOnceAndCarriesNames)
     EXPECT_EQ(report.voxels_before.at(1), 32u);
     EXPECT_EQ(report.voxels_after.at(1), 16u);
     EXPECT_EQ(image.names().at(2), "scalp");
-    EXPECT_EQ(message_of([&] { relabel(image, {{7, 0}}); }),
+    EXPECT_EQ(message_of([&] {
+                  relabel(image, {{7, 0}});
+              }),
               "relabel 7:0: label 7 is not in the image (it has 0,1,2); check the map against tm-info");
 }
 
@@ -61,14 +63,14 @@ TEST(Relabel, MergesIntoTheFirstLabel)
 
 TEST(CropToTissue, CropsToTheTissueBoxAndPadsWithoutMovingVoxels)
 {
-    const Mat3 flip{-1, 0, 0, 0, 1, 0, 0, 0, -1};  // a rotation: the origin must follow the direction
+    const Mat3 flip{-1, 0, 0, 0, 1, 0, 0, 0, -1}; // a rotation: the origin must follow the direction
     LabelImage image({10, 10, 10}, {1, 2, 3}, {5, 6, 7}, flip);
     fill_box(image, {3, 4, 2}, {5, 4, 6}, 1);
     image.at(4, 4, 4) = 2;
     const Vec3 tissue_world = image.index_to_world({4, 4, 4});
     const PrepReport report = crop_to_tissue(image, {.pad_voxels = 2});
     EXPECT_EQ(image.dims(), (Dims{7, 5, 9}));
-    EXPECT_EQ(image.at(3, 2, 4), 2);  // old (4,4,4) minus the new start (1,2,0)
+    EXPECT_EQ(image.at(3, 2, 4), 2); // old (4,4,4) minus the new start (1,2,0)
     const Vec3 moved = image.index_to_world({3, 2, 4});
     for (int a = 0; a < 3; ++a) EXPECT_NEAR(moved[a], tissue_world[a], 1e-12);
     EXPECT_EQ(report.voxels_after.at(1), report.voxels_before.at(1));
@@ -78,7 +80,7 @@ TEST(CropToTissue, CropsToTheTissueBoxAndPadsWithoutMovingVoxels)
 TEST(CropToTissue, PadsBeyondTheOldBorder)
 {
     LabelImage image({3, 3, 3}, {1, 1, 1});
-    image.at(0, 1, 2) = 1;  // on the border
+    image.at(0, 1, 2) = 1; // on the border
     crop_to_tissue(image, {.pad_voxels = 3});
     EXPECT_EQ(image.dims(), (Dims{7, 7, 7}));
     EXPECT_EQ(image.at(3, 3, 3), 1);
@@ -90,15 +92,15 @@ TEST(CropToTissue, PadsBeyondTheOldBorder)
 TEST(Resample, DownsamplesByMajorityOfTheOverlap)
 {
     LabelImage image({4, 4, 4}, {1, 1, 1});
-    fill_box(image, {0, 0, 0}, {1, 1, 1}, 1);  // fills new voxel (0,0,0) entirely
-    fill_box(image, {2, 2, 2}, {3, 3, 2}, 2);  // half of new voxel (1,1,1): a tie with background
-    image.at(3, 0, 0) = 3;                      // 1/8 of new voxel (1,0,0): loses to background
+    fill_box(image, {0, 0, 0}, {1, 1, 1}, 1); // fills new voxel (0,0,0) entirely
+    fill_box(image, {2, 2, 2}, {3, 3, 2}, 2); // half of new voxel (1,1,1): a tie with background
+    image.at(3, 0, 0) = 3;                    // 1/8 of new voxel (1,0,0): loses to background
     const PrepReport report = resample_labels(image, {.spacing_mm = {2, 2, 2}});
     EXPECT_EQ(image.dims(), (Dims{2, 2, 2}));
     EXPECT_EQ(report.dims_before, (Dims{4, 4, 4}));
     EXPECT_NE(report.detail.find("4x4x4 -> 2x2x2 voxels"), std::string::npos) << report.detail;
     EXPECT_EQ(image.at(0, 0, 0), 1);
-    EXPECT_EQ(image.at(1, 1, 1), 2);  // ties go to the tissue
+    EXPECT_EQ(image.at(1, 1, 1), 2); // ties go to the tissue
     EXPECT_EQ(image.at(1, 0, 0), 0);
     // The new first voxel is centred on the old voxels 0 and 1: old continuous index 0.5.
     EXPECT_DOUBLE_EQ(image.origin_mm()[0], 0.5);
@@ -107,11 +109,11 @@ TEST(Resample, DownsamplesByMajorityOfTheOverlap)
 TEST(Resample, UpsamplesExactlyAndHandlesAnisotropy)
 {
     LabelImage image({4, 4, 6}, {1, 1, 1});
-    fill_box(image, {1, 1, 0}, {2, 2, 5}, 1);  // 24 voxels of 1 mm^3
+    fill_box(image, {1, 1, 0}, {2, 2, 5}, 1); // 24 voxels of 1 mm^3
     LabelImage fine = image;
     resample_labels(fine, {.spacing_mm = {0.5, 0.5, 0.5}});
     EXPECT_EQ(fine.dims(), (Dims{8, 8, 12}));
-    EXPECT_EQ(count_labels(fine).at(1), 24u * 8u);  // every new cell lies inside one old voxel
+    EXPECT_EQ(count_labels(fine).at(1), 24u * 8u); // every new cell lies inside one old voxel
     LabelImage coarse_z = image;
     resample_labels(coarse_z, {.spacing_mm = {1, 1, 3}, .method = ResampleMethod::nearest});
     EXPECT_EQ(coarse_z.dims(), (Dims{4, 4, 2}));
@@ -137,10 +139,10 @@ TEST(Resample, KeepsPhantomVolumes)
 TEST(RemoveIslands, GivesSmallPiecesToTheirSurroundings)
 {
     LabelImage image({10, 10, 10}, {1, 1, 1});
-    fill_box(image, {0, 0, 0}, {4, 9, 9}, 1);  // a big slab of 1
-    image.at(2, 5, 5) = 2;                      // a 1-voxel island of 2 inside the slab
-    image.at(8, 5, 5) = 3, image.at(8, 5, 6) = 3;  // a 2-voxel island of 3 in the background
-    fill_box(image, {7, 0, 0}, {8, 2, 2}, 4);  // 18 voxels of 4: large enough to stay
+    fill_box(image, {0, 0, 0}, {4, 9, 9}, 1);     // a big slab of 1
+    image.at(2, 5, 5) = 2;                        // a 1-voxel island of 2 inside the slab
+    image.at(8, 5, 5) = 3, image.at(8, 5, 6) = 3; // a 2-voxel island of 3 in the background
+    fill_box(image, {7, 0, 0}, {8, 2, 2}, 4);     // 18 voxels of 4: large enough to stay
     const PrepReport report = remove_islands(image, {.min_voxels = 5});
     EXPECT_EQ(image.at(2, 5, 5), 1);
     EXPECT_EQ(image.at(8, 5, 5), 0);
@@ -172,8 +174,8 @@ TEST(FillHoles, FillsEnclosedBackgroundOnly)
 {
     LabelImage image({9, 9, 9}, {1, 1, 1});
     fill_box(image, {1, 1, 1}, {7, 7, 7}, 1);
-    fill_box(image, {3, 3, 3}, {4, 4, 4}, 0);  // an 8-voxel cavity
-    image.at(7, 4, 4) = 0;                      // a dent open to the outside: not a hole
+    fill_box(image, {3, 3, 3}, {4, 4, 4}, 0); // an 8-voxel cavity
+    image.at(7, 4, 4) = 0;                    // a dent open to the outside: not a hole
     const PrepReport report = fill_holes(image);
     EXPECT_EQ(image.at(3, 3, 3), 1);
     EXPECT_EQ(image.at(7, 4, 4), 0);
@@ -185,8 +187,8 @@ TEST(FillHoles, RestrictsToHolesInChosenTissues)
     LabelImage image({9, 9, 9}, {1, 1, 1});
     fill_box(image, {1, 1, 1}, {7, 7, 7}, 1);
     fill_box(image, {2, 2, 2}, {4, 4, 4}, 2);
-    image.at(3, 3, 3) = 0;  // a cavity inside tissue 2 only
-    image.at(6, 6, 6) = 0;  // a cavity inside tissue 1 only
+    image.at(3, 3, 3) = 0; // a cavity inside tissue 2 only
+    image.at(6, 6, 6) = 0; // a cavity inside tissue 1 only
     FillHolesOptions options{.tissues = {1}};
     fill_holes(image, options);
     EXPECT_EQ(image.at(3, 3, 3), 0);
@@ -198,10 +200,10 @@ TEST(FillHoles, RestrictsToHolesInChosenTissues)
 TEST(KeepLargestComponent, DropsSmallerPieces)
 {
     LabelImage image({8, 8, 8}, {1, 1, 1});
-    fill_box(image, {1, 1, 1}, {3, 3, 3}, 1);   // 27 voxels: kept
-    fill_box(image, {5, 5, 5}, {6, 6, 5}, 1);   // 4 voxels in the background: dropped
-    fill_box(image, {5, 1, 1}, {6, 2, 2}, 2);   // another label, untouched
-    image.at(6, 1, 3) = 2;                       // a second piece of 2, but 2 is not chosen
+    fill_box(image, {1, 1, 1}, {3, 3, 3}, 1); // 27 voxels: kept
+    fill_box(image, {5, 5, 5}, {6, 6, 5}, 1); // 4 voxels in the background: dropped
+    fill_box(image, {5, 1, 1}, {6, 2, 2}, 2); // another label, untouched
+    image.at(6, 1, 3) = 2;                    // a second piece of 2, but 2 is not chosen
     const PrepReport report = keep_largest_component(image, {1});
     EXPECT_EQ(count_labels(image).at(1), 27u);
     EXPECT_EQ(count_labels(image).at(2), 9u);
@@ -213,8 +215,8 @@ TEST(PrepareImage, AppliesStepsInTheDocumentedOrder)
 {
     LabelImage image({12, 12, 12}, {1, 1, 1});
     fill_box(image, {3, 3, 3}, {8, 8, 8}, 5);
-    image.at(5, 5, 5) = 6;  // an island that the relabel turns into 5 before islands are looked at
-    image.at(0, 0, 0) = 7;  // a stray voxel at the corner: removed as an island before the crop
+    image.at(5, 5, 5) = 6; // an island that the relabel turns into 5 before islands are looked at
+    image.at(0, 0, 0) = 7; // a stray voxel at the corner: removed as an island before the crop
     PrepOptions options;
     options.relabel = {{5, 1}, {6, 1}};
     options.remove_islands_voxels = 2;
@@ -223,7 +225,7 @@ TEST(PrepareImage, AppliesStepsInTheDocumentedOrder)
     ASSERT_EQ(reports.size(), 3u);
     EXPECT_EQ(reports[0].step, "relabel");
     EXPECT_EQ(reports[1].step, "remove-islands");
-    EXPECT_EQ(reports[1].changed_voxels, 1u);  // only the corner voxel
+    EXPECT_EQ(reports[1].changed_voxels, 1u); // only the corner voxel
     EXPECT_EQ(reports[2].step, "crop-pad");
     EXPECT_EQ(image.dims(), (Dims{8, 8, 8}));
     EXPECT_EQ(count_labels(image), (std::map<Label, std::size_t>{{0, 512 - 216}, {1, 216}}));
@@ -233,7 +235,7 @@ TEST(PrepareImage, AppliesStepsInTheDocumentedOrder)
     bad.relabel = {{1, 2}};
     bad.spacing_mm = Vec3{1, 0, 1};
     EXPECT_THROW(prepare_image(untouched, bad), InputError);
-    EXPECT_EQ(untouched.labels(), image.labels());  // options are checked before any step runs
+    EXPECT_EQ(untouched.labels(), image.labels()); // options are checked before any step runs
 }
 
 } // namespace

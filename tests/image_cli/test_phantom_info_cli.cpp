@@ -20,9 +20,10 @@ TEST(PhantomCli, WritesImageGeometryAndTissueNames)
     const auto result = run_cli("tm-phantom", {"spheres4", "--voxel-mm", "4", "-o", (dir / "s4.nii.gz").string(),
                                                "--json", (dir / "phantom.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    EXPECT_EQ(dir.files(), (std::vector<std::string>{"phantom.json", "s4.geometry.json", "s4.labels.json", "s4.nii.gz"}));
+    EXPECT_EQ(dir.files(),
+              (std::vector<std::string>{"phantom.json", "s4.geometry.json", "s4.labels.json", "s4.nii.gz"}));
     const LabelImage image = io::read_label_image(dir / "s4.nii.gz");
-    EXPECT_EQ(image.dims(), (Dims{50, 50, 50}));  // 2 * ceil(92 / 4) + 4
+    EXPECT_EQ(image.dims(), (Dims{50, 50, 50})); // 2 * ceil(92 / 4) + 4
     EXPECT_DOUBLE_EQ(image.spacing_mm()[0], 4.0);
     const TissueNames names = io::read_tissue_names(dir / "s4.labels.json");
     EXPECT_EQ(names.at(1), "scalp");
@@ -57,7 +58,8 @@ TEST(PhantomCli, ListsPhantomsAndRejectsUnknownOnes)
 TEST(InfoCli, PrintsLabelsOfAPhantom)
 {
     TempDir dir;
-    ASSERT_EQ(run_cli("tm-phantom", {"junction", "--voxel-mm", "2", "-o", (dir / "j.nii.gz").string(), "-q"}).exit_code, 0);
+    ASSERT_EQ(run_cli("tm-phantom", {"junction", "--voxel-mm", "2", "-o", (dir / "j.nii.gz").string(), "-q"}).exit_code,
+              0);
     const auto result = run_cli("tm-info", {"-i", (dir / "j.nii.gz").string(), "--labels",
                                             (dir / "j.labels.json").string(), "--json", (dir / "info.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -65,7 +67,7 @@ TEST(InfoCli, PrintsLabelsOfAPhantom)
         EXPECT_NE(result.out.find(name), std::string::npos) << name << "\n" << result.out;
     const auto info = read_json(dir / "info.json");
     EXPECT_EQ(info.at("labels").size(), 4u);
-    EXPECT_EQ(info.at("labels").at(2).at("touches"), (nlohmann::json{1, 3}));  // lower half: shell, upper half
+    EXPECT_EQ(info.at("labels").at(2).at("touches"), (nlohmann::json{1, 3})); // lower half: shell, upper half
 }
 
 TEST(InfoCli, HeadSummaryHasTheSevenVoxelCounts)
@@ -78,7 +80,7 @@ TEST(InfoCli, HeadSummaryHasTheSevenVoxelCounts)
     std::ifstream sidecar(testing::data_path("samples/usc19-5_head.json"));
     const auto expected = nlohmann::json::parse(sidecar).at("voxel_counts");
     EXPECT_EQ(info.at("voxel_counts"), expected);
-    EXPECT_NE(result.out.find("on the image border"), std::string::npos);  // the scalp is cut at slice 0
+    EXPECT_NE(result.out.find("on the image border"), std::string::npos); // the scalp is cut at slice 0
 }
 
 TEST(InfoCli, MissingFileExitsTwoWithOneLine)

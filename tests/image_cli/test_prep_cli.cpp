@@ -22,7 +22,10 @@ std::string make_input(const TempDir& dir)
     return path;
 }
 
-std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+std::size_t lines(const std::string& text)
+{
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 TEST(PrepCli, RelabelsCropsAndReportsEachStep)
 {
@@ -43,7 +46,7 @@ TEST(PrepCli, RelabelsCropsAndReportsEachStep)
     std::ifstream json(dir / "prep.json");
     const auto summary = nlohmann::json::parse(json);
     ASSERT_EQ(summary.at("steps").size(), 2u);
-    EXPECT_EQ(summary.at("steps").at(0).at("step"), "relabel");  // the fixed order, not the flags' order
+    EXPECT_EQ(summary.at("steps").at(0).at("step"), "relabel"); // the fixed order, not the flags' order
     EXPECT_EQ(summary.at("steps").at(1).at("step"), "crop-pad");
     EXPECT_EQ(summary.at("steps").at(0).at("changed_voxels").get<std::size_t>(), before.at(3));
 }
@@ -66,7 +69,8 @@ TEST(PrepCli, UnknownLabelInRelabelExitsTwoAndWritesNothing)
     const auto before = dir.files();
     const auto result = run_cli("tm-prep", {"-i", input, "-o", (dir / "out.nii.gz").string(), "--relabel", "9:1"});
     EXPECT_EQ(result.exit_code, 2);
-    EXPECT_EQ(result.err, concat("tm-prep: error: --relabel: ", input, " has no tissue 9; its tissues are 0, 1, 2, 3\n"));
+    EXPECT_EQ(result.err,
+              concat("tm-prep: error: --relabel: ", input, " has no tissue 9; its tissues are 0, 1, 2, 3\n"));
     EXPECT_EQ(dir.files(), before);
 }
 
@@ -85,7 +89,8 @@ TEST(PrepCli, BadSpacingAndSyntaxExitTwoWithOneLine)
     EXPECT_NE(syntax.err.find("--relabel: '5-4' is not FROM:TO"), std::string::npos) << syntax.err;
     const auto range = run_cli("tm-prep", {"-i", input, "-o", out, "--keep-largest", "1,70000"});
     EXPECT_EQ(range.exit_code, 2);
-    EXPECT_NE(range.err.find("--keep-largest: tissue 70000 is not a label number; labels are 0..65535"), std::string::npos)
+    EXPECT_NE(range.err.find("--keep-largest: tissue 70000 is not a label number; labels are 0..65535"),
+              std::string::npos)
         << range.err;
     EXPECT_EQ(dir.files(), before);
 }
@@ -98,8 +103,9 @@ TEST(PrepCli, TmPrepParsesTissueArgumentsItselfNoMore)
     const std::string out = (dir / "out.nii.gz").string();
     const auto before = dir.files();
     // Names in any case, for every tissue option; --relabel's TO may be a new label, named by later steps.
-    const auto named = run_cli("tm-prep", {"-i", input, "--labels", labels, "-o", out, "--merge", "Lower_Half,3",
-                                           "--relabel", "SHELL:7", "--keep-largest", "7", "--fill-holes-in", "lower_half", "-q"});
+    const auto named =
+        run_cli("tm-prep", {"-i", input, "--labels", labels, "-o", out, "--merge", "Lower_Half,3", "--relabel",
+                            "SHELL:7", "--keep-largest", "7", "--fill-holes-in", "lower_half", "-q"});
     ASSERT_EQ(named.exit_code, 0) << named.err;
     const auto after = count_labels(io::read_label_image(out));
     EXPECT_FALSE(after.contains(1));

@@ -42,16 +42,16 @@ void put(std::vector<unsigned char>& bytes, std::size_t offset, T value, bool sw
 
 /// Fields of a hand-made single-file NIfTI-1 image (little-endian, as on the test machines).
 struct NiftiSpec {
-    std::int16_t dims[4] = {3, 2, 2, 2};  ///< dim[0] (rank), then the sizes
+    std::int16_t dims[4] = {3, 2, 2, 2}; ///< dim[0] (rank), then the sizes
     float spacing[3] = {1, 1, 1};
-    std::int16_t datatype = 2;            ///< 2 uint8, 4 int16, 16 float32, 512 uint16, 128 RGB
+    std::int16_t datatype = 2; ///< 2 uint8, 4 int16, 16 float32, 512 uint16, 128 RGB
     std::int16_t bitpix = 8;
-    std::int16_t vectors = 1;             ///< dim[5]: values per voxel (rank becomes 5 when > 1)
-    float scale_slope = 1;                ///< scl_slope: value = slope * stored + intercept
-    float scale_intercept = 0;            ///< scl_inter
-    float quatern[6] = {0, 0, 0, 0, 0, 0};  ///< qform: quatern_b, c, d, qoffset_x, y, z
-    float qfac = 1;                       ///< pixdim[0]: -1 flips the third axis
-    bool swapped = false;                 ///< write the header in the other byte order
+    std::int16_t vectors = 1;              ///< dim[5]: values per voxel (rank becomes 5 when > 1)
+    float scale_slope = 1;                 ///< scl_slope: value = slope * stored + intercept
+    float scale_intercept = 0;             ///< scl_inter
+    float quatern[6] = {0, 0, 0, 0, 0, 0}; ///< qform: quatern_b, c, d, qoffset_x, y, z
+    float qfac = 1;                        ///< pixdim[0]: -1 flips the third axis
+    bool swapped = false;                  ///< write the header in the other byte order
     char magic[4] = {'n', '+', '1', '\0'};
 };
 
@@ -65,12 +65,16 @@ inline void write_nifti(const std::filesystem::path& path, const NiftiSpec& spec
     const std::int16_t rank = spec.vectors > 1 ? 5 : spec.dims[0];
     put<std::int16_t>(bytes, 40, rank, spec.swapped);
     for (int axis = 1; axis <= 7; ++axis)
-        put<std::int16_t>(bytes, 40 + 2 * axis, axis <= 3 ? spec.dims[axis] : axis == 5 ? spec.vectors : 1, spec.swapped);
+        put<std::int16_t>(bytes, 40 + 2 * axis,
+                          axis <= 3   ? spec.dims[axis]
+                          : axis == 5 ? spec.vectors
+                                      : 1,
+                          spec.swapped);
     put<std::int16_t>(bytes, 70, spec.datatype, spec.swapped);
     put<std::int16_t>(bytes, 72, spec.bitpix, spec.swapped);
     put<float>(bytes, 76, spec.qfac, spec.swapped);
     for (int axis = 0; axis < 3; ++axis) put<float>(bytes, 80 + 4 * axis, spec.spacing[axis], spec.swapped);
-    put<float>(bytes, 108, 352.0f, spec.swapped);   // vox_offset
+    put<float>(bytes, 108, 352.0f, spec.swapped); // vox_offset
     put<float>(bytes, 112, spec.scale_slope, spec.swapped);
     put<float>(bytes, 116, spec.scale_intercept, spec.swapped);
     put<std::int16_t>(bytes, 252, 1, spec.swapped); // qform_code: scanner
@@ -89,19 +93,19 @@ inline void write_nifti2(const std::filesystem::path& path, const std::int64_t (
     std::vector<unsigned char> bytes(544, 0);
     put<std::int32_t>(bytes, 0, 540);
     std::memcpy(bytes.data() + 4, "n+2\0\r\n\032\n", 8);
-    put<std::int16_t>(bytes, 12, 2);  // datatype uint8
-    put<std::int16_t>(bytes, 14, 8);  // bitpix
+    put<std::int16_t>(bytes, 12, 2); // datatype uint8
+    put<std::int16_t>(bytes, 14, 8); // bitpix
     put<std::int64_t>(bytes, 16, 3);
     for (int axis = 0; axis < 3; ++axis) put<std::int64_t>(bytes, 24 + 8 * axis, dims[axis]);
     for (int axis = 3; axis < 7; ++axis) put<std::int64_t>(bytes, 24 + 8 * axis, 1);
-    put<double>(bytes, 104, qfac);  // pixdim[0]
+    put<double>(bytes, 104, qfac); // pixdim[0]
     for (std::size_t n = 0; n < 6; ++n) put<double>(bytes, 352 + 8 * n, quatern[n]);
     for (int axis = 0; axis < 3; ++axis) put<double>(bytes, 112 + 8 * axis, axis + 1.0);
-    put<std::int64_t>(bytes, 168, 544);  // vox_offset
-    put<double>(bytes, 176, 1.0);        // scl_slope
-    put<std::int32_t>(bytes, 344, 1);    // qform_code
+    put<std::int64_t>(bytes, 168, 544); // vox_offset
+    put<double>(bytes, 176, 1.0);       // scl_slope
+    put<std::int32_t>(bytes, 344, 1);   // qform_code
     if (srow.size() == 12) {
-        put<std::int32_t>(bytes, 348, 2);  // sform_code
+        put<std::int32_t>(bytes, 348, 2); // sform_code
         for (std::size_t n = 0; n < 12; ++n) put<double>(bytes, 400 + 8 * n, srow[n]);
     }
     bytes.insert(bytes.end(), data.begin(), data.end());

@@ -52,9 +52,11 @@ TEST(BadInrimage, TruncatedWrongMagicVectorAndSpacing)
     write_text(dir / "vector.inr", inr_header("XDIM=2\nYDIM=2\nZDIM=2\nVDIM=3\n"), std::string(24, '\1'));
     expect_error<InputError>([&] { io::read_label_image(dir / "vector.inr"); }, {"vector.inr: 3 values per voxel"});
     write_text(dir / "zero.inr", inr_header(inr_fields + "VX=0\n"), std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "zero.inr"); }, {"zero.inr: spacing along axis 0 is 0 mm"});
+    expect_error<InputError>([&] { io::read_label_image(dir / "zero.inr"); },
+                             {"zero.inr: spacing along axis 0 is 0 mm"});
     write_text(dir / "nan.inr", inr_header(inr_fields + "VZ=nan\n"), std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "nan.inr"); }, {"nan.inr: spacing along axis 2 is nan mm"});
+    expect_error<InputError>([&] { io::read_label_image(dir / "nan.inr"); },
+                             {"nan.inr: spacing along axis 2 is nan mm"});
     write_text(dir / "huge.inr", inr_header("XDIM=4000000000\nYDIM=4000000000\nZDIM=4000000000\n"), "\1");
     expect_error<InputError>([&] { io::read_label_image(dir / "huge.inr"); }, {"huge.inr: dimensions", "overflow"});
 }
@@ -87,21 +89,32 @@ TEST(BadRawJson, TruncatedMissingAndInvalidKeys)
     write_text(dir / "v.raw", "\1\2\3");
     write_text(dir / "short.json", raw_json + "}");
     expect_error<IoError>([&] { io::read_label_image(dir / "short.json"); }, {"v.raw: truncated", "holds 3"});
-    write_text(dir / "missing.json", R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "no.raw"})");
-    expect_error<IoError>([&] { io::read_label_image(dir / "missing.json"); }, {"missing.json: its raw file", "no.raw"});
+    write_text(dir / "missing.json",
+               R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "no.raw"})");
+    expect_error<IoError>([&] { io::read_label_image(dir / "missing.json"); },
+                          {"missing.json: its raw file", "no.raw"});
     write_text(dir / "syntax.json", "{\"dims\": [2, 2");
     expect_error<IoError>([&] { io::read_label_image(dir / "syntax.json"); }, {"syntax.json: not a valid JSON"});
     write_text(dir / "nodims.json", R"({"spacing": [1, 1, 1]})");
     expect_error<InputError>([&] { io::read_label_image(dir / "nodims.json"); }, {"nodims.json: the key \"dims\""});
-    write_text(dir / "dtype.json", R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "complex64", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "dtype.json"); }, {"dtype.json: unknown dtype \"complex64\""});
-    write_text(dir / "neg.json", R"({"dims": [2, 2, 2], "spacing": [1, -2, 1], "dtype": "uint8", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "neg.json"); }, {"neg.json: spacing along axis 1 is -2 mm"});
-    write_text(dir / "null.json", R"({"dims": [2, 2, 2], "spacing": [1, null, 1], "dtype": "uint8", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "null.json"); }, {"null.json: \"spacing\" must be an array of 3 numbers"});
-    write_text(dir / "huge.json", R"({"dims": [4000000000, 4000000000, 4000000000], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "v.raw"})");
+    write_text(dir / "dtype.json",
+               R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "complex64", "raw_file": "v.raw"})");
+    expect_error<InputError>([&] { io::read_label_image(dir / "dtype.json"); },
+                             {"dtype.json: unknown dtype \"complex64\""});
+    write_text(dir / "neg.json",
+               R"({"dims": [2, 2, 2], "spacing": [1, -2, 1], "dtype": "uint8", "raw_file": "v.raw"})");
+    expect_error<InputError>([&] { io::read_label_image(dir / "neg.json"); },
+                             {"neg.json: spacing along axis 1 is -2 mm"});
+    write_text(dir / "null.json",
+               R"({"dims": [2, 2, 2], "spacing": [1, null, 1], "dtype": "uint8", "raw_file": "v.raw"})");
+    expect_error<InputError>([&] { io::read_label_image(dir / "null.json"); },
+                             {"null.json: \"spacing\" must be an array of 3 numbers"});
+    write_text(
+        dir / "huge.json",
+        R"({"dims": [4000000000, 4000000000, 4000000000], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "v.raw"})");
     expect_error<InputError>([&] { io::read_label_image(dir / "huge.json"); }, {"huge.json: dimensions", "overflow"});
-    write_text(dir / "big.json", R"({"dims": [200, 200, 200], "spacing": [1, 1, 1], "dtype": "float64", "raw_file": "v.raw"})");
+    write_text(dir / "big.json",
+               R"({"dims": [200, 200, 200], "spacing": [1, 1, 1], "dtype": "float64", "raw_file": "v.raw"})");
     expect_error<IoError>([&] { io::read_label_image(dir / "big.json"); }, {"v.raw: truncated", "64000000 bytes"});
 }
 
@@ -140,15 +153,20 @@ TEST(BadNrrd, TruncatedZeroSpacingVectorsAndLayers)
     write_text(dir / "magic.nrrd", "PNG\n" + geometry);
     expect_error<IoError>([&] { io::read_label_image(dir / "magic.nrrd"); }, {"magic.nrrd: not a NRRD file", "magic"});
     write_text(dir / "zero.nrrd", nrrd_head + "space directions: (1,0,0) (0,0,0) (0,0,1)\n\n", std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "zero.nrrd"); }, {"zero.nrrd: spacing along axis 1 is 0 mm"});
-    write_text(dir / "vector.nrrd", "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
+    expect_error<InputError>([&] { io::read_label_image(dir / "zero.nrrd"); },
+                             {"zero.nrrd: spacing along axis 1 is 0 mm"});
+    write_text(dir / "vector.nrrd",
+               "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 3 2 2 2\nkinds: vector domain domain domain\nendian: little\nencoding: raw\n"
-               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n", std::string(24, '\1'));
+               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n",
+               std::string(24, '\1'));
     expect_error<InputError>([&] { io::read_label_image(dir / "vector.nrrd"); }, {"vector.nrrd: 3 values per voxel"});
-    write_text(dir / "layers.seg.nrrd", "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
+    write_text(dir / "layers.seg.nrrd",
+               "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 2 2 2 2\nkinds: list domain domain domain\nendian: little\nencoding: raw\n"
                "space directions: none (1,0,0) (0,1,0) (0,0,1)\nSegment0_Name:=a\nSegment0_Layer:=0\n"
-               "Segment1_Name:=b\nSegment1_Layer:=1\n\n", std::string(16, '\1'));
+               "Segment1_Name:=b\nSegment1_Layer:=1\n\n",
+               std::string(16, '\1'));
     expect_error<InputError>([&] { io::read_label_image(dir / "layers.seg.nrrd"); },
                              {"layers.seg.nrrd: a segmentation with 2 layers", "single-layer"});
 }
@@ -185,8 +203,9 @@ TEST(BadMetaImage, TruncatedAndWrongMagic)
     write_text(dir / "magic.mha", "hello world\n");
     expect_error<IoError>([&] { io::read_label_image(dir / "magic.mha"); }, {"magic.mha: not a MetaImage file"});
     write_text(dir / "detached.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
-               "ElementDataFile = gone.raw\n");
-    expect_error<IoError>([&] { io::read_label_image(dir / "detached.mhd"); }, {"detached.mhd: its data file", "gone.raw"});
+                                     "ElementDataFile = gone.raw\n");
+    expect_error<IoError>([&] { io::read_label_image(dir / "detached.mhd"); },
+                          {"detached.mhd: its data file", "gone.raw"});
 }
 
 } // namespace

@@ -89,7 +89,7 @@ TEST(BadInput, Nifti2QformMatchesItksNifti1Qform)
         // float32 quaternion in both files; ITK renormalizes the rotation: 1e-4 mm.
         for (int a = 0; a < 3; ++a) EXPECT_NEAR(p[a], q[a], 1e-4) << index[0] << index[1] << index[2];
     }
-    EXPECT_LT(determinant(two.direction()), 0);  // qfac = -1: a left-handed grid
+    EXPECT_LT(determinant(two.direction()), 0); // qfac = -1: a left-handed grid
 }
 
 TEST(BadInput, NiftiScalingIsAppliedBeforeTheLabelChecks)
@@ -103,7 +103,8 @@ TEST(BadInput, NiftiScalingIsAppliedBeforeTheLabelChecks)
     EXPECT_EQ(io::read_label_image(dir / "scaled.nii").at(1, 1, 1), 15);
     spec.scale_slope = 0.5f;
     testing::write_nifti(dir / "halved.nii", spec, eight_voxels());
-    expect_error<InputError>([&] { io::read_label_image(dir / "halved.nii"); }, {"halved.nii: voxel (1, 0, 0) holds 1.5"});
+    expect_error<InputError>([&] { io::read_label_image(dir / "halved.nii"); },
+                             {"halved.nii: voxel (1, 0, 0) holds 1.5"});
 }
 
 TEST(BadInput, TruncatedNifti)
@@ -158,13 +159,12 @@ TEST(BadInput, DimsExceedingTheFile)
 {
     testing::TempDir dir;
     testing::NiftiSpec spec;
-    spec.dims[1] = spec.dims[2] = spec.dims[3] = 30000;  // 2.7e13 voxels from a 360-byte file
+    spec.dims[1] = spec.dims[2] = spec.dims[3] = 30000; // 2.7e13 voxels from a 360-byte file
     testing::write_nifti(dir / "huge.nii", spec, eight_voxels());
     expect_error<IoError>([&] { io::read_label_image(dir / "huge.nii"); }, {"huge.nii: truncated", "27000000000000"});
     spec.dims[1] = -4;
     testing::write_nifti(dir / "negative.nii", spec, eight_voxels());
-    expect_error<InputError>([&] { io::read_label_image(dir / "negative.nii"); },
-                             {"negative.nii: dimension 0 is -4"});
+    expect_error<InputError>([&] { io::read_label_image(dir / "negative.nii"); }, {"negative.nii: dimension 0 is -4"});
 }
 
 TEST(BadInput, FloatLabelsMustBeWholeNumbers)
@@ -209,7 +209,7 @@ TEST(BadInput, LabelsOutsideUint16)
 {
     testing::TempDir dir;
     testing::NiftiSpec spec;
-    spec.datatype = 8;  // int32
+    spec.datatype = 8; // int32
     spec.bitpix = 32;
     testing::write_nifti(dir / "big.nii", spec, testing::voxel_bytes<std::int32_t>({0, 1, 2, 70000, 4, 5, 6, 7}));
     expect_error<InputError>([&] { io::read_label_image(dir / "big.nii"); },

@@ -28,18 +28,20 @@ TEST_P(BeforeVoxels, SeesTheHeaderAndCanRefuseTheImage)
     Dims seen_dims{};
     Vec3 seen_spacing{};
     std::size_t seen_bytes = 0;
-    const LabelImage image = io::read_label_image(path, {.before_voxels = [&](const Dims& dims, const Vec3& spacing, std::size_t bytes) {
-                                                             ++calls, seen_dims = dims, seen_spacing = spacing, seen_bytes = bytes;
-                                                         }});
+    const LabelImage image =
+        io::read_label_image(path, {.before_voxels = [&](const Dims& dims, const Vec3& spacing, std::size_t bytes) {
+                                 ++calls, seen_dims = dims, seen_spacing = spacing, seen_bytes = bytes;
+                             }});
     EXPECT_EQ(calls, 1);
     EXPECT_EQ(seen_dims, image.dims());
     EXPECT_EQ(seen_dims, (Dims{5, 4, 3}));
-    for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(seen_spacing[axis], image.spacing_mm()[axis], 1e-6) << axis;  // float headers
+    for (int axis = 0; axis < 3; ++axis)
+        EXPECT_NEAR(seen_spacing[axis], image.spacing_mm()[axis], 1e-6) << axis; // float headers
     EXPECT_EQ(seen_bytes, 1u);
     try {
         (void)io::read_label_image(path, {.before_voxels = [](const Dims&, const Vec3&, std::size_t) {
-                                         throw InputError("too big for this test");
-                                     }});
+                                       throw InputError("too big for this test");
+                                   }});
         FAIL() << "the hook's refusal must end the read";
     } catch (const InputError& error) {
         EXPECT_STREQ(error.what(), "too big for this test");
@@ -53,8 +55,8 @@ std::string format_name(const ::testing::TestParamInfo<std::string>& format)
     return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, BeforeVoxels, ::testing::Values(".nii", ".nii.gz", ".nrrd", ".mha", ".inr.gz", ".json"),
-                         format_name);
+INSTANTIATE_TEST_SUITE_P(Formats, BeforeVoxels,
+                         ::testing::Values(".nii", ".nii.gz", ".nrrd", ".mha", ".inr.gz", ".json"), format_name);
 
 } // namespace
 } // namespace tissuemesh

@@ -32,7 +32,7 @@ TEST_P(CorruptedFiles, ReadOrThrowOurErrors)
     const auto original = dir / ("a" + extension);
     io::write_label_image(image, original);
     const std::string bytes = read_bytes(original);
-    std::mt19937 random(12345);  // fixed seed: the same corruptions on every run
+    std::mt19937 random(12345); // fixed seed: the same corruptions on every run
     int read = 0, rejected = 0;
     ::testing::internal::CaptureStderr();
     for (int trial = 0; trial < 300; ++trial) {
@@ -56,7 +56,7 @@ TEST_P(CorruptedFiles, ReadOrThrowOurErrors)
     }
     // Library code never prints, whatever ITK and the nifti/NRRD/MetaIO libraries think of the bytes.
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
-    EXPECT_GT(rejected, 0);  // the corruptions do hit something
+    EXPECT_GT(rejected, 0); // the corruptions do hit something
     RecordProperty("read", read);
 }
 

@@ -46,7 +46,8 @@ TEST(FuzzRegressions, MetaimageKeyWithoutEqualsHangs)
 // fuzz_metaimage: "NDims = -1 - 0 0 1" made MetaIO read 2^32 numbers per field (its count is unsigned): a hang.
 TEST(FuzzRegressions, MetaimageNegativeNdimsHangs)
 {
-    expect_refused<IoError>("metaimage-negative-ndims-hangs.mha", "metaimage-negative-ndims-hangs.mha: NDims is '-1 - 0 0 1'");
+    expect_refused<IoError>("metaimage-negative-ndims-hangs.mha",
+                            "metaimage-negative-ndims-hangs.mha: NDims is '-1 - 0 0 1'");
 }
 
 // fuzz_metaimage: compressed voxel data whose zlib header asks for a preset dictionary made MetaIO's inflate
@@ -54,8 +55,9 @@ TEST(FuzzRegressions, MetaimageNegativeNdimsHangs)
 // damaged header lines of the fuzzer's file were made plain by hand (such keys are refused first now).
 TEST(FuzzRegressions, MetaimageZlibPresetDictionaryHangs)
 {
-    expect_refused<IoError>("metaimage-zlib-preset-dictionary-hangs.mha",
-                            "metaimage-zlib-preset-dictionary-hangs.mha: its compressed voxel data is not one whole zlib stream");
+    expect_refused<IoError>(
+        "metaimage-zlib-preset-dictionary-hangs.mha",
+        "metaimage-zlib-preset-dictionary-hangs.mha: its compressed voxel data is not one whole zlib stream");
 }
 
 // fuzz_metaimage: a header key of 345 bytes overran MetaIO's 255-byte field name (strcpy): an abort. The file
@@ -80,8 +82,9 @@ TEST(FuzzRegressions, MetaimageRepeatedNdimsHangs)
 // heap-buffer-overflow in strlen. Keys with a space are now an error. A valid 2x2x2 image with both lines, by hand.
 TEST(FuzzRegressions, MetaimageKeyWithSpaceOverflows)
 {
-    expect_refused<IoError>("metaimage-key-with-space-overflows.mha",
-                            "metaimage-key-with-space-overflows.mha: header line 7 has a key with a space in it ('ElementDat aFile')");
+    expect_refused<IoError>(
+        "metaimage-key-with-space-overflows.mha",
+        "metaimage-key-with-space-overflows.mha: header line 7 has a key with a space in it ('ElementDat aFile')");
 }
 
 } // namespace

@@ -30,15 +30,19 @@ protected:
 TEST_F(LabelTables, FreeSurferColourTable)
 {
     // As FreeSurferColorLUT.txt: a header comment, aligned columns, label 0, gaps in the numbering.
-    const auto path = write("FreeSurferColorLUT.txt", "#$Id: FreeSurferColorLUT.txt $\n\n"
-                                                      "#No. Label Name:                            R   G   B   A\n"
-                                                      "0   Unknown                                 0   0   0   0\n"
-                                                      "2   Left-Cerebral-White-Matter            245 245 245   0\n"
-                                                      "3   Left-Cerebral-Cortex                  205  62  78   0\r\n"
-                                                      "24  CSF                                    60  60  60   0  # ventricles too\n"
-                                                      "1000    ctx-lh-unknown                     25   5  25   0\n");
-    EXPECT_EQ(io::read_tissue_names(path), (TissueNames{{0, "Unknown"}, {2, "Left-Cerebral-White-Matter"},
-                                                        {3, "Left-Cerebral-Cortex"}, {24, "CSF"}, {1000, "ctx-lh-unknown"}}));
+    const auto path =
+        write("FreeSurferColorLUT.txt", "#$Id: FreeSurferColorLUT.txt $\n\n"
+                                        "#No. Label Name:                            R   G   B   A\n"
+                                        "0   Unknown                                 0   0   0   0\n"
+                                        "2   Left-Cerebral-White-Matter            245 245 245   0\n"
+                                        "3   Left-Cerebral-Cortex                  205  62  78   0\r\n"
+                                        "24  CSF                                    60  60  60   0  # ventricles too\n"
+                                        "1000    ctx-lh-unknown                     25   5  25   0\n");
+    EXPECT_EQ(io::read_tissue_names(path), (TissueNames{{0, "Unknown"},
+                                                        {2, "Left-Cerebral-White-Matter"},
+                                                        {3, "Left-Cerebral-Cortex"},
+                                                        {24, "CSF"},
+                                                        {1000, "ctx-lh-unknown"}}));
 }
 
 TEST_F(LabelTables, ItkSnapLabelFile)
@@ -56,7 +60,8 @@ TEST_F(LabelTables, BidsDsegTsv)
 {
     const auto path = write("sub-01_dseg.tsv", "index\tname\tabbreviation\tcolor\n1\tGray Matter\tGM\t#ff53bb\n"
                                                "2\tWhite Matter\tWM\t#2f8bbe\n3\tCerebrospinal Fluid\tCSF\t#d8d8d8\n");
-    EXPECT_EQ(io::read_tissue_names(path), (TissueNames{{1, "Gray Matter"}, {2, "White Matter"}, {3, "Cerebrospinal Fluid"}}));
+    EXPECT_EQ(io::read_tissue_names(path),
+              (TissueNames{{1, "Gray Matter"}, {2, "White Matter"}, {3, "Cerebrospinal Fluid"}}));
     // Columns in any order.
     const auto swapped = write("b_dseg.tsv", "name\tindex\nscalp\t5\n");
     EXPECT_EQ(io::read_tissue_names(swapped), (TissueNames{{5, "scalp"}}));
@@ -65,7 +70,8 @@ TEST_F(LabelTables, BidsDsegTsv)
 TEST_F(LabelTables, JsonStillReadsWhateverTheExtension)
 {
     EXPECT_EQ(io::read_tissue_names(write("names.txt", " {\"1\": \"scalp\"}")), (TissueNames{{1, "scalp"}}));
-    EXPECT_EQ(io::read_tissue_names(write("names.json", "{\"labels\": {\"2\": \"skull\"}}")), (TissueNames{{2, "skull"}}));
+    EXPECT_EQ(io::read_tissue_names(write("names.json", "{\"labels\": {\"2\": \"skull\"}}")),
+              (TissueNames{{2, "skull"}}));
 }
 
 TEST_F(LabelTables, DefectsNameTheFileTheLineAndTheLayout)
@@ -94,9 +100,11 @@ TEST_F(LabelTables, SimnibsTagTables)
               (io::SimnibsTagTable{{"air cavities", 13}, {"6", 14}}));
     expect_error<InputError>([&] { io::read_simnibs_tag_table(write("u.json", "{\"air\": 1000}")); },
                              {"u.json", "\"air\"", "1000", "1..999"});
-    expect_error<InputError>([&] { io::read_simnibs_tag_table(write("v.json", "{\"Air_Cavities\": 13, \"air cavities\": 14}")); },
-                             {"v.json", "given twice"});
-    expect_error<IoError>([&] { io::read_simnibs_tag_table(write("w.json", "[13]")); }, {"w.json", "not a JSON object"});
+    expect_error<InputError>(
+        [&] { io::read_simnibs_tag_table(write("v.json", "{\"Air_Cavities\": 13, \"air cavities\": 14}")); },
+        {"v.json", "given twice"});
+    expect_error<IoError>([&] { io::read_simnibs_tag_table(write("w.json", "[13]")); },
+                          {"w.json", "not a JSON object"});
 }
 
 TEST(SimnibsTags, NamesInAnyCaseOrSpellingAndNeverASilentDefault)
@@ -109,16 +117,20 @@ TEST(SimnibsTags, NamesInAnyCaseOrSpellingAndNeverASilentDefault)
     const std::map<Label, int> tags = io::simnibs_tags(mesh, {{"Air Cavities", 13}});
     EXPECT_EQ(tags, (std::map<Label, int>{{1, 5}, {2, 4}, {3, 3}, {4, 2}, {5, 1}, {6, 13}}));
     EXPECT_EQ(io::simnibs_tags(mesh, {{"6", 3}, {"3", 3}}).at(6), 3) << "a label key, and a merge the table asks for";
-    expect_error<InputError>([&] { (void)io::simnibs_tags(mesh, {{"6", 13}, {"bone marrow", 8}}); },
-                             {"\"bone marrow\" names no tissue of the mesh", "\"air cavities\" (6)"});
+    expect_error<InputError>(
+        [&] {
+            (void)io::simnibs_tags(mesh, {{"6", 13}, {"bone marrow", 8}});
+        },
+        {"\"bone marrow\" names no tissue of the mesh", "\"air cavities\" (6)"});
     mesh.names[6] = "skin";
-    expect_error<InputError>([&] { (void)io::simnibs_tags(mesh); }, {"\"Scalp\" and \"skin\" would both get SimNIBS tag 5"});
+    expect_error<InputError>([&] { (void)io::simnibs_tags(mesh); },
+                             {"\"Scalp\" and \"skin\" would both get SimNIBS tag 5"});
 }
 
 TEST(SimnibsTags, FaceTagsFollowItsMeshersHierarchy)
 {
-    EXPECT_EQ(io::simnibs_face_tag(1, 2), 1001);   // white matter's surface
-    EXPECT_EQ(io::simnibs_face_tag(3, 2), 1002);   // grey matter's, against CSF
+    EXPECT_EQ(io::simnibs_face_tag(1, 2), 1001); // white matter's surface
+    EXPECT_EQ(io::simnibs_face_tag(3, 2), 1002); // grey matter's, against CSF
     EXPECT_EQ(io::simnibs_face_tag(3, 4), 1003);
     EXPECT_EQ(io::simnibs_face_tag(5, 4), 1004);   // bone ranks before scalp
     EXPECT_EQ(io::simnibs_face_tag(9, 3), 1009);   // blood before CSF

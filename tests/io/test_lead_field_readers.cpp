@@ -37,7 +37,8 @@ TEST_F(LeadFieldReaders, SourcesFreeOrOrientedNormalised)
     EXPECT_FALSE(free[0].orientation);
     EXPECT_EQ(free[1].position_mm, (Vec3{-4, 5.5, 60}));
     EXPECT_EQ(free[1].line, 3u);
-    const std::vector<io::SourceRow> oriented = io::read_sources(write("oriented.csv", "NZ,x,y,z,nx,ny,name\n4,1,2,3,0,3,s1\n"));
+    const std::vector<io::SourceRow> oriented =
+        io::read_sources(write("oriented.csv", "NZ,x,y,z,nx,ny,name\n4,1,2,3,0,3,s1\n"));
     ASSERT_TRUE(oriented[0].orientation);
     EXPECT_NEAR((*oriented[0].orientation)[1], 0.6, 1e-15);
     EXPECT_NEAR((*oriented[0].orientation)[2], 0.8, 1e-15);
@@ -65,10 +66,12 @@ TEST_F(LeadFieldReaders, MegSensorsMagnetometersAndGradiometers)
                           {"no-normal.csv line 1: the header has no column 'nx'"});
     expect_error<InputError>([&] { io::read_meg_sensors(write("flat.csv", "x,y,z,nx,ny,nz\n0,0,100,0,0,0\n")); },
                              {"flat.csv line 2: the normal (0, 0, 0) has no direction"});
-    expect_error<IoError>([&] { io::read_meg_sensors(write("half.csv", "x,y,z,nx,ny,nz,x2,y2,z2\n0,0,100,0,0,1,1,,\n")); },
-                          {"half.csv line 2: 1 of the second coil's x2,y2,z2 given"});
-    expect_error<InputError>([&] { io::read_meg_sensors(write("same.csv", "x,y,z,nx,ny,nz,x2,y2,z2\n0,0,100,0,0,1,0,0,100\n")); },
-                             {"same.csv line 2: the second coil is on the first"});
+    expect_error<IoError>(
+        [&] { io::read_meg_sensors(write("half.csv", "x,y,z,nx,ny,nz,x2,y2,z2\n0,0,100,0,0,1,1,,\n")); },
+        {"half.csv line 2: 1 of the second coil's x2,y2,z2 given"});
+    expect_error<InputError>(
+        [&] { io::read_meg_sensors(write("same.csv", "x,y,z,nx,ny,nz,x2,y2,z2\n0,0,100,0,0,1,0,0,100\n")); },
+        {"same.csv line 2: the second coil is on the first"});
 }
 
 // tm-leadfield's tDCS electrodes need no current; tm-solve's montages still do.
@@ -96,7 +99,7 @@ TEST_F(LeadFieldReaders, NpyRoundTripAndLayout)
     ASSERT_EQ(bytes.size(), 128u + 48u);
     EXPECT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
     EXPECT_EQ(bytes[127], '\n');
-    EXPECT_EQ(bytes.substr(8, 2), std::string("\x76\x00", 2));  // 118 bytes of dictionary
+    EXPECT_EQ(bytes.substr(8, 2), std::string("\x76\x00", 2)); // 118 bytes of dictionary
     EXPECT_NE(bytes.find("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }"), std::string::npos);
     EXPECT_THROW(io::write_npy(file, {2, 2, {1, 2, 3}}), InputError);
 }
@@ -118,22 +121,40 @@ TEST_F(LeadFieldReaders, NpyVariantsAndDefects)
     };
     const double values[4] = {1, 2, 3, 4};
     const std::string four(reinterpret_cast<const char*>(values), 32);
-    const io::NpyMatrix fortran = io::read_npy(write("f.npy", npy("{'descr': '<f8', 'fortran_order': True, 'shape': (2, 2), }", four)));
+    const io::NpyMatrix fortran =
+        io::read_npy(write("f.npy", npy("{'descr': '<f8', 'fortran_order': True, 'shape': (2, 2), }", four)));
     EXPECT_EQ(fortran.values, (std::vector<double>{1, 3, 2, 4}));
-    const io::NpyMatrix vector = io::read_npy(write("v.npy", npy("{'shape': (4,), 'fortran_order': False, 'descr': '<f8'}", four, 2)));
+    const io::NpyMatrix vector =
+        io::read_npy(write("v.npy", npy("{'shape': (4,), 'fortran_order': False, 'descr': '<f8'}", four, 2)));
     EXPECT_EQ(vector.rows, 4u);
     EXPECT_EQ(vector.columns, 1u);
     expect_error<IoError>([&] { io::read_npy(write("text.npy", "x,y,z\n")); }, {"text.npy: not a NumPy .npy file"});
-    expect_error<IoError>([&] { io::read_npy(write("f4.npy", npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 2), }", four))); },
-                          {"f4.npy: the values are '<f4', not little-endian float64"});
-    expect_error<IoError>([&] { io::read_npy(write("cut.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", four))); },
-                          {"cut.npy: the header says 2 x 3 values but the file holds 32 bytes"});
-    expect_error<IoError>([&] { io::read_npy(write("huge.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2305843009213693952), }", four))); },
-                          {"huge.npy: the header says 1 x 2305843009213693952 values"});
-    expect_error<IoError>([&] { io::read_npy(write("cube.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2, 2), }", four))); },
-                          {"cube.npy: the shape (1, 2, 2) has 3 dimensions"});
-    expect_error<IoError>([&] { io::read_npy(write("short.npy", std::string("\x93NUMPY\x01\x00\x40\x00{'descr'", 17))); },
-                          {"short.npy: truncated .npy header"});
+    expect_error<IoError>(
+        [&] {
+            io::read_npy(write("f4.npy", npy("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 2), }", four)));
+        },
+        {"f4.npy: the values are '<f4', not little-endian float64"});
+    expect_error<IoError>(
+        [&] {
+            io::read_npy(write("cut.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", four)));
+        },
+        {"cut.npy: the header says 2 x 3 values but the file holds 32 bytes"});
+    expect_error<IoError>(
+        [&] {
+            io::read_npy(
+                write("huge.npy",
+                      npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2305843009213693952), }", four)));
+        },
+        {"huge.npy: the header says 1 x 2305843009213693952 values"});
+    expect_error<IoError>(
+        [&] {
+            io::read_npy(
+                write("cube.npy", npy("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2, 2), }", four)));
+        },
+        {"cube.npy: the shape (1, 2, 2) has 3 dimensions"});
+    expect_error<IoError>(
+        [&] { io::read_npy(write("short.npy", std::string("\x93NUMPY\x01\x00\x40\x00{'descr'", 17))); },
+        {"short.npy: truncated .npy header"});
 }
 
 } // namespace

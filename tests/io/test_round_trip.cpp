@@ -13,7 +13,7 @@ namespace {
 
 struct FormatCase {
     std::string extension;
-    bool keeps_direction;  ///< false: the format stores no orientation (Inrimage)
+    bool keeps_direction; ///< false: the format stores no orientation (Inrimage)
     bool keeps_names;
 };
 
@@ -61,7 +61,7 @@ TEST_P(RoundTrip, KeepsLabelsAbove255AsUint16)
 {
     const FormatCase& format = GetParam();
     testing::TempDir dir;
-    LabelImage image = testing::make_oriented_image(2600);  // up to 25 * 2600 = 65000
+    LabelImage image = testing::make_oriented_image(2600); // up to 25 * 2600 = 65000
     if (!format.keeps_direction) {
         const auto labels = image.labels();
         image = LabelImage(image.dims(), image.spacing_mm(), image.origin_mm());
@@ -105,7 +105,9 @@ TEST(WriteLabelImage, RejectsMissingFoldersForEveryFormat)
     testing::TempDir dir;
     for (const std::string extension : {".nii.gz", ".nhdr", ".mhd", ".inr", ".json"})
         testing::expect_error<IoError>(
-            [&] { io::write_label_image(LabelImage({2, 2, 2}, {1, 1, 1}), dir / "missing" / ("a" + extension)); },
+            [&] {
+                io::write_label_image(LabelImage({2, 2, 2}, {1, 1, 1}), dir / "missing" / ("a" + extension));
+            },
             {"does not exist; create it first"});
     EXPECT_TRUE(dir.files().empty());
 }
@@ -117,7 +119,8 @@ TEST(WriteLabelImage, IsByteForByteDeterministic)
     io::write_label_image(image, dir / "a.nii.gz");
     io::write_label_image(image, dir / "b.nii.gz");
     std::ifstream a(dir / "a.nii.gz", std::ios::binary), b(dir / "b.nii.gz", std::ios::binary);
-    const std::string bytes_a((std::istreambuf_iterator<char>(a)), {}), bytes_b((std::istreambuf_iterator<char>(b)), {});
+    const std::string bytes_a((std::istreambuf_iterator<char>(a)), {}),
+        bytes_b((std::istreambuf_iterator<char>(b)), {});
     EXPECT_EQ(bytes_a, bytes_b);
 }
 

@@ -29,7 +29,8 @@ protected:
 
     /// Writes `text` as `name` and expects `read` to refuse it with an `E` whose message holds every part.
     template <typename E, typename Read>
-    void expect_refused(Read read, const std::string& name, const std::string& text, std::initializer_list<std::string> parts)
+    void expect_refused(Read read, const std::string& name, const std::string& text,
+                        std::initializer_list<std::string> parts)
     {
         SCOPED_TRACE(name);
         const std::string file = write(name, text);
@@ -41,8 +42,9 @@ protected:
 
 TEST_F(TableReaders, SensorsInAnyColumnOrderWithNamesCommentsAndWindowsLineEnds)
 {
-    const std::string file = write("cap.csv", "\xEF\xBB\xBF# 3 of the 10-20 system\r\n Name , Z,x,Y\r\n\r\n"
-                                              "Fp1,-7.5,-29.4,+83.9\r\n\"Cz\",  96.0 ,0,-9.2\r\n# end\r\nO2,1e1,29,-114\r\n");
+    const std::string file =
+        write("cap.csv", "\xEF\xBB\xBF# 3 of the 10-20 system\r\n Name , Z,x,Y\r\n\r\n"
+                         "Fp1,-7.5,-29.4,+83.9\r\n\"Cz\",  96.0 ,0,-9.2\r\n# end\r\nO2,1e1,29,-114\r\n");
     const std::vector<io::SensorRow> sensors = io::read_sensors(file);
     ASSERT_EQ(sensors.size(), 3u);
     EXPECT_EQ(sensors[0].name, "Fp1");
@@ -64,14 +66,16 @@ TEST_F(TableReaders, SensorsWithoutNamesAndWithoutFinalNewline)
 
 TEST_F(TableReaders, SensorDefectsNameTheFileTheLineAndTheFix)
 {
-    const auto refused = [&](const std::string& name, const std::string& text, std::initializer_list<std::string> parts) {
+    const auto refused = [&](const std::string& name, const std::string& text,
+                             std::initializer_list<std::string> parts) {
         expect_refused<IoError>(io::read_sensors, name, text, parts);
     };
     refused("empty.csv", "", {"empty.csv: the file is empty", "x,y,z"});
     refused("blank.csv", "\n  \n# only a comment\n", {"blank.csv: no header line"});
     refused("header-only.csv", "x,y,z\n", {"header-only.csv: no sensors after the header"});
     refused("no-header.csv", "1,2,3\n", {"no-header.csv line 1: the first line is data, not a header", "x,y,z"});
-    refused("unknown.csv", "x,y,z,w\n1,2,3,4\n", {"unknown.csv line 1: unknown column 'w'", "x,y,z (and optionally name)"});
+    refused("unknown.csv", "x,y,z,w\n1,2,3,4\n",
+            {"unknown.csv line 1: unknown column 'w'", "x,y,z (and optionally name)"});
     refused("missing.csv", "x,z\n1,2\n", {"missing.csv line 1: the header has no column 'y'"});
     refused("twice.csv", "x,y,z,X\n", {"twice.csv line 1: column 'x' appears twice (columns 1 and 4)"});
     refused("short.csv", "x,y,z\n1,2,3\n4,5\n", {"short.csv line 3: 2 fields where the header has 3 columns"});
@@ -108,17 +112,22 @@ TEST_F(TableReaders, ElectrodeMontageWithNamesAndSignedCurrents)
 
 TEST_F(TableReaders, ElectrodeDefectsNameTheFileTheLineAndTheFix)
 {
-    const auto refused = [&](const std::string& name, const std::string& text, std::initializer_list<std::string> parts) {
+    const auto refused = [&](const std::string& name, const std::string& text,
+                             std::initializer_list<std::string> parts) {
         expect_refused<IoError>(io::read_electrodes, name, text, parts);
     };
-    refused("ma.csv", "x,y,z,radius_mm,current_ma\n", {"ma.csv line 1: unknown column 'current_ma' (give the current in ampere, as current_a)"});
-    refused("cm.csv", "x,y,z,radius_cm,current_a\n", {"cm.csv line 1: unknown column 'radius_cm' (give the radius in mm, as radius_mm)"});
+    refused("ma.csv", "x,y,z,radius_mm,current_ma\n",
+            {"ma.csv line 1: unknown column 'current_ma' (give the current in ampere, as current_a)"});
+    refused("cm.csv", "x,y,z,radius_cm,current_a\n",
+            {"cm.csv line 1: unknown column 'radius_cm' (give the radius in mm, as radius_mm)"});
     refused("sensor-header.csv", "x,y,z\n1,2,3\n", {"sensor-header.csv line 1: the header has no column 'radius_mm'"});
-    refused("nan-current.csv", "x,y,z,radius_mm,current_a\n0,0,90,10,NaN\n", {"nan-current.csv line 2, column current_a: 'NaN'"});
+    refused("nan-current.csv", "x,y,z,radius_mm,current_a\n0,0,90,10,NaN\n",
+            {"nan-current.csv line 2, column current_a: 'NaN'"});
     expect_refused<InputError>(io::read_electrodes, "negative.csv", "x,y,z,radius_mm,current_a\n0,0,90,-10,0.001\n",
-                                   {"negative.csv line 2: radius_mm is -10", "positive length in mm"});
-    expect_refused<InputError>(io::read_electrodes, "zero.csv", "x,y,z,radius_mm,current_a\n0,0,90,10,1e-3\n0,0,-90,0,-1e-3\n",
-                                   {"zero.csv line 3: radius_mm is 0"});
+                               {"negative.csv line 2: radius_mm is -10", "positive length in mm"});
+    expect_refused<InputError>(io::read_electrodes, "zero.csv",
+                               "x,y,z,radius_mm,current_a\n0,0,90,10,1e-3\n0,0,-90,0,-1e-3\n",
+                               {"zero.csv line 3: radius_mm is 0"});
     std::string many = "x,y,z,radius_mm,current_a\n";
     for (std::size_t k = 0; k <= io::max_electrodes; ++k) many += "0,0,90,5,0\n";
     refused("many.csv", many, {"many.csv line 10002: more than 10000 electrodes"});
@@ -132,12 +141,14 @@ TEST_F(TableReaders, HugeFilesAreRefusedBeforeTheyAreRead)
         std::filesystem::resize_file(file, bytes);
         return file;
     };
-    expect_error<IoError>([&] { (void)io::read_sensors(huge("huge.csv", 3ull << 30)); },
-                          {"huge.csv: 3221225472 bytes, more than the 67108864 a file of 100000 sensors", "right file"});
+    expect_error<IoError>(
+        [&] { (void)io::read_sensors(huge("huge.csv", 3ull << 30)); },
+        {"huge.csv: 3221225472 bytes, more than the 67108864 a file of 100000 sensors", "right file"});
     expect_error<IoError>([&] { (void)io::read_electrodes(huge("huge-montage.csv", 65ull << 20)); },
                           {"huge-montage.csv: 68157440 bytes, more than the 67108864 a file of 10000 electrodes"});
-    expect_error<IoError>([&] { (void)io::read_conductivity_table(huge("huge.json", io::max_conductivity_table_bytes + 1)); },
-                          {"huge.json: 1048577 bytes is more than a conductivity table needs"});
+    expect_error<IoError>(
+        [&] { (void)io::read_conductivity_table(huge("huge.json", io::max_conductivity_table_bytes + 1)); },
+        {"huge.json: 1048577 bytes is more than a conductivity table needs"});
 }
 
 TEST_F(TableReaders, ConductivityNumbersAndBothTensorShapes)
@@ -158,19 +169,27 @@ TEST_F(TableReaders, ConductivityDefectsNameTheFileAndTheFix)
     expect_refused<IoError>(read, "empty.json", "", {"empty.json: the file is empty", "S/m"});
     expect_refused<IoError>(read, "cut.json", R"({"brain": 0.3)", {"cut.json: not valid JSON", "line 1, column 14"});
     expect_refused<IoError>(read, "array.json", "[0.3]", {"array.json: the table is a JSON array, not an object"});
-    expect_refused<IoError>(read, "deep.json", std::string(5000, '[') + std::string(5000, ']'), {"deep.json line 1: nested 4 deep"});
-    expect_refused<IoError>(read, "big-number.json", R"({"brain": 1e999})", {"big-number.json: not valid JSON", "1e999"});
+    expect_refused<IoError>(read, "deep.json", std::string(5000, '[') + std::string(5000, ']'),
+                            {"deep.json line 1: nested 4 deep"});
+    expect_refused<IoError>(read, "big-number.json", R"({"brain": 1e999})",
+                            {"big-number.json: not valid JSON", "1e999"});
     expect_refused<InputError>(read, "none.json", "{}", {"none.json: the table is empty", "leave out --conductivity"});
     expect_refused<InputError>(read, "twice.json", R"({"brain": 0.3, "Brain": 0.2})",
-                                   {"twice.json: \"brain\" and \"Brain\" name the same tissue; give each tissue once"});
-    expect_refused<InputError>(read, "label-twice.json", R"({"3": 0.3, "003": 0.2})", {"\"3\" and \"003\" name the same tissue"});
+                               {"twice.json: \"brain\" and \"Brain\" name the same tissue; give each tissue once"});
+    expect_refused<InputError>(read, "label-twice.json", R"({"3": 0.3, "003": 0.2})",
+                               {"\"3\" and \"003\" name the same tissue"});
     expect_refused<InputError>(read, "key.json", R"({"": 0.3})", {"key.json: a key is empty"});
-    expect_refused<InputError>(read, "negative.json", R"({"brain": -0.3})", {"negative.json: \"brain\" is -0.3 S/m", "positive"});
+    expect_refused<InputError>(read, "negative.json", R"({"brain": -0.3})",
+                               {"negative.json: \"brain\" is -0.3 S/m", "positive"});
     expect_refused<InputError>(read, "zero.json", R"({"brain": 0})", {"\"brain\" is 0 S/m"});
-    expect_refused<InputError>(read, "text.json", R"({"brain": "high"})", {"text.json: \"brain\" is neither a number", "found JSON string"});
-    expect_refused<InputError>(read, "three.json", R"({"brain": [1, 2, 3]})", {"\"brain\" is neither", "9 finite numbers", "found JSON array"});
-    expect_refused<InputError>(read, "ragged.json", R"({"brain": [[1, 0], [0, 1, 0, 0], [0, 0, 1]]})", {"\"brain\" is neither"});
-    expect_refused<InputError>(read, "null-entry.json", R"({"brain": [1, 0, 0, 0, 1, 0, 0, 0, null]})", {"\"brain\" is neither"});
+    expect_refused<InputError>(read, "text.json", R"({"brain": "high"})",
+                               {"text.json: \"brain\" is neither a number", "found JSON string"});
+    expect_refused<InputError>(read, "three.json", R"({"brain": [1, 2, 3]})",
+                               {"\"brain\" is neither", "9 finite numbers", "found JSON array"});
+    expect_refused<InputError>(read, "ragged.json", R"({"brain": [[1, 0], [0, 1, 0, 0], [0, 0, 1]]})",
+                               {"\"brain\" is neither"});
+    expect_refused<InputError>(read, "null-entry.json", R"({"brain": [1, 0, 0, 0, 1, 0, 0, 0, null]})",
+                               {"\"brain\" is neither"});
 }
 
 } // namespace

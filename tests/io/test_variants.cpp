@@ -25,7 +25,7 @@ TEST(Variants, BigEndianNifti)
     testing::TempDir dir;
     testing::NiftiSpec spec;
     spec.swapped = true;
-    spec.datatype = 512;  // uint16, stored big endian: 0x0102 = 258 at the last voxel
+    spec.datatype = 512; // uint16, stored big endian: 0x0102 = 258 at the last voxel
     spec.bitpix = 16;
     spec.spacing[2] = 2.5f;
     testing::write_nifti(dir / "big.nii", spec, {0, 0, 0, 1, 0, 2, 0, 3, 0, 4, 0, 5, 0, 6, 1, 2});
@@ -96,7 +96,8 @@ TEST(Variants, BadNameTables)
     expect_error<InputError>([&] { io::read_tissue_names(dir / "key.json"); },
                              {"key.json: tissue-name key 'scalp' is not a label number in 0..65535"});
     write_text(dir / "range.json", R"({"70000": "implant"})");
-    expect_error<InputError>([&] { io::read_tissue_names(dir / "range.json"); }, {"range.json: tissue-name key '70000'"});
+    expect_error<InputError>([&] { io::read_tissue_names(dir / "range.json"); },
+                             {"range.json: tissue-name key '70000'"});
     write_text(dir / "value.json", R"({"1": 5})");
     expect_error<InputError>([&] { io::read_tissue_names(dir / "value.json"); }, {"value.json: the name of label 1"});
     write_text(dir / "array.json", R"(["scalp"])");

@@ -42,7 +42,8 @@ TEST(WriteVtu, WritesTissueAndNamedArrays)
 TEST(WriteVtu, RejectsArraysOfTheWrongSizeAndWritesNothing)
 {
     testing::TempDir dir;
-    EXPECT_THROW(write_vtu(one_tet(), dir / "a.vtu", {make_vtu_array("potential_V", std::vector<double>{1, 2})}), InputError);
+    EXPECT_THROW(write_vtu(one_tet(), dir / "a.vtu", {make_vtu_array("potential_V", std::vector<double>{1, 2})}),
+                 InputError);
     EXPECT_THROW(write_vtu(one_tet(), dir / "a.vtu", {}, {make_vtu_vectors("E", {{1, 2, 3}, {4, 5, 6}})}), InputError);
     EXPECT_TRUE(dir.files().empty());
 }

@@ -17,9 +17,11 @@ TEST(ConvertVtuCli, VtuToVtuKeepsTheArraysAndVtuToMshTheMesh)
     std::vector<double> phi, e;
     for (const Vec3& p : mesh.vertices) phi.push_back(p[0] * 1e-3);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) e.push_back(static_cast<double>(t) / 7);
-    io::write_vtu(mesh, dir / "solution.vtu", {io::make_vtu_array("potential_V", phi)}, {io::make_vtu_array("E_magnitude_V_per_m", e)});
+    io::write_vtu(mesh, dir / "solution.vtu", {io::make_vtu_array("potential_V", phi)},
+                  {io::make_vtu_array("E_magnitude_V_per_m", e)});
     for (const bool ascii : {false, true}) {
-        std::vector<std::string> args{"-i", (dir / "solution.vtu").string(), "-o", (dir / "copy.vtu").string(), "--json", (dir / "copy.json").string()};
+        std::vector<std::string> args{"-i",     (dir / "solution.vtu").string(), "-o", (dir / "copy.vtu").string(),
+                                      "--json", (dir / "copy.json").string()};
         if (ascii) args.push_back("--vtu-ascii");
         const auto result = testing::run_cli("tm-convert", args);
         ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -32,7 +34,8 @@ TEST(ConvertVtuCli, VtuToVtuKeepsTheArraysAndVtuToMshTheMesh)
         EXPECT_EQ(copy.cell_array("E_magnitude_V_per_m")->values, e);
         EXPECT_EQ(testing::read_json(dir / "copy.json")["arrays"], 2);
     }
-    const auto result = testing::run_cli("tm-convert", {"-i", (dir / "solution.vtu").string(), "-o", (dir / "mesh.msh").string(), "-q"});
+    const auto result = testing::run_cli(
+        "tm-convert", {"-i", (dir / "solution.vtu").string(), "-o", (dir / "mesh.msh").string(), "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_EQ(testing::tissue_volumes(io::read_tet_mesh(dir / "mesh.msh")), testing::tissue_volumes(mesh));
 }

@@ -13,9 +13,9 @@ namespace tissuemesh {
 namespace {
 
 struct BadFile {
-    std::string name;                  ///< file the error line names, inside the temporary folder
-    std::vector<std::string> message;  ///< parts the error line must contain (after "<name>: ")
-    std::string input = {};            ///< file given to tm-info when it is not `name` (a raw file's sidecar)
+    std::string name;                 ///< file the error line names, inside the temporary folder
+    std::vector<std::string> message; ///< parts the error line must contain (after "<name>: ")
+    std::string input = {};           ///< file given to tm-info when it is not `name` (a raw file's sidecar)
 };
 
 /// Runs tm-info on `file` and checks exit code 2 and a single error line naming the file and problem.
@@ -102,7 +102,8 @@ TEST(InfoBadInput, ExitsTwoWithOneLineNamingFileAndProblem)
     write_text(dir / "over.json", R"({"dims": [4000000000, 4000000000, 4000000000], "spacing": [1, 1, 1],
                                       "dtype": "uint8", "raw_file": "short.raw"})");
     write_text(dir / "short.raw", "\1\2\3");
-    write_text(dir / "short.json", R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "short.raw"})");
+    write_text(dir / "short.json",
+               R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "short.raw"})");
     write_text(dir / "head.png", "not an image");
 
     const std::vector<BadFile> cases{

@@ -32,18 +32,22 @@ TEST(InfoMgz, EqualsInfoOnTheSameImageAsNifti)
 {
     testing::TempDir dir;
     std::ofstream(dir / "write.py") << write_script;
-    const testing::CliResult made = testing::run_program("/usr/bin/python3", {(dir / "write.py").string(), dir.path().string()});
+    const testing::CliResult made =
+        testing::run_program("/usr/bin/python3", {(dir / "write.py").string(), dir.path().string()});
     ASSERT_EQ(made.exit_code, 0) << made.err;
-    std::ofstream(dir / "FreeSurferColorLUT.txt") << "#No. Label Name:                R   G   B   A\n0   Unknown  0 0 0 0\n"
-                                                     "2   Left-Cerebral-White-Matter  245 245 245 0\n3   Left-Cerebral-Cortex  205 62 78 0\n"
-                                                     "24  CSF  60 60 60 0\n41  Right-Cerebral-White-Matter  0 225 0 0\n"
-                                                     "42  Right-Cerebral-Cortex  205 62 78 0\n";
+    std::ofstream(dir / "FreeSurferColorLUT.txt")
+        << "#No. Label Name:                R   G   B   A\n0   Unknown  0 0 0 0\n"
+           "2   Left-Cerebral-White-Matter  245 245 245 0\n3   Left-Cerebral-Cortex  205 62 78 0\n"
+           "24  CSF  60 60 60 0\n41  Right-Cerebral-White-Matter  0 225 0 0\n"
+           "42  Right-Cerebral-Cortex  205 62 78 0\n";
     for (const char* name : {"aseg.mgz", "aseg.nii.gz"}) {
-        const testing::CliResult info = testing::run_cli("tm-info", {(dir / name).string(), "--labels", (dir / "FreeSurferColorLUT.txt").string(),
-                                                                     "--json", (dir / (std::string(name) + ".json")).string()});
+        const testing::CliResult info =
+            testing::run_cli("tm-info", {(dir / name).string(), "--labels", (dir / "FreeSurferColorLUT.txt").string(),
+                                         "--json", (dir / (std::string(name) + ".json")).string()});
         ASSERT_EQ(info.exit_code, 0) << info.err;
     }
-    const nlohmann::json mgz = testing::read_json(dir / "aseg.mgz.json"), nifti = testing::read_json(dir / "aseg.nii.gz.json");
+    const nlohmann::json mgz = testing::read_json(dir / "aseg.mgz.json"),
+                         nifti = testing::read_json(dir / "aseg.nii.gz.json");
     EXPECT_EQ(mgz["dims"], nifti["dims"]);
     EXPECT_EQ(mgz["voxel_counts"], nifti["voxel_counts"]);
     EXPECT_EQ(mgz["voxel_counts"].size(), 6u);
@@ -51,7 +55,8 @@ TEST(InfoMgz, EqualsInfoOnTheSameImageAsNifti)
     EXPECT_EQ(mgz["orientation"], nifti["orientation"]);
     auto near = [](const nlohmann::json& a, const nlohmann::json& b, const std::string& what) {
         ASSERT_EQ(a.size(), b.size()) << what;
-        for (std::size_t c = 0; c < a.size(); ++c) EXPECT_NEAR(a[c].get<double>(), b[c].get<double>(), 1e-9) << what << " " << c;
+        for (std::size_t c = 0; c < a.size(); ++c)
+            EXPECT_NEAR(a[c].get<double>(), b[c].get<double>(), 1e-9) << what << " " << c;
     };
     near(mgz["bounds_mm"][0], nifti["bounds_mm"][0], "bounds min");
     near(mgz["bounds_mm"][1], nifti["bounds_mm"][1], "bounds max");
@@ -77,7 +82,8 @@ TEST(InfoMgz, TruncatedMgzIsRefusedWithOneLine)
 {
     testing::TempDir dir;
     std::ofstream(dir / "write.py") << write_script;
-    ASSERT_EQ(testing::run_program("/usr/bin/python3", {(dir / "write.py").string(), dir.path().string()}).exit_code, 0);
+    ASSERT_EQ(testing::run_program("/usr/bin/python3", {(dir / "write.py").string(), dir.path().string()}).exit_code,
+              0);
     // Cut the (uncompressed) .mgh: the header promises more voxels than the file holds.
     const std::string bytes = read_file_bytes(dir / "aseg.mgz");
     std::ofstream(dir / "cut.mgz", std::ios::binary) << bytes.substr(0, bytes.size() / 2);

@@ -19,10 +19,10 @@ namespace tissuemesh::testing {
 struct MeshioView {
     bool ok = false;
     std::size_t points = 0;
-    std::map<std::string, std::size_t> cells;        ///< "tetra", "triangle", ...
+    std::map<std::string, std::size_t> cells; ///< "tetra", "triangle", ...
     std::map<Label, std::size_t> tets_per_label;
-    std::map<Label, double> volume_per_label;       ///< mm^3
-    std::vector<std::string> cell_sets;             ///< Abaqus element sets, $PhysicalNames, ...
+    std::map<Label, double> volume_per_label; ///< mm^3
+    std::vector<std::string> cell_sets;       ///< Abaqus element sets, $PhysicalNames, ...
     std::string error;
 };
 MeshioView meshio_read(const std::filesystem::path& file);

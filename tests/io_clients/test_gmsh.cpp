@@ -24,8 +24,10 @@ std::map<std::pair<Label, Label>, std::size_t> faces_per_pair(const TetMesh& mes
 TEST(GmshOpensOurFiles, EveryMshVariantResavesWithTheSameTissuesAndInterfaces)
 {
     testing::TempDir dir;
-    const std::vector<std::pair<std::string, TetMeshWriteOptions>> variants{
-        {"a.msh", {}}, {"b.msh", {MshVersion::v2_2, true}}, {"c.msh", {MshVersion::v4_1, false}}, {"d.msh", {MshVersion::v4_1, true}}};
+    const std::vector<std::pair<std::string, TetMeshWriteOptions>> variants{{"a.msh", {}},
+                                                                            {"b.msh", {MshVersion::v2_2, true}},
+                                                                            {"c.msh", {MshVersion::v4_1, false}},
+                                                                            {"d.msh", {MshVersion::v4_1, true}}};
     for (const auto& [name, options] : variants) {
         write_tet_mesh(sample(), dir / name, options);
         for (const std::string format : {"msh22", "msh41"}) {
@@ -35,7 +37,8 @@ TEST(GmshOpensOurFiles, EveryMshVariantResavesWithTheSameTissuesAndInterfaces)
             const TetMesh back = read_tet_mesh(dir / resaved);
             EXPECT_EQ(back.vertices.size(), sample().vertices.size());
             EXPECT_EQ(tets_per_label(back), tets_per_label(sample()));
-            EXPECT_EQ(faces_per_pair(back), faces_per_pair(sample())) << "physical 1000 + from, elementary 1000 * from + to";
+            EXPECT_EQ(faces_per_pair(back), faces_per_pair(sample()))
+                << "physical 1000 + from, elementary 1000 * from + to";
             EXPECT_EQ(back.names, sample().names) << "$PhysicalNames";
             const auto volumes = testing::tissue_volumes(back);
             EXPECT_NEAR(volumes.at(1), 56.0, 1e-9);
@@ -47,14 +50,17 @@ TEST(GmshOpensOurFiles, EveryMshVariantResavesWithTheSameTissuesAndInterfaces)
 TEST(WeReadGmshFiles, TwoBoxesMeshedByGmshInEveryVariant)
 {
     testing::TempDir dir;
-    std::ofstream(dir / "two.geo") << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {1, 0, 0, 1, 1, 1};\n"
-                                      "BooleanFragments{ Volume{1}; Delete; }{ Volume{2}; Delete; }\n"
-                                      "Physical Volume(\"left\", 1) = {1};\nPhysical Volume(\"right\", 2) = {2};\n"
-                                      "Mesh.MeshSizeMax = 0.4;\n";
+    std::ofstream(dir / "two.geo")
+        << "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {1, 0, 0, 1, 1, 1};\n"
+           "BooleanFragments{ Volume{1}; Delete; }{ Volume{2}; Delete; }\n"
+           "Physical Volume(\"left\", 1) = {1};\nPhysical Volume(\"right\", 2) = {2};\n"
+           "Mesh.MeshSizeMax = 0.4;\n";
     std::map<Label, std::size_t> first_counts;
-    for (const auto& [name, args] : std::vector<std::pair<std::string, std::vector<std::string>>>{
-             {"a.msh", {"-format", "msh22"}}, {"b.msh", {"-format", "msh22", "-bin"}},
-             {"c.msh", {"-format", "msh41"}}, {"d.msh", {"-format", "msh41", "-bin"}}}) {
+    for (const auto& [name, args] :
+         std::vector<std::pair<std::string, std::vector<std::string>>>{{"a.msh", {"-format", "msh22"}},
+                                                                       {"b.msh", {"-format", "msh22", "-bin"}},
+                                                                       {"c.msh", {"-format", "msh41"}},
+                                                                       {"d.msh", {"-format", "msh41", "-bin"}}}) {
         SCOPED_TRACE(name);
         std::vector<std::string> command{"-3", "two.geo", "-o", name};
         command.insert(command.end(), args.begin(), args.end());

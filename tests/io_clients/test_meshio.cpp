@@ -22,7 +22,8 @@ using testing::tets_per_label;
 void expect_same_volumes(const std::map<Label, double>& volumes, const std::map<Label, double>& expected)
 {
     ASSERT_EQ(volumes.size(), expected.size());
-    for (const auto& [label, volume] : expected) EXPECT_NEAR(volumes.at(label), volume, 1e-9 * volume) << "tissue " << label;
+    for (const auto& [label, volume] : expected)
+        EXPECT_NEAR(volumes.at(label), volume, 1e-9 * volume) << "tissue " << label;
 }
 
 TEST(MeshioOpensOurFiles, EveryTetMeshFormatAndEncoding)
@@ -31,7 +32,7 @@ TEST(MeshioOpensOurFiles, EveryTetMeshFormatAndEncoding)
     struct Case {
         std::string file;
         TetMeshWriteOptions options;
-        bool triangles;  ///< meshio sees the interface faces
+        bool triangles; ///< meshio sees the interface faces
     };
     const std::vector<Case> cases{{"a.msh", {}, true},
                                   {"b.msh", {MshVersion::v2_2, true}, true},
@@ -45,7 +46,7 @@ TEST(MeshioOpensOurFiles, EveryTetMeshFormatAndEncoding)
     for (const Case& c : cases) {
         SCOPED_TRACE(c.file);
         write_tet_mesh(sample(), dir / c.file, c.options);
-        const std::string opened = c.file == "f.node" ? "f.ele" : c.file;  // meshio's TetGen reader takes the .ele
+        const std::string opened = c.file == "f.node" ? "f.ele" : c.file; // meshio's TetGen reader takes the .ele
         const testing::MeshioView view = testing::meshio_read(dir / opened);
         if (!view.ok) continue;
         EXPECT_EQ(view.points, sample().vertices.size());
@@ -67,7 +68,8 @@ TEST(MeshioOpensOurFiles, CompressedVtuKeepsNamedCellArrays)
     const std::string script = "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
                                "a = m.cell_data['tet_index'][0]\nprint(len(a), int(a.sum()), m.cells[0].type)\n";
     std::ofstream(dir / "arrays.py") << script;
-    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(dir / "arrays.py").string(), (dir / "a.vtu").string()});
+    const testing::CliResult result =
+        testing::run_program("/usr/bin/python3", {(dir / "arrays.py").string(), (dir / "a.vtu").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const std::size_t n = index.size();
     EXPECT_EQ(result.out, concat(n, " ", n * (n - 1) / 2, " tetra\n"));
@@ -77,16 +79,19 @@ TEST(MeshioOpensOurFiles, AbaqusInterfaceSurfacesAreElementSetsOfTheRightSize)
 {
     testing::TempDir dir;
     write_tet_mesh(sample(), dir / "a.inp");
-    std::ofstream(dir / "sets.py") << "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
-                                      "for name, blocks in sorted(m.cell_sets.items()):\n    print(name, sum(len(b) for b in blocks))\n";
-    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(dir / "sets.py").string(), (dir / "a.inp").string()});
+    std::ofstream(dir / "sets.py")
+        << "import sys, meshio\nm = meshio.read(sys.argv[1])\n"
+           "for name, blocks in sorted(m.cell_sets.items()):\n    print(name, sum(len(b) for b in blocks))\n";
+    const testing::CliResult result =
+        testing::run_program("/usr/bin/python3", {(dir / "sets.py").string(), (dir / "a.inp").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
-    std::map<std::string, std::size_t> faces;  // surface -> element faces meshio sees in its S1..S4 sets
+    std::map<std::string, std::size_t> faces; // surface -> element faces meshio sees in its S1..S4 sets
     std::istringstream lines(result.out);
     for (std::string name; lines >> name;) {
         std::size_t count = 0;
         lines >> count;
-        if (name.rfind("IF_", 0) == 0 && name.size() > 9 && name.ends_with("_ELEMS")) faces[name.substr(0, name.size() - 9)] += count;
+        if (name.rfind("IF_", 0) == 0 && name.size() > 9 && name.ends_with("_ELEMS"))
+            faces[name.substr(0, name.size() - 9)] += count;
     }
     std::map<std::string, std::size_t> expected;
     for (const LabelPair& p : sample().face_sides) ++expected[concat("IF_", p.from, "_", p.to)];
@@ -100,8 +105,12 @@ TEST(WeReadMeshioFiles, EveryTetMeshFormatMeshioWrites)
         std::string file, format;
         bool binary;
     };
-    for (const Case& c : std::vector<Case>{{"a.msh", "gmsh22", false}, {"b.msh", "gmsh22", true}, {"c.msh", "gmsh", false},
-                                           {"d.msh", "gmsh", true}, {"e.mesh", "medit", false}, {"f.node", "tetgen", false},
+    for (const Case& c : std::vector<Case>{{"a.msh", "gmsh22", false},
+                                           {"b.msh", "gmsh22", true},
+                                           {"c.msh", "gmsh", false},
+                                           {"d.msh", "gmsh", true},
+                                           {"e.mesh", "medit", false},
+                                           {"f.node", "tetgen", false},
                                            {"g.inp", "abaqus", false}}) {
         SCOPED_TRACE(c.file + " by meshio as " + c.format + (c.binary ? " binary" : ""));
         if (!testing::meshio_write_two_cubes(dir / c.file, c.format, c.binary)) continue;
@@ -128,11 +137,13 @@ TEST(WeReadMeshioFiles, VtuInEveryEncodingMeshioWritesWithItsArrays)
         const VtuArray* phi = content.point_array("phi");
         ASSERT_NE(phi, nullptr);
         for (std::size_t p = 0; p < 12; ++p)
-            EXPECT_DOUBLE_EQ(phi->values[p], content.mesh.vertices[p][0] + 2 * content.mesh.vertices[p][1]) << "point " << p;
+            EXPECT_DOUBLE_EQ(phi->values[p], content.mesh.vertices[p][0] + 2 * content.mesh.vertices[p][1])
+                << "point " << p;
         const VtuArray* volume = content.cell_array("volume");
         ASSERT_NE(volume, nullptr);
         // meshio writes ASCII with 12 significant digits.
-        for (std::size_t t = 0; t < 12; ++t) EXPECT_NEAR(volume->values[t], signed_volume(content.mesh, t), 1e-11) << "tet " << t;
+        for (std::size_t t = 0; t < 12; ++t)
+            EXPECT_NEAR(volume->values[t], signed_volume(content.mesh, t), 1e-11) << "tet " << t;
     }
     // LZMA is not read; the message says how to save instead.
     if (testing::meshio_write_two_cubes(dir / "lzma.vtu", "vtu-lzma", true)) {
@@ -152,9 +163,10 @@ TEST(WeReadMeshioFiles, OurVtuReadByMeshioAndBackKeepsThePotential)
     std::vector<double> phi;
     for (const Vec3& p : sample().vertices) phi.push_back(p[0] - 0.5 * p[2]);
     write_vtu(sample(), dir / "ours.vtu", {make_vtu_array("potential_V", phi)}, {}, VtuEncoding::compressed);
-    std::ofstream(dir / "again.py") << "import sys, meshio\nmeshio.write(sys.argv[2], meshio.read(sys.argv[1]), binary=True)\n";
-    const testing::CliResult result =
-        testing::run_program("/usr/bin/python3", {(dir / "again.py").string(), (dir / "ours.vtu").string(), (dir / "theirs.vtu").string()});
+    std::ofstream(dir / "again.py")
+        << "import sys, meshio\nmeshio.write(sys.argv[2], meshio.read(sys.argv[1]), binary=True)\n";
+    const testing::CliResult result = testing::run_program(
+        "/usr/bin/python3", {(dir / "again.py").string(), (dir / "ours.vtu").string(), (dir / "theirs.vtu").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const VtuContent back = read_vtu(dir / "theirs.vtu");
     EXPECT_EQ(back.mesh.vertices, sample().vertices);

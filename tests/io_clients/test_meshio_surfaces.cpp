@@ -49,7 +49,8 @@ InterfaceComplex two_spheres()
     const InterfaceComplex outer = testing::icosphere(2, 20.0, {1, 2, 3});
     const auto offset = static_cast<std::uint32_t>(complex.vertices.size());
     complex.vertices.insert(complex.vertices.end(), outer.vertices.begin(), outer.vertices.end());
-    for (const Triangle& t : outer.triangles) complex.add_triangle({t[0] + offset, t[1] + offset, t[2] + offset}, {2, 0});
+    for (const Triangle& t : outer.triangles)
+        complex.add_triangle({t[0] + offset, t[1] + offset, t[2] + offset}, {2, 0});
     complex.names = {{1, "brain"}, {2, "scalp"}};
     return complex;
 }
@@ -59,13 +60,14 @@ InterfaceComplex two_spheres()
 std::string meshio_labels(const std::filesystem::path& file, const std::string& key_a, const std::string& key_b)
 {
     const std::filesystem::path script = file.parent_path() / "labels.py";
-    std::ofstream(script) << "import sys, meshio, numpy as np\nm = meshio.read(sys.argv[1])\n"
-                             "tri = [i for i, b in enumerate(m.cells) if b.type == 'triangle']\n"
-                             "out = [len(m.points), sum(len(m.cells[i].data) for i in tri)]\n"
-                             "for key in sys.argv[2:]:\n"
-                             "    out.append(' '.join(str(int(v)) for i in tri for v in np.asarray(m.cell_data[key][i]))"
-                             " if key in m.cell_data else '-')\n"
-                             "print('\\n'.join(str(x) for x in out))\n";
+    std::ofstream(script)
+        << "import sys, meshio, numpy as np\nm = meshio.read(sys.argv[1])\n"
+           "tri = [i for i, b in enumerate(m.cells) if b.type == 'triangle']\n"
+           "out = [len(m.points), sum(len(m.cells[i].data) for i in tri)]\n"
+           "for key in sys.argv[2:]:\n"
+           "    out.append(' '.join(str(int(v)) for i in tri for v in np.asarray(m.cell_data[key][i]))"
+           " if key in m.cell_data else '-')\n"
+           "print('\\n'.join(str(x) for x in out))\n";
     const testing::CliResult result = testing::run_program(python, {script.string(), file.string(), key_a, key_b});
     EXPECT_EQ(result.exit_code, 0) << "meshio reading " << file.filename() << ": " << result.err.substr(0, 2000);
     return result.out;
@@ -91,7 +93,8 @@ TEST(MeshioOpensOurSurfaces, AsciiPlyWithItsLabels)
     const InterfaceComplex complex = two_spheres();
     write_surface(complex, dir / "a.ply", SurfaceWriteOptions{.ascii = true});
     std::string from, to;
-    for (const LabelPair& pair : complex.sides) from += concat(from.empty() ? "" : " ", pair.from), to += concat(to.empty() ? "" : " ", pair.to);
+    for (const LabelPair& pair : complex.sides)
+        from += concat(from.empty() ? "" : " ", pair.from), to += concat(to.empty() ? "" : " ", pair.to);
     EXPECT_EQ(meshio_labels(dir / "a.ply", "label_a", "label_b"),
               concat(complex.vertices.size(), "\n", complex.triangles.size(), "\n", from, "\n", to, "\n"));
     // And we read it back whole, names included.
@@ -122,10 +125,11 @@ TEST(MeshioOpensOurSurfaces, BinaryPlyHeaderUsesOnlyTypeNamesMeshioKnows)
     write_surface(two_spheres(), dir / "a.ply");
     const std::string bytes = read_file_bytes(dir / "a.ply");
     const std::string header = bytes.substr(0, bytes.find("end_header"));
-    for (const char* known : {"property double x", "property list uint8 uint32 vertex_indices", "property uint16 label_a",
-                              "property uint16 label_b"})
+    for (const char* known : {"property double x", "property list uint8 uint32 vertex_indices",
+                              "property uint16 label_a", "property uint16 label_b"})
         EXPECT_NE(header.find(known), std::string::npos) << known;
-    for (const char* unknown : {"uchar", "ushort", " uint ", " short ", " char "}) EXPECT_EQ(header.find(unknown), std::string::npos) << unknown;
+    for (const char* unknown : {"uchar", "ushort", " uint ", " short ", " char "})
+        EXPECT_EQ(header.find(unknown), std::string::npos) << unknown;
 }
 
 TEST(WeReadMeshioSurfaces, ObjOffPlyAndBothStls)

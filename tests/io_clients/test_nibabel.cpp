@@ -42,7 +42,8 @@ TEST(WeReadNibabelFiles, MgzMghAndNiftiPutEveryVoxelCornerWhereNibabelDoes)
     testing::TempDir dir;
     std::ofstream(dir / "write.py") << write_script;
     const testing::CliResult result = testing::run_program(python, {(dir / "write.py").string(), dir.path().string()});
-    ASSERT_EQ(result.exit_code, 0) << result.err << (result.exit_code == 127 ? " (python3 missing: run scripts/setup)" : "");
+    ASSERT_EQ(result.exit_code, 0) << result.err
+                                   << (result.exit_code == 127 ? " (python3 missing: run scripts/setup)" : "");
     const nlohmann::json affines = nlohmann::json::parse(result.out);
     for (const std::string name : {"a.mgz", "b.mgh", "c.nii.gz"}) {
         SCOPED_TRACE(name);

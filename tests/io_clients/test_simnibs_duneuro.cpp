@@ -18,18 +18,21 @@
 namespace tissuemesh::io {
 namespace {
 
-constexpr std::size_t stride = 8;  // usc19-5 at 8 mm: 21 x 27 x 28 voxels, every tissue still present
+constexpr std::size_t stride = 8; // usc19-5 at 8 mm: 21 x 27 x 28 voxels, every tissue still present
 
 /// The coarse head: voxel (a, b, c) is usc19-5's voxel (8a + 4, 8b + 4, 8c + 4).
 LabelImage coarse_head()
 {
-    const LabelImage full = read_label_image(testing::data_path("samples/usc19-5_head.nii.gz"),
-                                             {.names_json = testing::data_path("samples/usc19-5_head.json"), .before_voxels = {}});
+    const LabelImage full =
+        read_label_image(testing::data_path("samples/usc19-5_head.nii.gz"),
+                         {.names_json = testing::data_path("samples/usc19-5_head.json"), .before_voxels = {}});
     const Dims& d = full.dims();
-    LabelImage coarse({d[0] / stride, d[1] / stride, d[2] / stride}, {8.0 * full.spacing_mm()[0], 8.0 * full.spacing_mm()[1], 8.0 * full.spacing_mm()[2]});
+    LabelImage coarse({d[0] / stride, d[1] / stride, d[2] / stride},
+                      {8.0 * full.spacing_mm()[0], 8.0 * full.spacing_mm()[1], 8.0 * full.spacing_mm()[2]});
     for (std::size_t c = 0; c < coarse.dims()[2]; ++c)
         for (std::size_t b = 0; b < coarse.dims()[1]; ++b)
-            for (std::size_t a = 0; a < coarse.dims()[0]; ++a) coarse.at(a, b, c) = full.at(stride * a + 4, stride * b + 4, stride * c + 4);
+            for (std::size_t a = 0; a < coarse.dims()[0]; ++a)
+                coarse.at(a, b, c) = full.at(stride * a + 4, stride * b + 4, stride * c + 4);
     coarse.names() = full.names();
     return coarse;
 }
@@ -44,7 +47,8 @@ TetMesh voxel_tets(const LabelImage& image)
     auto vertex = [&](std::size_t a, std::size_t b, std::size_t c) {
         const auto [it, added] = ids.try_emplace({a, b, c}, static_cast<std::uint32_t>(mesh.vertices.size()));
         if (added)
-            mesh.vertices.push_back({static_cast<double>(a) * image.spacing_mm()[0], static_cast<double>(b) * image.spacing_mm()[1],
+            mesh.vertices.push_back({static_cast<double>(a) * image.spacing_mm()[0],
+                                     static_cast<double>(b) * image.spacing_mm()[1],
                                      static_cast<double>(c) * image.spacing_mm()[2]});
         return it->second;
     };
@@ -62,7 +66,8 @@ TetMesh voxel_tets(const LabelImage& image)
                     }
                     mesh.tets.push_back(tet);
                     mesh.tet_labels.push_back(image.at(a, b, c));
-                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0)
+                        std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
                 }
             }
     mesh.names = image.names();
@@ -74,7 +79,10 @@ TetMesh voxel_tets(const LabelImage& image)
 int ranked_first(int a, int b)
 {
     const std::vector<int> order{1, 2, 9, 3, 4, 8, 7, 6, 11, 10, 12, 5};
-    const auto rank = [&](int t) { const auto at = std::find(order.begin(), order.end(), t); return at != order.end() ? at - order.begin() : 100 + t; };
+    const auto rank = [&](int t) {
+        const auto at = std::find(order.begin(), order.end(), t);
+        return at != order.end() ? at - order.begin() : 100 + t;
+    };
     return rank(a) <= rank(b) ? a : b;
 }
 
@@ -90,7 +98,8 @@ nlohmann::json meshio_tags(const std::filesystem::path& file)
            "    counts = out.setdefault(block.type, {})\n"
            "    for t in phys.tolist(): counts[str(t)] = counts.get(str(t), 0) + 1\n"
            "print(json.dumps(out))\n";
-    const testing::CliResult result = testing::run_program("/usr/bin/python3", {(file.parent_path() / "tags.py").string(), file.string()});
+    const testing::CliResult result =
+        testing::run_program("/usr/bin/python3", {(file.parent_path() / "tags.py").string(), file.string()});
     EXPECT_EQ(result.exit_code, 0) << result.err.substr(0, 2000);
     return result.exit_code == 0 ? nlohmann::json::parse(result.out) : nlohmann::json::object();
 }
@@ -114,10 +123,13 @@ TEST(SimnibsNumbering, UscHeadCarriesSimnibsTissueAndSurfaceTags)
     write_tet_mesh(mesh, dir / "head.msh", options);
     // usc19-5: 1 scalp, 2 skull, 3 CSF, 4 grey matter, 5 white matter, 6 air cavities -> 5, 4, 3, 2, 1, 13.
     const std::map<Label, int> tag{{1, 5}, {2, 4}, {3, 3}, {4, 2}, {5, 1}, {6, 13}};
-    nlohmann::json expected = {{"tetra", nlohmann::json::object()}, {"triangle", nlohmann::json::object()}, {"equal", true}};
+    nlohmann::json expected = {
+        {"tetra", nlohmann::json::object()}, {"triangle", nlohmann::json::object()}, {"equal", true}};
     const Dims& d = head.dims();
     const auto at = [&](std::int64_t a, std::int64_t b, std::int64_t c) { return head.at_or({a, b, c}, 0); };
-    auto add = [&](const char* type, int t, int n) { expected[type][std::to_string(t)] = expected[type].value(std::to_string(t), 0) + n; };
+    auto add = [&](const char* type, int t, int n) {
+        expected[type][std::to_string(t)] = expected[type].value(std::to_string(t), 0) + n;
+    };
     for (std::int64_t c = 0; c < static_cast<std::int64_t>(d[2]); ++c)
         for (std::int64_t b = 0; b < static_cast<std::int64_t>(d[1]); ++b)
             for (std::int64_t a = 0; a < static_cast<std::int64_t>(d[0]); ++a) {
@@ -127,15 +139,17 @@ TEST(SimnibsNumbering, UscHeadCarriesSimnibsTissueAndSurfaceTags)
                 for (const Index3& next : {Index3{a + 1, b, c}, Index3{a, b + 1, c}, Index3{a, b, c + 1}}) {
                     const Label there = at(next[0], next[1], next[2]);
                     if (here == there || (here != 0 && there != 0 && tag.at(here) == tag.at(there))) continue;
-                    add("triangle", here == 0 || there == 0 ? 1005 : 1000 + ranked_first(tag.at(here), tag.at(there)), 2);
+                    add("triangle", here == 0 || there == 0 ? 1005 : 1000 + ranked_first(tag.at(here), tag.at(there)),
+                        2);
                 }
-                if (a == 0 || b == 0 || c == 0) {  // faces on the grid's low sides
+                if (a == 0 || b == 0 || c == 0) { // faces on the grid's low sides
                     for (const bool edge : {a == 0, b == 0, c == 0})
                         if (edge && here != 0) add("triangle", 1005, 2);
                 }
             }
     EXPECT_EQ(meshio_tags(dir / "head.msh"), expected) << "tets 5 scalp, 4 skull, 3 CSF, 2 GM, 1 WM, 13 air; surfaces";
-    EXPECT_EQ(read_file_bytes(dir / "head.msh").substr(0, 25), std::string("$MeshFormat\n2.2 1 8\n\x01\0\0\0\n", 25)) << "2.2 binary";
+    EXPECT_EQ(read_file_bytes(dir / "head.msh").substr(0, 25), std::string("$MeshFormat\n2.2 1 8\n\x01\0\0\0\n", 25))
+        << "2.2 binary";
 
     // gmsh opens it and re-saves every element (all are in physical groups) with the same tags.
     ASSERT_TRUE(testing::run_gmsh({"head.msh", "-0", "-format", "msh22", "-o", "resaved.msh"}, dir.path()));
@@ -145,10 +159,12 @@ TEST(SimnibsNumbering, UscHeadCarriesSimnibsTissueAndSurfaceTags)
     const TetMesh back = read_tet_mesh(dir / "head.msh");
     std::size_t checked = 0;
     for (std::size_t f = 0; f < back.faces.size(); ++f) {
-        const Vec3 &p = back.vertices[back.faces[f][0]], &q = back.vertices[back.faces[f][1]], &r = back.vertices[back.faces[f][2]];
+        const Vec3 &p = back.vertices[back.faces[f][0]], &q = back.vertices[back.faces[f][1]],
+                   &r = back.vertices[back.faces[f][2]];
         const Vec3 n = cross(q - p, r - p), centre = (1.0 / 3.0) * (p + q + r);
         const auto tag_at = [&](const Vec3& point) {
-            const Label label = at(static_cast<std::int64_t>(std::floor(point[0] / 8)), static_cast<std::int64_t>(std::floor(point[1] / 8)),
+            const Label label = at(static_cast<std::int64_t>(std::floor(point[0] / 8)),
+                                   static_cast<std::int64_t>(std::floor(point[1] / 8)),
                                    static_cast<std::int64_t>(std::floor(point[2] / 8)));
             return label == 0 ? 0 : tag.at(label);
         };
@@ -169,7 +185,10 @@ std::vector<double> duneuro_view(const std::filesystem::path& msh, const std::fi
     EXPECT_NE(file, nullptr);
     if (file == nullptr) return {};
     char word[512];
-    auto expect_word = [&](const char* wanted) { EXPECT_EQ(std::fscanf(file, "%511s\n", word), 1); EXPECT_STREQ(word, wanted); };
+    auto expect_word = [&](const char* wanted) {
+        EXPECT_EQ(std::fscanf(file, "%511s\n", word), 1);
+        EXPECT_STREQ(word, wanted);
+    };
     double version = 0;
     int type = 0, size = 0, nodes = 0, elements = 0;
     expect_word("$MeshFormat");
@@ -208,7 +227,9 @@ std::vector<double> duneuro_view(const std::filesystem::path& msh, const std::fi
     for (const int pe : physical) {
         EXPECT_LT(pe - offset, static_cast<int>(tensors.size())) << "physical " << pe;
         EXPECT_GE(pe - offset, 0);
-        conductivity.push_back(pe - offset >= 0 && pe - offset < static_cast<int>(tensors.size()) ? tensors[static_cast<std::size_t>(pe - offset)] : -1);
+        conductivity.push_back(pe - offset >= 0 && pe - offset < static_cast<int>(tensors.size())
+                                   ? tensors[static_cast<std::size_t>(pe - offset)]
+                                   : -1);
     }
     return conductivity;
 }

@@ -57,7 +57,8 @@ TEST(AbaqusSurfaces, FacesReadBackWithTheirPairsAndOrientationAndTheTissuesStay)
     testing::TempDir dir;
     write_tet_mesh(nested_cubes_mesh(), dir / "a.inp");
     const TetMesh back = read_tet_mesh(dir / "a.inp");
-    EXPECT_EQ(testing::face_set(back), testing::face_set(nested_cubes_mesh())) << "same vertices in the same rotation: same orientation";
+    EXPECT_EQ(testing::face_set(back), testing::face_set(nested_cubes_mesh()))
+        << "same vertices in the same rotation: same orientation";
     EXPECT_EQ(testing::tet_set(back), testing::tet_set(nested_cubes_mesh())) << "the face sets did not relabel any tet";
 }
 
@@ -66,8 +67,9 @@ TEST(AbaqusSurfaces, ForeignSurfacesAreFacesOutOfTheirElements)
     testing::TempDir dir;
     // One positively oriented tet, listed with its last two corners swapped (negative in the file), surfaces by
     // element number and by set, with face ids in either case.
-    std::ofstream(dir / "a.inp") << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4, ELSET=brain4\n"
-                                    "7, 1, 2, 4, 3\n*ELSET, ELSET=skin\n7\n*Surface, type=ELEMENT, name=Outer\n7, S1\nskin, S3\n";
+    std::ofstream(dir / "a.inp")
+        << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4, ELSET=brain4\n"
+           "7, 1, 2, 4, 3\n*ELSET, ELSET=skin\n7\n*Surface, type=ELEMENT, name=Outer\n7, S1\nskin, S3\n";
     const TetMesh mesh = read_tet_mesh(dir / "a.inp");
     ASSERT_EQ(mesh.faces.size(), 2u);
     EXPECT_EQ(mesh.tet_labels, std::vector<Label>{4}) << "the set a surface uses is no tissue";
@@ -78,11 +80,14 @@ TEST(AbaqusSurfaces, ForeignSurfacesAreFacesOutOfTheirElements)
         const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
         EXPECT_LT(dot(cross(b - a, c - a), centre - a), 0) << "face " << f << " points out of the tet";
     }
-    std::ofstream(dir / "b.inp") << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
-                                    "*SURFACE, NAME=X\nnowhere, S2\n";
-    testing::expect_error<IoError>([&] { read_tet_mesh(dir / "b.inp"); }, {"b.inp", "element set nowhere, which is not defined"});
-    std::ofstream(dir / "c.inp") << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
-                                    "*SURFACE, NAME=X\n1, S5\n";
+    std::ofstream(dir / "b.inp")
+        << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
+           "*SURFACE, NAME=X\nnowhere, S2\n";
+    testing::expect_error<IoError>([&] { read_tet_mesh(dir / "b.inp"); },
+                                   {"b.inp", "element set nowhere, which is not defined"});
+    std::ofstream(dir / "c.inp")
+        << "*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n*ELEMENT, TYPE=C3D4\n1, 1, 2, 3, 4\n"
+           "*SURFACE, NAME=X\n1, S5\n";
     testing::expect_error<IoError>([&] { read_tet_mesh(dir / "c.inp"); }, {"c.inp", "face S5", "S1, S2, S3 or S4"});
 }
 

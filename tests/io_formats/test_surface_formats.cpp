@@ -77,12 +77,13 @@ TEST(SurfaceFormats, BadObjFilesAreRefused)
 TEST(SurfaceFormats, AsciiStlReadsWithSharedCorners)
 {
     testing::TempDir dir;
-    std::ofstream(dir / "a.stl") << "solid tet\n"
-                                    "facet normal 0 0 -1\n outer loop\n  vertex 0 0 0\n  vertex 0 1 0\n  vertex 1 0 0\n endloop\nendfacet\n"
-                                    "facet normal 0 -1 0\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 0 1\n endloop\nendfacet\n"
-                                    "facet normal -1 0 0\n outer loop\n  vertex 0 0 0\n  vertex 0 0 1\n  vertex 0 1 0\n endloop\nendfacet\n"
-                                    "facet normal 1 1 1\n outer loop\n  vertex 1 0 0\n  vertex 0 1 0\n  vertex 0 0 1\n endloop\nendfacet\n"
-                                    "endsolid tet\n";
+    std::ofstream(dir / "a.stl")
+        << "solid tet\n"
+           "facet normal 0 0 -1\n outer loop\n  vertex 0 0 0\n  vertex 0 1 0\n  vertex 1 0 0\n endloop\nendfacet\n"
+           "facet normal 0 -1 0\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 0 1\n endloop\nendfacet\n"
+           "facet normal -1 0 0\n outer loop\n  vertex 0 0 0\n  vertex 0 0 1\n  vertex 0 1 0\n endloop\nendfacet\n"
+           "facet normal 1 1 1\n outer loop\n  vertex 1 0 0\n  vertex 0 1 0\n  vertex 0 0 1\n endloop\nendfacet\n"
+           "endsolid tet\n";
     const InterfaceComplex complex = read_surface(dir / "a.stl");
     EXPECT_EQ(complex.vertices.size(), 4u);
     EXPECT_EQ(complex.triangles.size(), 4u);

@@ -11,15 +11,15 @@
 namespace tissuemesh::io {
 namespace {
 
-using testing::nested_cubes_mesh;
 using testing::face_set;
+using testing::nested_cubes_mesh;
 using testing::tet_set;
 
 struct Variant {
     std::string file;
     TetMeshWriteOptions options;
-    bool faces = true;  ///< the format keeps interface faces
-    bool names = true;  ///< the format keeps tissue names
+    bool faces = true; ///< the format keeps interface faces
+    bool names = true; ///< the format keeps tissue names
 };
 
 std::vector<Variant> variants()

@@ -28,7 +28,8 @@ TEST(VtuRead, OurFilesReadBackWithEveryArrayInBothEncodings)
     testing::TempDir dir;
     std::vector<Vec3> field;
     std::vector<double> index;
-    for (std::size_t t = 0; t < nested_cubes_mesh().tets.size(); ++t) field.push_back({1.0 * static_cast<double>(t), -0.5, 1e-7}), index.push_back(static_cast<double>(t));
+    for (std::size_t t = 0; t < nested_cubes_mesh().tets.size(); ++t)
+        field.push_back({1.0 * static_cast<double>(t), -0.5, 1e-7}), index.push_back(static_cast<double>(t));
     for (const VtuEncoding encoding : {VtuEncoding::compressed, VtuEncoding::ascii}) {
         SCOPED_TRACE(encoding == VtuEncoding::ascii ? "ascii" : "compressed");
         write_vtu(nested_cubes_mesh(), dir / "a.vtu", {make_vtu_array("potential_V", node_values(nested_cubes_mesh()))},
@@ -68,21 +69,26 @@ TEST(VtuRead, EveryEncodingHeaderAndNumberTypeReads)
                         if (format != "appended" && base64) continue;
                         if (format == "ascii" && (compressed || header64)) continue;
                         const testing::VtuVariant variant{format, base64, compressed, header64, wide};
-                        SCOPED_TRACE(concat(format, base64 ? " base64" : "", compressed ? " zlib" : "", header64 ? " UInt64" : " UInt32",
-                                            wide ? " 64-bit" : " 32-bit"));
+                        SCOPED_TRACE(concat(format, base64 ? " base64" : "", compressed ? " zlib" : "",
+                                            header64 ? " UInt64" : " UInt32", wide ? " 64-bit" : " 32-bit"));
                         const auto file = dir / concat("v", n++, ".vtu");
-                        std::ofstream(file, std::ios::binary) << testing::VtuVariantWriter(variant).file(nested_cubes_mesh());
+                        std::ofstream(file, std::ios::binary)
+                            << testing::VtuVariantWriter(variant).file(nested_cubes_mesh());
                         const VtuContent back = read_vtu(file);
                         EXPECT_EQ(tet_set(back.mesh), tet_set(nested_cubes_mesh()));
                         ASSERT_EQ(back.mesh.vertices.size(), nested_cubes_mesh().vertices.size());
-                        // Float64 binary is exact; Float32 keeps 7 digits, the ASCII of this writer 10 (coordinates within 0..4 mm).
+                        // Float64 binary is exact; Float32 keeps 7 digits, the ASCII of this writer 10 (coordinates
+                        // within 0..4 mm).
                         const double tolerance = wide && format != "ascii" ? 0.0 : 1e-6;
                         for (std::size_t p = 0; p < nested_cubes_mesh().vertices.size(); ++p)
-                            for (int c = 0; c < 3; ++c) ASSERT_NEAR(back.mesh.vertices[p][c], nested_cubes_mesh().vertices[p][c], tolerance);
+                            for (int c = 0; c < 3; ++c)
+                                ASSERT_NEAR(back.mesh.vertices[p][c], nested_cubes_mesh().vertices[p][c], tolerance);
                         const VtuArray* phi = back.point_array("phi");
                         ASSERT_NE(phi, nullptr);
                         for (std::size_t p = 0; p < nested_cubes_mesh().vertices.size(); ++p)
-                            ASSERT_NEAR(phi->values[p], nested_cubes_mesh().vertices[p][0] + 2 * nested_cubes_mesh().vertices[p][1], 3 * tolerance);
+                            ASSERT_NEAR(phi->values[p],
+                                        nested_cubes_mesh().vertices[p][0] + 2 * nested_cubes_mesh().vertices[p][1],
+                                        3 * tolerance);
                     }
     EXPECT_EQ(n, 26);
 }

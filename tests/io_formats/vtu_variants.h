@@ -16,12 +16,12 @@
 namespace tissuemesh::testing {
 
 struct VtuVariant {
-    std::string format = "appended";  ///< "ascii", "binary" (inline base64) or "appended"
-    bool base64_appended = false;     ///< appended data as base64 instead of raw
-    bool compressed = false;          ///< zlib blocks
-    bool header64 = true;             ///< UInt64 headers (else UInt32)
-    bool wide = true;                 ///< Int64 and Float64 (else Int32 and Float32)
-    std::size_t block_bytes = 64;     ///< zlib block size: small, so that arrays span several blocks
+    std::string format = "appended"; ///< "ascii", "binary" (inline base64) or "appended"
+    bool base64_appended = false;    ///< appended data as base64 instead of raw
+    bool compressed = false;         ///< zlib blocks
+    bool header64 = true;            ///< UInt64 headers (else UInt32)
+    bool wide = true;                ///< Int64 and Float64 (else Int32 and Float32)
+    std::size_t block_bytes = 64;    ///< zlib block size: small, so that arrays span several blocks
 };
 
 class VtuVariantWriter {
@@ -34,16 +34,24 @@ public:
         std::vector<double> xyz, phi;
         for (const Vec3& p : mesh.vertices) xyz.insert(xyz.end(), p.begin(), p.end()), phi.push_back(p[0] + 2 * p[1]);
         std::vector<std::int64_t> corners, offsets, labels(mesh.tet_labels.begin(), mesh.tet_labels.end());
-        for (const Tet& t : mesh.tets) corners.insert(corners.end(), t.begin(), t.end()), offsets.push_back(static_cast<std::int64_t>(corners.size()));
-        std::string xml = concat("<?xml version=\"1.0\"?>\n<!-- variant -->\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\"",
-                                 v_.header64 ? " header_type=\"UInt64\"" : "", v_.compressed ? " compressor=\"vtkZLibDataCompressor\"" : "",
-                                 ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(), "\" NumberOfCells=\"", mesh.tets.size(), "\">\n");
+        for (const Tet& t : mesh.tets)
+            corners.insert(corners.end(), t.begin(), t.end()),
+                offsets.push_back(static_cast<std::int64_t>(corners.size()));
+        std::string xml = concat("<?xml version=\"1.0\"?>\n<!-- variant -->\n<VTKFile type=\"UnstructuredGrid\" "
+                                 "version=\"1.0\" byte_order=\"LittleEndian\"",
+                                 v_.header64 ? " header_type=\"UInt64\"" : "",
+                                 v_.compressed ? " compressor=\"vtkZLibDataCompressor\"" : "",
+                                 ">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"", mesh.vertices.size(),
+                                 "\" NumberOfCells=\"", mesh.tets.size(), "\">\n");
         xml += "<Points>\n" + floats("", 3, xyz) + "</Points>\n<Cells>\n" + integers("connectivity", corners, v_.wide) +
-               integers("offsets", offsets, v_.wide) + bytes_array("types", std::vector<std::uint8_t>(mesh.tets.size(), 10), "UInt8") + "</Cells>\n";
-        xml += "<PointData>\n" + floats("phi", 1, phi) + "</PointData>\n<CellData>\n" + integers("tissue", labels, false) + "</CellData>\n";
+               integers("offsets", offsets, v_.wide) +
+               bytes_array("types", std::vector<std::uint8_t>(mesh.tets.size(), 10), "UInt8") + "</Cells>\n";
+        xml += "<PointData>\n" + floats("phi", 1, phi) + "</PointData>\n<CellData>\n" +
+               integers("tissue", labels, false) + "</CellData>\n";
         xml += "</Piece>\n</UnstructuredGrid>\n";
         if (v_.format == "appended")
-            xml += concat("<AppendedData encoding=\"", v_.base64_appended ? "base64" : "raw", "\">\n   _", appended_, "\n</AppendedData>\n");
+            xml += concat("<AppendedData encoding=\"", v_.base64_appended ? "base64" : "raw", "\">\n   _", appended_,
+                          "\n</AppendedData>\n");
         return xml + "</VTKFile>\n";
     }
 
@@ -91,14 +99,15 @@ private:
         std::string header;
         if (!v_.compressed) return word(header, data.size()), header;
         const std::size_t blocks = (data.size() + v_.block_bytes - 1) / v_.block_bytes;
-        word(header, blocks), word(header, v_.block_bytes), word(header, blocks == 0 ? 0 : data.size() - (blocks - 1) * v_.block_bytes);
+        word(header, blocks), word(header, v_.block_bytes),
+            word(header, blocks == 0 ? 0 : data.size() - (blocks - 1) * v_.block_bytes);
         packed_.clear();
         for (std::size_t b = 0; b < blocks; ++b) {
             const std::size_t size = std::min(v_.block_bytes, data.size() - b * v_.block_bytes);
             uLongf length = compressBound(static_cast<uLong>(size));
             std::string out(length, '\0');
-            compress2(reinterpret_cast<Bytef*>(out.data()), &length, reinterpret_cast<const Bytef*>(data.data() + b * v_.block_bytes),
-                      static_cast<uLong>(size), 6);
+            compress2(reinterpret_cast<Bytef*>(out.data()), &length,
+                      reinterpret_cast<const Bytef*>(data.data() + b * v_.block_bytes), static_cast<uLong>(size), 6);
             out.resize(length);
             word(header, length);
             packed_ += out;

@@ -50,11 +50,12 @@ TEST(RefineDelaunay, IncrementalAssessmentEqualsAFullOneAndTheMeshIsValid)
     // equal but for rasterize_tets' floating-point face tests: a voxel centre on an edge can be claimed by two tets
     // (seen: 3 such centres here, the full assessment then gives it to the last). Allow 8 voxels of 512 mm^3.
     EXPECT_NEAR(full.total_error_volume_mm3, report.iterations.back().total_error_volume_mm3, 8 * 512.0);
-    EXPECT_EQ(full.voxels_inside, coarse_head().voxel_count());  // the box holds every voxel centre
+    EXPECT_EQ(full.voxels_inside, coarse_head().voxel_count()); // the box holds every voxel centre
     const MeshCheckReport check = check_mesh(mesh);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
     for (std::size_t i = 1; i < report.iterations.size(); ++i)
-        EXPECT_LT(report.iterations[i].reassessed_tets, report.iterations[i].tets) << "round " << i << " reassessed everything";
+        EXPECT_LT(report.iterations[i].reassessed_tets, report.iterations[i].tets)
+            << "round " << i << " reassessed everything";
 }
 
 TEST(RefineDelaunay, StopsAtTheNodeBudgetAndAtTheTarget)
@@ -84,7 +85,8 @@ TEST(RefineDelaunay, StopsWhenTheErrorVolumeStalls)
     ASSERT_GE(n, 2u);
     EXPECT_GE(report.iterations[n - 1].total_error_volume_mm3, report.iterations[n - 2].total_error_volume_mm3);
     for (std::size_t i = 1; i + 1 < n; ++i)
-        EXPECT_LT(report.iterations[i].total_error_volume_mm3, report.iterations[i - 1].total_error_volume_mm3) << "round " << i;
+        EXPECT_LT(report.iterations[i].total_error_volume_mm3, report.iterations[i - 1].total_error_volume_mm3)
+            << "round " << i;
 }
 
 } // namespace

@@ -27,7 +27,8 @@ TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
     const Meshed& m = junction();
     RefineReport report;
     // Refinement's own promise, without the improver (which slides interface nodes: the next test).
-    const TetMesh refined = refine(m.image, &m.mesh, {.placement = GetParam(), .max_iterations = 2, .improve = false}, {}, &report);
+    const TetMesh refined =
+        refine(m.image, &m.mesh, {.placement = GetParam(), .max_iterations = 2, .improve = false}, {}, &report);
     ASSERT_EQ(report.iterations.size(), 3u) << report.stop_reason;
     EXPECT_GT(refined.vertices.size(), m.mesh.vertices.size());
     const MeshCheckReport check = check_mesh(refined, &m.image);
@@ -41,10 +42,12 @@ TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
     // Tissue regions unchanged: volumes agree to round-off (different tets summed).
     const auto before = tissue_volumes(m.mesh), after = tissue_volumes(refined);
     ASSERT_EQ(before.size(), after.size());
-    for (const auto& [label, volume] : before) EXPECT_NEAR(after.at(label), volume, 1e-9 * volume) << "tissue " << label;
+    for (const auto& [label, volume] : before)
+        EXPECT_NEAR(after.at(label), volume, 1e-9 * volume) << "tissue " << label;
     // The same regions hold the same voxel centres: the error volume is exactly that of the start, every round.
     const double start = report.iterations.front().total_error_volume_mm3;
-    for (const RefineIteration& it : report.iterations) EXPECT_LE(it.total_error_volume_mm3, start) << "round " << it.iteration;
+    for (const RefineIteration& it : report.iterations)
+        EXPECT_LE(it.total_error_volume_mm3, start) << "round " << it.iteration;
     EXPECT_EQ(assess_elements(refined, m.image).total_error_volume_mm3, start);
 }
 
@@ -63,7 +66,8 @@ TEST(RefineConstrained, TheDefaultImprovementKeepsTheRegionsAndMeasuresTheErrorV
     EXPECT_EQ(report.improvement.after.min_dihedral_deg, check.quality.min_dihedral_deg);
     const auto before = tissue_volumes(m.mesh), after = tissue_volumes(refined);
     ASSERT_EQ(before.size(), after.size());
-    for (const auto& [label, volume] : before) EXPECT_NEAR(after.at(label), volume, 2e-4 * volume) << "tissue " << label;
+    for (const auto& [label, volume] : before)
+        EXPECT_NEAR(after.at(label), volume, 2e-4 * volume) << "tissue " << label;
     EXPECT_EQ(report.improved_error_volume_mm3, assess_elements(refined, m.image).total_error_volume_mm3);
     const double start = report.iterations.front().total_error_volume_mm3;
     EXPECT_NEAR(report.improved_error_volume_mm3, start, 0.02 * start);
@@ -84,10 +88,12 @@ TEST(RefineConstrainedClearance, NewNodesKeepHalfAVoxelFromEveryInterface)
     double closest = 1e300;
     for (std::size_t v = m.mesh.vertices.size(); v < m.mesh.vertices.size() + added; ++v)
         for (const Triangle& f : refined.faces)
-            closest = std::min(closest, distance(refined.vertices[v], surface::detail::closest_point_on_triangle(
-                                                                    refined.vertices[v], {refined.vertices[f[0]], refined.vertices[f[1]],
-                                                                                          refined.vertices[f[2]]})));
-    EXPECT_GE(closest, 0.5 * 4.0 - 1e-9);  // 4 mm voxels
+            closest = std::min(closest,
+                               distance(refined.vertices[v],
+                                        surface::detail::closest_point_on_triangle(
+                                            refined.vertices[v],
+                                            {refined.vertices[f[0]], refined.vertices[f[1]], refined.vertices[f[2]]})));
+    EXPECT_GE(closest, 0.5 * 4.0 - 1e-9); // 4 mm voxels
 }
 
 INSTANTIATE_TEST_SUITE_P(Placements, RefineConstrained,

@@ -36,8 +36,8 @@ TEST(RefinePlacement, MaterialChangeLandsOnTheTissueBoundary)
     const LabelImage image = half_and_half();
     // Half-edges: changes at x = 4.5 on three edges; the one farthest from the corners is on (8,2,2)-(2,8,2).
     const Vec3 edge = place_node(image, corners, Placement::material_half_edges, 0, false);
-    EXPECT_NEAR(edge[0], 4.5, 1.0 / 64);  // quarter-voxel steps bisected 4 times
-    EXPECT_NEAR(edge[0] + edge[1], 10.0, 1e-12);  // on the edge
+    EXPECT_NEAR(edge[0], 4.5, 1.0 / 64);         // quarter-voxel steps bisected 4 times
+    EXPECT_NEAR(edge[0] + edge[1], 10.0, 1e-12); // on the edge
     EXPECT_EQ(edge[2], 2.0);
     // From the centroid (3.5, 3.5, 3.5) only the ray towards (8,2,2) changes tissue.
     const Vec3 ray = place_node(image, corners, Placement::material_centroid, 0, false);
@@ -53,7 +53,7 @@ TEST(RefinePlacement, NoChangeFallsBackToTheCentroid)
 {
     const LabelImage image({10, 10, 10}, {1, 1, 1}, {0, 0, 0}, identity_matrix(), 3);
     EXPECT_EQ(place_node(image, corners, Placement::material_half_edges, 0, false), (Vec3{3.5, 3.5, 3.5}));
-    EXPECT_EQ(voxel_label_at(image, {-0.6, 0, 0}, 7), 7);  // outside: the background given
+    EXPECT_EQ(voxel_label_at(image, {-0.6, 0, 0}, 7), 7); // outside: the background given
     EXPECT_EQ(voxel_label_at(image, {-0.4, 0, 0}, 7), 3);
 }
 

@@ -11,7 +11,7 @@ namespace {
 
 struct Head {
     LabelImage image;
-    double volume_mm3 = 0;  ///< exact volume inside the outer sphere (r = 92 mm)
+    double volume_mm3 = 0; ///< exact volume inside the outer sphere (r = 92 mm)
 };
 
 const Head& head()
@@ -29,7 +29,8 @@ const Head& head()
 std::size_t nodes_to_reach(Placement placement, double target_mm3)
 {
     RefineReport report;
-    refine(head().image, nullptr, {.placement = placement, .target_error_mm3 = target_mm3, .max_iterations = 200}, {}, &report);
+    refine(head().image, nullptr, {.placement = placement, .target_error_mm3 = target_mm3, .max_iterations = 200}, {},
+           &report);
     EXPECT_TRUE(report.target_reached) << placement_name(placement) << ": " << report.stop_reason;
     return report.iterations.back().nodes;
 }
@@ -42,8 +43,8 @@ TEST(RefineSpheres, DelaunayOnlyReachesTwoPercentOfTheHeadVolume)
     EXPECT_TRUE(report.target_reached) << report.stop_reason;
     EXPECT_LE(report.iterations.back().total_error_volume_mm3, target);
     // Measured: 12.5 k nodes, 79 k tets, 2.9 s (2 cores, shared): fast enough for the default suite.
-    std::printf("2%% of %.0f mm^3 reached with %zu nodes, %zu tets in %.1f s\n", head().volume_mm3, report.iterations.back().nodes,
-                report.iterations.back().tets, report.iterations.back().seconds);
+    std::printf("2%% of %.0f mm^3 reached with %zu nodes, %zu tets in %.1f s\n", head().volume_mm3,
+                report.iterations.back().nodes, report.iterations.back().tets, report.iterations.back().seconds);
 }
 
 TEST(RefineSpheresLong, MaterialChangeNeedsFewerNodesThanCentroid)
@@ -56,7 +57,8 @@ TEST(RefineSpheresLong, MaterialChangeNeedsFewerNodesThanCentroid)
         const std::size_t centroid = nodes_to_reach(Placement::centroid, target);
         const std::size_t material = nodes_to_reach(Placement::material_centroid, target);
         const double ratio = static_cast<double>(centroid) / static_cast<double>(material);
-        std::printf("%.0f%%: centroid %zu nodes, material-centroid %zu nodes, ratio %.2f\n", percent, centroid, material, ratio);
+        std::printf("%.0f%%: centroid %zu nodes, material-centroid %zu nodes, ratio %.2f\n", percent, centroid,
+                    material, ratio);
         EXPECT_GE(ratio, 1.5) << percent << "% of the head volume";
     }
 }

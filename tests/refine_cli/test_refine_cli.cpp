@@ -36,9 +36,10 @@ TEST(RefineCli, DelaunayOnlyWritesMeshLogPlotAndSummary)
 {
     TempDir dir;
     write_head(dir);
-    const auto result = run_cli("tm-refine", {"--image", (dir / "head.nii.gz").string(), "-o", (dir / "head.msh").string(), "--log",
-                                              (dir / "log.csv").string(), "--plot", (dir / "log.svg").string(), "--iterations", "5",
-                                              "--json", (dir / "summary.json").string(), "-q"});
+    const auto result =
+        run_cli("tm-refine", {"--image", (dir / "head.nii.gz").string(), "-o", (dir / "head.msh").string(), "--log",
+                              (dir / "log.csv").string(), "--plot", (dir / "log.svg").string(), "--iterations", "5",
+                              "--json", (dir / "summary.json").string(), "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto summary = read_json(dir / "summary.json");
     EXPECT_EQ(summary["mode"], "delaunay");
@@ -65,9 +66,10 @@ TEST(RefineCli, ConstrainedKeepsTheInterfaces)
     io::write_label_image(image, dir / "junction.nii.gz");
     const TetMesh start = volume::tetrahedralize(surface::extract_interfaces(image));
     io::write_tet_mesh(start, dir / "junction.msh");
-    const auto result = run_cli("tm-refine", {"-i", (dir / "junction.msh").string(), "--image", (dir / "junction.nii.gz").string(), "-o",
-                                              (dir / "finer.msh").string(), "--iterations", "2", "--placement", "longest-edge",
-                                              "--json", (dir / "summary.json").string(), "-q"});
+    const auto result =
+        run_cli("tm-refine", {"-i", (dir / "junction.msh").string(), "--image", (dir / "junction.nii.gz").string(),
+                              "-o", (dir / "finer.msh").string(), "--iterations", "2", "--placement", "longest-edge",
+                              "--json", (dir / "summary.json").string(), "-q"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const auto summary = read_json(dir / "summary.json");
     EXPECT_EQ(summary["mode"], "constrained");
@@ -83,11 +85,12 @@ TEST(RefineCli, BadPlacementAndMissingImageExitTwoAndLeaveNothing)
 {
     TempDir dir;
     write_head(dir);
-    const auto bad = run_cli("tm-refine", {"--image", (dir / "head.nii.gz").string(), "-o", (dir / "out.msh").string(), "--placement",
-                                           "circumcentre"});
+    const auto bad = run_cli("tm-refine", {"--image", (dir / "head.nii.gz").string(), "-o", (dir / "out.msh").string(),
+                                           "--placement", "circumcentre"});
     EXPECT_EQ(bad.exit_code, 2);
     EXPECT_NE(bad.err.find("tm-refine: error: unknown placement \"circumcentre\""), std::string::npos) << bad.err;
-    const auto missing = run_cli("tm-refine", {"--image", (dir / "none.nii.gz").string(), "-o", (dir / "out.msh").string()});
+    const auto missing =
+        run_cli("tm-refine", {"--image", (dir / "none.nii.gz").string(), "-o", (dir / "out.msh").string()});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_EQ(dir.files(), std::vector<std::string>{"head.nii.gz"});
 }

@@ -17,9 +17,9 @@ namespace {
 TetMesh three_tets()
 {
     TetMesh mesh;
-    mesh.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1},            // regular
-                     {10, 0, 0}, {12, 0, 0}, {11, 2, 0}, {11, 0.7, 0.05},         // sliver
-                     {20, 0, 0}, {21, 0, 0}, {20, 1, 0}, {20, 0, 1}};             // corner tet
+    mesh.vertices = {{1, 1, 1},  {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1},     // regular
+                     {10, 0, 0}, {12, 0, 0},  {11, 2, 0},  {11, 0.7, 0.05}, // sliver
+                     {20, 0, 0}, {21, 0, 0},  {20, 1, 0},  {20, 0, 1}};     // corner tet
     mesh.tets = {{0, 1, 2, 3}, {4, 5, 6, 7}, {8, 9, 10, 11}};
     mesh.tet_labels = {4, 4, 9};
     for (std::size_t t = 0; t < 3; ++t)
@@ -37,9 +37,9 @@ TEST(QualityHistograms, CountEveryTetOncePerTissue)
     for (const auto& bin : h.radius_edge) per_tissue_ratio[0] += bin[0], per_tissue_ratio[1] += bin[1];
     EXPECT_EQ(per_tissue, (std::vector<double>{2, 1}));
     EXPECT_EQ(per_tissue_ratio, (std::vector<double>{2, 1}));
-    EXPECT_EQ(h.min_dihedral[14][0], 1);  // the regular tet: 70.53 deg, bin 70-75
-    EXPECT_EQ(h.radius_edge[0][0], 1);    // and radius-edge 0.612, bin 0.6-0.8
-    EXPECT_EQ(h.min_dihedral[0][0], 1);   // the sliver: under 5 deg
+    EXPECT_EQ(h.min_dihedral[14][0], 1); // the regular tet: 70.53 deg, bin 70-75
+    EXPECT_EQ(h.radius_edge[0][0], 1);   // and radius-edge 0.612, bin 0.6-0.8
+    EXPECT_EQ(h.min_dihedral[0][0], 1);  // the sliver: under 5 deg
     EXPECT_LT(h.min_dihedral_deg[0], 5);
     // The corner tet: right angles at the origin's edges, arccos(1/sqrt 3) at the others; R = sqrt(3)/2, shortest edge 1.
     EXPECT_NEAR(h.min_dihedral_deg[1], 54.7356, 1e-3);
@@ -69,8 +69,8 @@ TEST(ConvergencePlot, ReadsTheRefineLogAndDrawsBothSeries)
     EXPECT_DOUBLE_EQ(rows[2].total_error_volume_mm3, 500);
     EXPECT_DOUBLE_EQ(rows[1].worst_quality_key, 30);
     const render::Canvas picture = render::render_convergence(rows);
-    EXPECT_GT(testing::count_exact(picture, {200, 30, 30}), 200u);  // error volume line
-    EXPECT_GT(testing::count_exact(picture, {30, 60, 200}), 200u);  // worst key line
+    EXPECT_GT(testing::count_exact(picture, {200, 30, 30}), 200u); // error volume line
+    EXPECT_GT(testing::count_exact(picture, {30, 60, 200}), 200u); // worst key line
 }
 
 TEST(ConvergencePlot, RefusesAForeignCsvNamingTheColumn)
@@ -81,7 +81,9 @@ TEST(ConvergencePlot, RefusesAForeignCsvNamingTheColumn)
         render::read_refine_log(dir / "other.csv");
         FAIL();
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("other.csv: no column \"iteration\" in the header; is this a tm-refine --log CSV?"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find(
+                      "other.csv: no column \"iteration\" in the header; is this a tm-refine --log CSV?"),
+                  std::string::npos)
             << e.what();
     }
     EXPECT_THROW(render::read_refine_log(dir / "missing.csv"), IoError);

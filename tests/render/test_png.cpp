@@ -15,7 +15,8 @@ render::Canvas pattern(std::size_t width, std::size_t height)
     for (std::size_t y = 0; y < height; ++y)
         for (std::size_t x = 0; x < width; ++x)
             canvas.set(static_cast<long>(x), static_cast<long>(y),
-                       {static_cast<std::uint8_t>(x * 7 + y), static_cast<std::uint8_t>(x * y % 251), static_cast<std::uint8_t>(255 - y)});
+                       {static_cast<std::uint8_t>(x * 7 + y), static_cast<std::uint8_t>(x * y % 251),
+                        static_cast<std::uint8_t>(255 - y)});
     return canvas;
 }
 
@@ -28,7 +29,7 @@ TEST(Png, RoundTripKeepsEveryPixel)
     ASSERT_EQ(back.width(), 37u);
     ASSERT_EQ(back.height(), 23u);
     EXPECT_EQ(back.pixels(), canvas.pixels());
-    EXPECT_EQ(render::encode_png(back), bytes);  // deterministic bytes
+    EXPECT_EQ(render::encode_png(back), bytes); // deterministic bytes
 }
 
 TEST(Png, WritesAtomicallyAndReadsBack)
@@ -44,7 +45,8 @@ TEST(Png, DamagedBytesAreRefusedWithTheReason)
 {
     std::string bytes = render::encode_png(pattern(8, 8));
     std::string flipped = bytes;
-    flipped[45] = static_cast<char>(flipped[45] ^ 0x10);  // IDAT starts at byte 33: its data, so its CRC no longer matches
+    flipped[45] =
+        static_cast<char>(flipped[45] ^ 0x10); // IDAT starts at byte 33: its data, so its CRC no longer matches
     try {
         render::decode_png(flipped, "picture.png");
         FAIL() << "a damaged PNG was accepted";
@@ -63,7 +65,7 @@ TEST(Canvas, TriangleKeepsTheNearerOfTwoOverlaps)
     canvas.draw_triangle({0, 0, 1}, {20, 0, 1}, {0, 20, 1}, {0, 0, 255});
     canvas.draw_triangle({0, 0, 9}, {20, 0, 9}, {0, 20, 9}, {0, 255, 0});
     EXPECT_EQ(canvas.at(3, 3), (render::Rgb{0, 0, 255}));
-    EXPECT_EQ(canvas.at(18, 18), (render::Rgb{255, 255, 255}));  // outside the triangle
+    EXPECT_EQ(canvas.at(18, 18), (render::Rgb{255, 255, 255})); // outside the triangle
     EXPECT_THROW(render::Canvas(0, 10), InputError);
 }
 

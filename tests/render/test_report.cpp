@@ -47,19 +47,23 @@ TEST(Report, HoldsEveryTissuePictureAndStep)
     content.title = "sphere <head>";
     content.pictures = {{"surface", render::encode_png(canvas)}, {"section", render::encode_png(render::Canvas(3, 3))}};
     content.steps = {{"tetra", {{"tool", "tm-tetra"}, {"status", "ok"}, {"seconds", 2.5}, {"tets", 1234}}},
-                     {"assess", {{"tool", "tm-assess"}, {"status", "ok"}, {"seconds", 1.5},
-                                 {"tissues", {{"1", {{"name", "scalp"}, {"dice", 0.98765}, {"mesh_volume_mm3", 157114.9}}},
-                                              {"4", {{"name", "brain"}, {"dice", 1.0}}}}}}}};
+                     {"assess",
+                      {{"tool", "tm-assess"},
+                       {"status", "ok"},
+                       {"seconds", 1.5},
+                       {"tissues",
+                        {{"1", {{"name", "scalp"}, {"dice", 0.98765}, {"mesh_volume_mm3", 157114.9}}},
+                         {"4", {{"name", "brain"}, {"dice", 1.0}}}}}}}};
     const std::string html = render::report_html(content);
     EXPECT_NE(html.find("<title>sphere &lt;head&gt;</title>"), std::string::npos);
     for (const char* text : {"scalp", "brain", "0.9877", "157114.9", "tm-tetra", "tets 1234"})
         EXPECT_NE(html.find(text), std::string::npos) << text;
-    EXPECT_NE(html.find("<th>total</th><th></th><th></th><th>4</th>"), std::string::npos);  // 2.5 + 1.5 s
+    EXPECT_NE(html.find("<th>total</th><th></th><th></th><th>4</th>"), std::string::npos); // 2.5 + 1.5 s
     EXPECT_EQ(occurrences(html, "data:image/png;base64,"), 2u);
     const std::size_t start = html.find("base64,") + 7;
     const std::string png = unbase64(html.substr(start, html.find('"', start) - start));
     EXPECT_EQ(render::decode_png(png).pixels(), canvas.pixels());
-    EXPECT_EQ(html.find("http"), std::string::npos);  // nothing to fetch
+    EXPECT_EQ(html.find("http"), std::string::npos); // nothing to fetch
 }
 
 TEST(Report, CollectsSummariesInPipelineOrderAndRefusesAnEmptyFolder)
@@ -71,9 +75,10 @@ TEST(Report, CollectsSummariesInPipelineOrderAndRefusesAnEmptyFolder)
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("no tool summary"), std::string::npos) << e.what();
     }
-    for (const auto& [name, tool] : std::vector<std::pair<std::string, std::string>>{{"a", "tm-solve"}, {"b", "tm-extract"}, {"c", "tm-tetra"}})
+    for (const auto& [name, tool] :
+         std::vector<std::pair<std::string, std::string>>{{"a", "tm-solve"}, {"b", "tm-extract"}, {"c", "tm-tetra"}})
         std::ofstream(dir / (name + ".json")) << nlohmann::json{{"tool", tool}, {"seconds", 1}}.dump();
-    std::ofstream(dir / "names.json") << R"({"1": "scalp"})";  // not a summary
+    std::ofstream(dir / "names.json") << R"({"1": "scalp"})"; // not a summary
     render::write_png(render::Canvas(2, 2), dir / "p.png");
     const render::ReportContent content = render::collect_report(dir.path());
     ASSERT_EQ(content.steps.size(), 3u);

@@ -30,7 +30,8 @@ TetMesh lattice_mesh()
                         tet[static_cast<std::size_t>(step + 1)] = id(c[0], c[1], c[2]);
                     }
                     mesh.tets.push_back(tet);
-                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0) std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
+                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0)
+                        std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
                     mesh.tet_labels.push_back(i < 2 ? 1 : 2);
                 }
     mesh.names = {{1, "left"}, {2, "right"}};
@@ -49,7 +50,8 @@ LabelImage lattice_image()
 
 render::Rgb over_slice(Label label, double opacity)
 {
-    return render::mix(render::mix({255, 255, 255}, render::tissue_colour(label), 0.35), render::tissue_colour(label), opacity);
+    return render::mix(render::mix({255, 255, 255}, render::tissue_colour(label), 0.35), render::tissue_colour(label),
+                       opacity);
 }
 
 TEST(SectionView, ShowsEveryTissueOverItsSlice)
@@ -57,14 +59,15 @@ TEST(SectionView, ShowsEveryTissueOverItsSlice)
     const TetMesh mesh = lattice_mesh();
     const LabelImage image = lattice_image();
     render::SectionViewReport report;
-    const render::Canvas picture = render::render_section(mesh, &image, nullptr, {.width_px = 300, .height_px = 300, .legend = false}, &report);
+    const render::Canvas picture =
+        render::render_section(mesh, &image, nullptr, {.width_px = 300, .height_px = 300, .legend = false}, &report);
     EXPECT_DOUBLE_EQ(report.position_mm, 5.0);
     // z = 5 mm cuts the middle layer of cubes: every one of its 25 cubes has 6 tets across the plane.
     EXPECT_EQ(report.tets_cut, 150u);
     EXPECT_EQ(report.tets_highlighted, 0u);
     EXPECT_GT(testing::count_exact(picture, over_slice(1, 0.55)), 5000u);
     EXPECT_GT(testing::count_exact(picture, over_slice(2, 0.55)), 10000u);
-    EXPECT_GT(testing::count_exact(picture, {70, 70, 70}), 1000u);  // the element edges
+    EXPECT_GT(testing::count_exact(picture, {70, 70, 70}), 1000u); // the element edges
 }
 
 TEST(SectionView, HighlightsTetsWithErrorVolume)
@@ -73,13 +76,15 @@ TEST(SectionView, HighlightsTetsWithErrorVolume)
     const LabelImage image = lattice_image();
     std::vector<double> error(mesh.tets.size(), 0.0);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (mesh.tet_labels[t] == 2) error[t] = 1.0;  // one voxel (1 mm^3) each
+        if (mesh.tet_labels[t] == 2) error[t] = 1.0; // one voxel (1 mm^3) each
     render::SectionViewReport report;
-    const render::Canvas picture = render::render_section(mesh, &image, &error, {.width_px = 300, .height_px = 300, .legend = false}, &report);
-    EXPECT_EQ(report.tets_highlighted, 90u);  // 3 of the 5 columns of cubes are tissue 2
+    const render::Canvas picture =
+        render::render_section(mesh, &image, &error, {.width_px = 300, .height_px = 300, .legend = false}, &report);
+    EXPECT_EQ(report.tets_highlighted, 90u); // 3 of the 5 columns of cubes are tissue 2
     EXPECT_EQ(testing::count_exact(picture, over_slice(2, 0.55)), 0u);
     EXPECT_GT(testing::count_exact(picture, over_slice(1, 0.55)), 5000u);
-    const render::Rgb red_over_slice = render::mix(render::mix({255, 255, 255}, render::tissue_colour(2), 0.35), render::error_colour, 0.85);
+    const render::Rgb red_over_slice =
+        render::mix(render::mix({255, 255, 255}, render::tissue_colour(2), 0.35), render::error_colour, 0.85);
     EXPECT_GT(testing::count_exact(picture, red_over_slice), 10000u);
     // Below the threshold (2 voxels), nothing is highlighted.
     render::render_section(mesh, &image, &error, {.width_px = 300, .height_px = 300, .min_error_voxels = 2}, &report);

@@ -51,7 +51,8 @@ std::array<std::int64_t, 3> IsoSurfacePoints::cell_of(const Vec3& p) const
 {
     std::array<std::int64_t, 3> c{};
     for (std::size_t a = 0; a < 3; ++a)
-        c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - low_[a]) / cell_mm_)), 0, counts_[a] - 1);
+        c[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - low_[a]) / cell_mm_)), 0,
+                                        counts_[a] - 1);
     return c;
 }
 
@@ -66,9 +67,11 @@ double IsoSurfacePoints::distance(const Vec3& p, double max_mm) const
         for (std::int64_t k = centre[2] - ring; k <= centre[2] + ring; ++k)
             for (std::int64_t j = centre[1] - ring; j <= centre[1] + ring; ++j)
                 for (std::int64_t i = centre[0] - ring; i <= centre[0] + ring; ++i) {
-                    if (std::max({std::abs(i - centre[0]), std::abs(j - centre[1]), std::abs(k - centre[2])}) != ring) continue;
+                    if (std::max({std::abs(i - centre[0]), std::abs(j - centre[1]), std::abs(k - centre[2])}) != ring)
+                        continue;
                     if (i < 0 || j < 0 || k < 0 || i >= counts_[0] || j >= counts_[1] || k >= counts_[2]) continue;
-                    for (const std::uint32_t n : cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))])
+                    for (const std::uint32_t n :
+                         cells_[static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k))])
                         best = std::min(best, tissuemesh::distance(p, points_[n]));
                 }
     }

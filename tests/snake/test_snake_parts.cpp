@@ -32,12 +32,12 @@ TEST(SnakeField, TrilinearSamplingReproducesLinearFieldsInWorldMm)
     for (std::size_t k = 0; k < 8; ++k)
         for (std::size_t j = 0; j < 10; ++j)
             for (std::size_t i = 0; i < 12; ++i)
-                values[grid.linear_index(i, j, k)] = static_cast<float>(
-                    linear(grid.index_to_world({double(i), double(j), double(k)})));
+                values[grid.linear_index(i, j, k)] =
+                    static_cast<float>(linear(grid.index_to_world({double(i), double(j), double(k)})));
     const surface::PotentialField field(grid, values);
     for (const Vec3& index : {Vec3{3.25, 4.5, 2.75}, Vec3{0.1, 8.9, 6.5}, Vec3{10.99, 0.01, 0.5}}) {
         const Vec3 p = grid.index_to_world(index);
-        EXPECT_NEAR(field.value(p), linear(p), 1e-5);  // float storage
+        EXPECT_NEAR(field.value(p), linear(p), 1e-5); // float storage
         const Vec3 g = field.gradient(p);
         for (std::size_t d = 0; d < 3; ++d) EXPECT_NEAR(g[d], a[d], 1e-5);
         const Vec3 back = field.world_to_index(field.index_to_world(index));
@@ -115,17 +115,20 @@ TEST(SnakeSeparation, InnerSnakeStopsShortOfTheOuterOne)
     for (std::size_t t = 0; t < complex.triangle_count(); ++t) {
         if (!(complex.sides[t] == LabelPair{1, 0})) continue;
         const Triangle& f = complex.triangles[t];
-        const surface::detail::TriangleCorners c{complex.vertices[f[0]], complex.vertices[f[1]], complex.vertices[f[2]]};
+        const surface::detail::TriangleCorners c{complex.vertices[f[0]], complex.vertices[f[1]],
+                                                 complex.vertices[f[2]]};
         for (std::size_t u = 0; u < complex.triangle_count(); ++u)
             if (complex.sides[u] == LabelPair{2, 1})
                 for (const std::uint32_t v : complex.triangles[u]) {
-                    closest = std::min(closest, distance(complex.vertices[v], surface::detail::closest_point_on_triangle(complex.vertices[v], c)));
+                    closest =
+                        std::min(closest, distance(complex.vertices[v],
+                                                   surface::detail::closest_point_on_triangle(complex.vertices[v], c)));
                     inner_max_radius = std::max(inner_max_radius, norm(complex.vertices[v]));
                 }
     }
     EXPECT_GE(closest, 3.0 - 1e-9);
     EXPECT_GT(report.refused_moves, 0u);
-    EXPECT_GT(inner_max_radius, 80.0);  // it did grow towards the scalp
+    EXPECT_GT(inner_max_radius, 80.0); // it did grow towards the scalp
 }
 
 TEST(SnakeResolution, CurvatureShortensEdgesWhereTheSurfaceBends)

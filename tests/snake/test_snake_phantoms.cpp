@@ -29,8 +29,8 @@ SnakeRun run_sphere_snake(const image::Phantom& phantom, Label tissue, LabelPair
     const double voxel = phantom.image.spacing_mm()[0];
     SnakeRun run;
     const LabelPair pair{tissue, 0};
-    run.complex = surface::ellipsoid_surface({0, 0, 0}, {start_radius_mm, start_radius_mm, start_radius_mm},
-                                             2 * voxel, pair);
+    run.complex =
+        surface::ellipsoid_surface({0, 0, 0}, {start_radius_mm, start_radius_mm, start_radius_mm}, 2 * voxel, pair);
     std::vector<surface::SnakeTarget> targets{
         {pair, surface::label_potential(phantom.image, surface::enclosed_region(phantom.image, tissue), voxel)}};
     const auto start = std::chrono::steady_clock::now();
@@ -87,10 +87,7 @@ void spheres4_from_15mm_off(double voxel_mm, const std::vector<Shell>& chosen, c
 
 // The limits (mean < 0.3, max < 0.8 voxel): the default run grows the scalp snake at 2 mm (the nested
 // test below shrinks all four); the long run does every shell from both sides at 2 mm and at 1 mm.
-TEST(SnakePhantoms, Spheres4At2mmScalpGrows)
-{
-    spheres4_from_15mm_off(2.0, {shells[0]}, {-15.0}, 0.3, 0.8);
-}
+TEST(SnakePhantoms, Spheres4At2mmScalpGrows) { spheres4_from_15mm_off(2.0, {shells[0]}, {-15.0}, 0.3, 0.8); }
 
 TEST(SnakePhantoms, LongSpheres4At2mmFrom15mmOff) { spheres4_from_15mm_off(2.0, shells, {15.0, -15.0}, 0.3, 0.8); }
 

@@ -35,8 +35,8 @@ void nested_through_check_and_tetra(double voxel_mm, const std::string& tissues,
     const TempDir dir;
     const std::string image = write_spheres4(dir, voxel_mm);
     const std::string out = (dir / "nested.ply").string();
-    const auto snake = run_cli("tm-snake", {"-i", image, "--labels", (dir / "names.json").string(), "--nested", tissues, "--edge-mm", edge_mm, "-o", out,
-                                            "--json", (dir / "snake.json").string()});
+    const auto snake = run_cli("tm-snake", {"-i", image, "--labels", (dir / "names.json").string(), "--nested", tissues,
+                                            "--edge-mm", edge_mm, "-o", out, "--json", (dir / "snake.json").string()});
     ASSERT_EQ(snake.exit_code, 0) << snake.err;
     const nlohmann::json s = testing::read_json(dir / "snake.json");
     EXPECT_TRUE(s.at("converged").get<bool>());
@@ -66,9 +66,9 @@ TEST(SnakeCli, SphereStartAndIterationCapAreReported)
 {
     const TempDir dir;
     const std::string image = write_spheres4(dir, 4.0);
-    const auto capped = run_cli("tm-snake", {"-i", image, "--tissue", "1", "--init", "sphere", "--centre", "0,0,0",
-                                             "--radius", "70", "--iterations", "3", "-o", (dir / "c.vtp").string(),
-                                             "--json", (dir / "c.json").string()});
+    const auto capped =
+        run_cli("tm-snake", {"-i", image, "--tissue", "1", "--init", "sphere", "--centre", "0,0,0", "--radius", "70",
+                             "--iterations", "3", "-o", (dir / "c.vtp").string(), "--json", (dir / "c.json").string()});
     ASSERT_EQ(capped.exit_code, 0) << capped.err;
     const nlohmann::json c = testing::read_json(dir / "c.json");
     EXPECT_FALSE(c.at("converged").get<bool>());
@@ -104,7 +104,8 @@ TEST(SnakeCli, GreyNiftiSettlesOnItsIsoSphere)
     for (int k = 0; k < 28; ++k)
         for (int j = 0; j < 28; ++j)
             for (int i = 0; i < 28; ++i) {
-                const double r = 1.5 * std::sqrt((i - 13.5) * (i - 13.5) + (j - 13.5) * (j - 13.5) + (k - 13.5) * (k - 13.5));
+                const double r =
+                    1.5 * std::sqrt((i - 13.5) * (i - 13.5) + (j - 13.5) * (j - 13.5) + (k - 13.5) * (k - 13.5));
                 stored.push_back(static_cast<std::int16_t>(std::lround((20 - r) / 0.01)));
             }
     testing::write_nifti(dir / "ball.nii", spec, testing::voxel_bytes(stored));
@@ -123,7 +124,8 @@ TEST(SnakeCli, GreyNiftiSettlesOnItsIsoSphere)
         largest = std::max(largest, off);
     }
     mean /= static_cast<double>(surface.vertices.size());
-    std::cout << "[ figures  ] grey NIfTI ball: " << surface.vertices.size() << " vertices, mean " << mean << " max " << largest << " voxel from r = 12 mm\n";
+    std::cout << "[ figures  ] grey NIfTI ball: " << surface.vertices.size() << " vertices, mean " << mean << " max "
+              << largest << " voxel from r = 12 mm\n";
     EXPECT_LT(mean, 0.1) << "voxels";
     EXPECT_LT(largest, 0.3) << "voxels";
 }
@@ -139,12 +141,13 @@ TEST(SnakeCli, RefusalsNameTheProblemAndLeaveNothing)
     const auto unknown = run_cli("tm-snake", {"-i", image, "--tissue", "bone", "-o", out});
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.err.find("--tissue: unknown tissue \"bone\""), std::string::npos) << unknown.err;
-    EXPECT_NE(unknown.err.find("are 0, 1, 2, 3, 4"), std::string::npos) << "the known tissues are listed: " << unknown.err;
+    EXPECT_NE(unknown.err.find("are 0, 1, 2, 3, 4"), std::string::npos)
+        << "the known tissues are listed: " << unknown.err;
     const auto missing = run_cli("tm-snake", {"-i", image, "--tissue", "7", "-o", out});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("has no tissue 7"), std::string::npos) << missing.err;
-    const auto sphere = run_cli("tm-snake", {"-i", image, "--nested", "1,2", "--init", "sphere", "--centre",
-                                             "0,0,0", "--radius", "50", "-o", out});
+    const auto sphere = run_cli("tm-snake", {"-i", image, "--nested", "1,2", "--init", "sphere", "--centre", "0,0,0",
+                                             "--radius", "50", "-o", out});
     EXPECT_EQ(sphere.exit_code, 2);
     EXPECT_NE(sphere.err.find("--init sphere needs one snake"), std::string::npos) << sphere.err;
     const auto stl = run_cli("tm-snake", {"-i", image, "--tissue", "1", "-o", (dir / "x.stl").string()});

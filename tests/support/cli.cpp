@@ -17,9 +17,8 @@ TempDir::TempDir()
 {
     static std::atomic<unsigned> counter{0};
     std::random_device seed;
-    path_ = fs::temp_directory_path() /
-            ("tissuemesh-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-             std::to_string(seed() % 100000));
+    path_ = fs::temp_directory_path() / ("tissuemesh-test-" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(counter++) + "-" + std::to_string(seed() % 100000));
     fs::create_directories(path_);
 }
 

@@ -26,8 +26,8 @@ private:
 
 struct CliResult {
     int exit_code = -1;
-    std::string out;  ///< standard output
-    std::string err;  ///< standard error
+    std::string out; ///< standard output
+    std::string err; ///< standard error
 };
 
 /// Runs the program `tool` (e.g. "tm-info") from the build's bin folder with `args` (no shell

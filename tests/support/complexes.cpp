@@ -53,8 +53,8 @@ void add_box(InterfaceComplex& complex, const Vec3& low, const Vec3& high, Label
 {
     const auto base = static_cast<std::uint32_t>(complex.vertices.size());
     for (int corner = 0; corner < 8; ++corner)
-        complex.vertices.push_back({corner & 1 ? high[0] : low[0], corner & 2 ? high[1] : low[1],
-                                    corner & 4 ? high[2] : low[2]});
+        complex.vertices.push_back(
+            {corner & 1 ? high[0] : low[0], corner & 2 ? high[1] : low[1], corner & 4 ? high[2] : low[2]});
     // Each face as a quad of corner bits, counter-clockwise seen from outside.
     const int quads[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
     for (const auto& q : quads) {
@@ -63,8 +63,7 @@ void add_box(InterfaceComplex& complex, const Vec3& low, const Vec3& high, Label
     }
 }
 
-void add_tetrahedron(InterfaceComplex& complex, const Vec3& offset_mm, double size_mm, Label inside,
-                     Label outside)
+void add_tetrahedron(InterfaceComplex& complex, const Vec3& offset_mm, double size_mm, Label inside, Label outside)
 {
     const auto base = static_cast<std::uint32_t>(complex.vertices.size());
     complex.vertices.push_back(offset_mm);
@@ -80,11 +79,11 @@ void add_tetrahedron(InterfaceComplex& complex, const Vec3& offset_mm, double si
 InterfaceComplex icosphere(int levels, double radius_mm, const Vec3& centre_mm)
 {
     const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3> unit{{-1, g, 0}, {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+    std::vector<Vec3> unit{{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
                            {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<Triangle> faces{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    std::vector<Triangle> faces{{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (Vec3& v : unit) v = (1.0 / norm(v)) * v;
     for (int level = 0; level < levels; ++level) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoints;
@@ -110,10 +109,12 @@ InterfaceComplex icosphere(int levels, double radius_mm, const Vec3& centre_mm)
     return complex;
 }
 
-void flip_triangle(InterfaceComplex& complex, std::size_t t) { std::swap(complex.triangles[t][1], complex.triangles[t][2]); }
+void flip_triangle(InterfaceComplex& complex, std::size_t t)
+{
+    std::swap(complex.triangles[t][1], complex.triangles[t][2]);
+}
 
-std::uint32_t add_lone_triangle(InterfaceComplex& complex, const Vec3& a, const Vec3& b, const Vec3& c,
-                                LabelPair pair)
+std::uint32_t add_lone_triangle(InterfaceComplex& complex, const Vec3& a, const Vec3& b, const Vec3& c, LabelPair pair)
 {
     const auto base = static_cast<std::uint32_t>(complex.vertices.size());
     complex.vertices.insert(complex.vertices.end(), {a, b, c});

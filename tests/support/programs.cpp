@@ -22,7 +22,7 @@ TetMesh make_nested_cubes_mesh()
     InterfaceComplex complex = voxel_faces(block);
     complex.names = {{1, "outer"}, {2, "inner"}};
     volume::TetrahedralizeOptions options;
-    options.max_volume_mm3 = 0.5;  // a few hundred tets: several per tissue, fast everywhere
+    options.max_volume_mm3 = 0.5; // a few hundred tets: several per tissue, fast everywhere
     return volume::tetrahedralize(complex, options);
 }
 

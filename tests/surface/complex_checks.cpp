@@ -39,8 +39,7 @@ long long orient3(const IPoint& p, const IPoint& q, const IPoint& r, const IPoin
     const long long a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
     const long long b[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
     const long long c[3] = {s[0] - p[0], s[1] - p[1], s[2] - p[2]};
-    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-           a[2] * (b[0] * c[1] - b[1] * c[0]);
+    return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
 int sign(long long v) { return (v > 0) - (v < 0); }
@@ -193,7 +192,8 @@ TissueSurfaceFacts tissue_facts(const InterfaceComplex& complex, Label tissue)
         mine.push_back(t);
         const Vec3 &a = complex.vertices[tri[0]], &b = complex.vertices[tri[1]], &c = complex.vertices[tri[2]];
         facts.volume_mm3 += dot(a, cross(b, c)) / 6.0;
-        for (int e = 0; e < 3; ++e) ++directed[{tri[static_cast<std::size_t>(e)], tri[static_cast<std::size_t>((e + 1) % 3)]}];
+        for (int e = 0; e < 3; ++e)
+            ++directed[{tri[static_cast<std::size_t>(e)], tri[static_cast<std::size_t>((e + 1) % 3)]}];
     }
     facts.triangles = mine.size();
     for (const auto& [edge, count] : directed) {
@@ -244,7 +244,8 @@ std::size_t intersecting_pairs(const InterfaceComplex& complex)
     std::vector<std::array<IPoint, 3>> tris(n);
     std::vector<std::array<long long, 6>> boxes(n);
     for (std::size_t t = 0; t < n; ++t) {
-        for (int c = 0; c < 3; ++c) tris[t][static_cast<std::size_t>(c)] = points[complex.triangles[t][static_cast<std::size_t>(c)]];
+        for (int c = 0; c < 3; ++c)
+            tris[t][static_cast<std::size_t>(c)] = points[complex.triangles[t][static_cast<std::size_t>(c)]];
         for (int axis = 0; axis < 3; ++axis) {
             boxes[t][axis] = std::min({tris[t][0][axis], tris[t][1][axis], tris[t][2][axis]});
             boxes[t][axis + 3] = std::max({tris[t][0][axis], tris[t][1][axis], tris[t][2][axis]});
@@ -293,8 +294,8 @@ std::size_t voxel_components(const LabelImage& image, Label label, Label backgro
 {
     const Padded padded = pad(image, background);
     // The Freudenthal 14-neighbourhood: the edges of the Kuhn tetrahedra.
-    static const std::array<std::array<int, 3>, 7> steps{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1},
-                                                          {0, 1, 1}, {1, 1, 1}}};
+    static const std::array<std::array<int, 3>, 7> steps{
+        {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}}};
     const auto member = [&](std::size_t at) { return (padded.labels[at] == label) != complement; };
     std::vector<char> seen(padded.labels.size(), 0);
     std::size_t components = 0;
@@ -352,14 +353,14 @@ std::string invariant_failures(const LabelImage& image, const InterfaceComplex& 
         const TissueSurfaceFacts facts = tissue_facts(complex, label);
         if (facts.triangles == 0) failures << "tissue " << label << " lost\n";
         if (facts.bad_edges != 0) failures << "tissue " << label << ": " << facts.bad_edges << " bad edges\n";
-        const std::size_t expected =
-            priority.empty() ? voxel_components(image, label, background, false) +
-                                   voxel_components(image, label, background, true) - 1
-                             : priority_components(image, label, background, false, priority) +
-                                   priority_components(image, label, background, true, priority) - 1;
+        const std::size_t expected = priority.empty()
+                                         ? voxel_components(image, label, background, false) +
+                                               voxel_components(image, label, background, true) - 1
+                                         : priority_components(image, label, background, false, priority) +
+                                               priority_components(image, label, background, true, priority) - 1;
         if (facts.components != expected)
-            failures << "tissue " << label << ": " << facts.components << " surface components, expected "
-                     << expected << "\n";
+            failures << "tissue " << label << ": " << facts.components << " surface components, expected " << expected
+                     << "\n";
         if (label == background) continue;
         tissue_volume += facts.volume_mm3;
         // The dual surface differs from the voxel-cube boundary only inside non-uniform cubes.

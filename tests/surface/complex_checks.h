@@ -19,9 +19,9 @@ LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)
 /// The closed surface of one tissue as the tests see it.
 struct TissueSurfaceFacts {
     std::size_t triangles = 0;
-    std::size_t bad_edges = 0;   ///< edges not used exactly once in each direction by the outward surface
-    std::size_t components = 0;  ///< edge-connected pieces of the outward surface
-    double volume_mm3 = 0;       ///< enclosed by the outward surface (divergence theorem)
+    std::size_t bad_edges = 0;  ///< edges not used exactly once in each direction by the outward surface
+    std::size_t components = 0; ///< edge-connected pieces of the outward surface
+    double volume_mm3 = 0;      ///< enclosed by the outward surface (divergence theorem)
 };
 
 /// Outward surface facts for `tissue`: triangles with `tissue` on one side, flipped so that `tissue`

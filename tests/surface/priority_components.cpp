@@ -14,7 +14,7 @@ namespace {
 
 struct Cube {
     std::array<Label, 8> labels{};
-    std::vector<std::array<int, 2>> edges;  ///< corner pairs joined inside the cube (centre: 8)
+    std::vector<std::array<int, 2>> edges; ///< corner pairs joined inside the cube (centre: 8)
     Label centre = 0;
     bool split = false;
 };
@@ -29,7 +29,7 @@ Cube plan_cube(const std::array<Label, 8>& labels, const std::map<Label, int>& p
     Cube cube{labels, {}, 0, false};
     for (int c = 0; c < 8; ++c)
         for (int bit = 1; bit < 8; bit <<= 1)
-            if (!(c & bit)) cube.edges.push_back({c, c | bit});  // the 12 cube edges
+            if (!(c & bit)) cube.edges.push_back({c, c | bit}); // the 12 cube edges
     bool any_anti = false;
     std::vector<std::array<int, 2>> diagonals;
     for (int axis = 0; axis < 3; ++axis)
@@ -37,8 +37,8 @@ Cube plan_cube(const std::array<Label, 8>& labels, const std::map<Label, int>& p
             const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
             const int low = side << axis, a = low | 1 << u, b = low | 1 << v, high = low | 1 << u | 1 << v;
             const Label t = labels[a];
-            const bool anti = labels[b] == t && priority.contains(t) && rank(labels[low]) < rank(t) &&
-                              rank(labels[high]) < rank(t);
+            const bool anti =
+                labels[b] == t && priority.contains(t) && rank(labels[low]) < rank(t) && rank(labels[high]) < rank(t);
             any_anti = any_anti || anti;
             diagonals.push_back(anti ? std::array<int, 2>{a, b} : std::array<int, 2>{low, high});
         }
@@ -48,7 +48,8 @@ Cube plan_cube(const std::array<Label, 8>& labels, const std::map<Label, int>& p
     std::sort(sorted.begin(), sorted.end());
     cube.centre = sorted[0];
     for (const Label l : sorted) {
-        const auto n = std::count(sorted.begin(), sorted.end(), l), m = std::count(sorted.begin(), sorted.end(), cube.centre);
+        const auto n = std::count(sorted.begin(), sorted.end(), l),
+                   m = std::count(sorted.begin(), sorted.end(), cube.centre);
         if (rank(l) > rank(cube.centre) || (rank(l) == rank(cube.centre) && n > m)) cube.centre = l;
     }
     // Are the top label's corners joined by Kuhn edges (comparable corner pairs) inside the cube?
@@ -79,8 +80,7 @@ Cube plan_cube(const std::array<Label, 8>& labels, const std::map<Label, int>& p
     cube.split = priority.contains(cube.centre) && (any_anti || groups > 1 || crosses);
     if (cube.split)
         for (int c = 0; c < 8; ++c) cube.edges.push_back({c, 8});
-    else
-        cube.edges.push_back({0, 7});
+    else cube.edges.push_back({0, 7});
     return cube;
 }
 

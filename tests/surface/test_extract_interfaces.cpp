@@ -18,7 +18,6 @@ using testing::invariant_failures;
 using testing::tissue_facts;
 using testing::voxel_components;
 
-
 LabelImage ball(int n, double radius, Label inside)
 {
     const double c = (n - 1) / 2.0;
@@ -52,10 +51,7 @@ TEST(ExtractInterfaces, SingleVoxelIsAClosedOctahedron)
     for (const LabelPair& side : complex.sides) EXPECT_EQ(side.from, 5) << "background is always `to`";
 }
 
-TEST(ExtractInterfaces, BallIsClosedAndDoesNotIntersect)
-{
-    expect_invariants(ball(9, 3.6, 1));
-}
+TEST(ExtractInterfaces, BallIsClosedAndDoesNotIntersect) { expect_invariants(ball(9, 3.6, 1)); }
 
 TEST(ExtractInterfaces, TwoTouchingBoxes)
 {
@@ -122,13 +118,10 @@ TEST(ExtractInterfaces, OneVoxelShellHasInnerAndOuterSurface)
 
 TEST(ExtractInterfaces, ThreeTissuesMeetAlongALineAndEightAtAPoint)
 {
-    const LabelImage line = make_image({4, 4, 3}, [](int i, int j, int) {
-        return Label(i < 2 ? 1 : (j < 2 ? 2 : 3));
-    });
+    const LabelImage line = make_image({4, 4, 3}, [](int i, int j, int) { return Label(i < 2 ? 1 : (j < 2 ? 2 : 3)); });
     expect_invariants(line);
-    const LabelImage point = make_image({4, 4, 4}, [](int i, int j, int k) {
-        return Label(1 + (i >= 2) + 2 * (j >= 2) + 4 * (k >= 2));
-    });
+    const LabelImage point =
+        make_image({4, 4, 4}, [](int i, int j, int k) { return Label(1 + (i >= 2) + 2 * (j >= 2) + 4 * (k >= 2)); });
     expect_invariants(point);
 }
 
@@ -175,7 +168,8 @@ TEST(ExtractInterfaces, HonoursSpacingOriginAndMirroredDirection)
     EXPECT_EQ(invariant_failures(image, complex, 0, false), "");
     const InterfaceComplex plain = extract_interfaces(unit);
     EXPECT_NEAR(tissue_facts(complex, 3).volume_mm3, tissue_facts(plain, 3).volume_mm3 * image.voxel_volume_mm3(),
-                1e-9 * tissue_facts(plain, 3).volume_mm3) << "world volume = index volume * voxel volume";
+                1e-9 * tissue_facts(plain, 3).volume_mm3)
+        << "world volume = index volume * voxel volume";
     const Vec3 first = complex.vertices.front();
     const Vec3 index = image.world_to_index(first);
     for (const double c : index) EXPECT_NEAR(c * 12, std::round(c * 12), 1e-9) << "dual points on the 1/12 lattice";

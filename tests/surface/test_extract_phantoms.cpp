@@ -53,8 +53,8 @@ INSTANTIATE_TEST_SUITE_P(AllPhantoms, ExtractPhantom,
                          ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
 
 /// The complex of `image` under `priority` is fit, complete, and its pieces follow the priority rule.
-void expect_fit_under_priority(const LabelImage& image, const std::map<Label, int>& priority,
-                               const std::string& what, Method method = Method::marching_cubes)
+void expect_fit_under_priority(const LabelImage& image, const std::map<Label, int>& priority, const std::string& what,
+                               Method method = Method::marching_cubes)
 {
     const InterfaceComplex complex = extract(image, {.priority = priority}, method);
     const surface::CheckReport report = surface::check_complex(complex);
@@ -139,7 +139,8 @@ TEST_P(NetsPhantom, FitUnderRankedPrioritiesAt2mm)
     expect_fit_under_priority(phantom.image, priority, concat(GetParam(), " ranked"), Method::surface_nets);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPhantoms, NetsPhantom, ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
+INSTANTIATE_TEST_SUITE_P(AllPhantoms, NetsPhantom,
+                         ::testing::Values("spheres4", "junction", "thin", "boxes", "ellipsoids"));
 
 TEST(NetsPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
 {
@@ -148,7 +149,8 @@ TEST(NetsPhantomThin, OneVoxelShellStaysOneClosedPieceWithPriority)
 
 TEST(NetsSample, LongLiverTorsoAndHeadAreFitForTetrahedralization)
 {
-    for (const char* sample : {"samples/liver.inr.gz", "samples/totalseg_torso_3mm.nii.gz", "samples/usc19-5_head.nii.gz"}) {
+    for (const char* sample :
+         {"samples/liver.inr.gz", "samples/totalseg_torso_3mm.nii.gz", "samples/usc19-5_head.nii.gz"}) {
         const LabelImage image = io::read_label_image(testing::data_path(sample));
         expect_fit_and_complete(image, sample, Method::surface_nets);
     }

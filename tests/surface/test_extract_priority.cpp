@@ -18,7 +18,6 @@ using testing::make_image;
 
 using surface::extract_interfaces;
 
-
 TEST(ExtractPriority, CsfOf2mmSpheresSeparatesSkullFromBrainEverywhere)
 {
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
@@ -32,7 +31,8 @@ TEST(ExtractPriority, CsfOf2mmSpheresSeparatesSkullFromBrainEverywhere)
     // One CSF piece between two closed surfaces: against the skull outside and the brain inside.
     EXPECT_EQ(report.tissues.at(3).components, 2u);
     std::size_t skull_brain = 0;
-    for (const LabelPair& pair : complex.sides) skull_brain += (pair.from == 4 && pair.to == 2) || (pair.from == 2 && pair.to == 4);
+    for (const LabelPair& pair : complex.sides)
+        skull_brain += (pair.from == 4 && pair.to == 2) || (pair.from == 2 && pair.to == 4);
     EXPECT_EQ(skull_brain, 0u);
     // The brain is enclosed by the CSF alone: its surface is one piece.
     EXPECT_EQ(report.tissues.at(4).components, 1u);
@@ -56,7 +56,7 @@ TEST(ExtractPriority, RandomImagesWithRandomPrioritiesKeepEveryInvariant)
                                  << (report.first_error() ? report.first_error()->description : "");
         split_seen += complex.triangle_count() != extract_interfaces(image).triangle_count();
     }
-    EXPECT_GT(split_seen, 40);  // the rule must actually change most random cases, or this tests nothing
+    EXPECT_GT(split_seen, 40); // the rule must actually change most random cases, or this tests nothing
 }
 
 TEST(ExtractPriority, CounterWithoutPriorityIsTheFourteenNeighbourhood)

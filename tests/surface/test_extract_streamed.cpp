@@ -173,7 +173,8 @@ TEST(ExtractStreamed, SummarizerRefusesPiecesThatAreNotLocal)
         FAIL() << "a non-local piece was accepted";
     } catch (const InputError& error) {
         EXPECT_NE(std::string(error.what()).find("uses vertex 0, outside its piece and the one before"),
-                  std::string::npos) << error.what();
+                  std::string::npos)
+            << error.what();
     }
 }
 

@@ -58,12 +58,17 @@ TEST(StreamedPly, FailuresLeaveNothingBehind)
         EXPECT_TRUE(dir.files().empty()) << hint << ": no output, temporary or side file is left";
     };
     // The producer fails half way: the pieces already written are discarded.
-    expect_failure([&](InterfaceSink& sink) {
-        sink.add({0, points, good, sides});
-        throw AlgorithmError("the producer gave up");
-    }, "the producer gave up");
-    expect_failure([&](InterfaceSink& sink) { sink.add({0, points, dangling, sides}); },
-                   "out.ply: triangle 0 refers to vertex 3 but only 3 vertices came before it");
+    expect_failure(
+        [&](InterfaceSink& sink) {
+            sink.add({0, points, good, sides});
+            throw AlgorithmError("the producer gave up");
+        },
+        "the producer gave up");
+    expect_failure(
+        [&](InterfaceSink& sink) {
+            sink.add({0, points, dangling, sides});
+        },
+        "out.ply: triangle 0 refers to vertex 3 but only 3 vertices came before it");
     try {
         io::write_surface_streamed(dir / "out.stl", [](InterfaceSink&) {});
         ADD_FAILURE() << "a streamed .stl was accepted";

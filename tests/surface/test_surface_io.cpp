@@ -76,9 +76,10 @@ TEST(SurfaceIo, OffAndStlKeepGeometry)
 TEST(SurfaceIo, ReadsAsciiPlyWithoutLabels)
 {
     TempDir dir;
-    write_bytes(dir / "a.ply", "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 4\nproperty float x\n"
-                               "property float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_index\n"
-                               "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    write_bytes(dir / "a.ply",
+                "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 4\nproperty float x\n"
+                "property float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_index\n"
+                "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
     const InterfaceComplex tet = io::read_surface(dir / "a.ply");
     EXPECT_EQ(tet.vertices.size(), 4u);
     ASSERT_EQ(tet.triangles.size(), 4u);

@@ -94,7 +94,7 @@ TEST(SurfaceNets, SphereHeadAt1mmHasAboutTwoTrianglesPerVoxelFace)
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 1.0});
     surface::SurfaceNetsReport report;
     const InterfaceComplex nets = extract_surface_nets(phantom.image, {}, {.iterations = 0}, {}, &report);
-    std::size_t faces = 0;  // voxel faces between two labels (the image's outside counts as background)
+    std::size_t faces = 0; // voxel faces between two labels (the image's outside counts as background)
     const Dims& d = phantom.image.dims();
     for (std::size_t k = 0; k < d[2]; ++k)
         for (std::size_t j = 0; j < d[1]; ++j)
@@ -126,7 +126,7 @@ TEST(SurfaceNets, AVertexPushedOutOfItsCubeIsCaught)
     std::size_t pushed = 0;
     for (std::size_t v = 0; v < net.positions.size() && pushed == 0; ++v)
         if (net.kinds[v] == surface::detail::NetVertexKind::cube) {
-            net.positions[v][0] = net.boxes[v].high[0] + 0.3;  // into the neighbouring cube
+            net.positions[v][0] = net.boxes[v].high[0] + 0.3; // into the neighbouring cube
             pushed = 1;
         }
     ASSERT_EQ(pushed, 1u);
@@ -157,10 +157,12 @@ TEST(ThinFirstPriority, RanksThinLayersFirstAndKeepsThemWhole)
 {
     const image::Phantom head = image::make_phantom("spheres4", {.voxel_mm = 2.0});
     const std::map<Label, int> priority = surface::thin_first_priority(head.image);
-    ASSERT_EQ(priority.size(), 4u);  // scalp, skull, CSF, brain; not the background
+    ASSERT_EQ(priority.size(), 4u); // scalp, skull, CSF, brain; not the background
     for (const auto& [label, rank] : priority)
-        if (label != 3) { EXPECT_GT(priority.at(3), rank) << "CSF against " << label; }
-    EXPECT_GT(priority.at(2), priority.at(4));  // the skull shell is thinner than the brain ball
+        if (label != 3) {
+            EXPECT_GT(priority.at(3), rank) << "CSF against " << label;
+        }
+    EXPECT_GT(priority.at(2), priority.at(4)); // the skull shell is thinner than the brain ball
     const InterfaceComplex complex = extract_surface_nets(head.image, {.priority = priority});
     const surface::CheckReport check = surface::check_complex(complex);
     ASSERT_TRUE(check.ok()) << first_error(check);

@@ -63,7 +63,8 @@ TEST(BoxIndex, VisitLaterReportsEveryOverlappingPairOnce)
                 found.emplace_back(std::min(id, other), std::max(id, other));
             });
         std::sort(found.begin(), found.end());
-        EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end()) << "a pair reported twice, seed " << seed;
+        EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end())
+            << "a pair reported twice, seed " << seed;
         EXPECT_EQ(std::set(found.begin(), found.end()), expected) << "seed " << seed;
         EXPECT_GT(expected.size(), boxes.size()) << "the test needs many overlaps";
     }

@@ -64,7 +64,7 @@ TEST(CheckComplexDefects, FlippedTriangleGivesOrientationConflicts)
     testing::flip_triangle(complex, 5);
     const CheckReport report = check_complex(complex);
     EXPECT_FALSE(report.ok());
-    EXPECT_EQ(report.count(DefectKind::orientation_conflict), 6u);  // 3 edges, in both tissues' surfaces
+    EXPECT_EQ(report.count(DefectKind::orientation_conflict), 6u); // 3 edges, in both tissues' surfaces
     EXPECT_EQ(report.count(DefectKind::open_edge), 0u);
     EXPECT_TRUE(report.tissues.at(1).closed);
     EXPECT_FALSE(report.tissues.at(1).oriented);
@@ -80,7 +80,7 @@ TEST(CheckComplexDefects, FlippedTriangleGivesOrientationConflicts)
 TEST(CheckComplexDefects, DuplicateTriangleIsAnError)
 {
     InterfaceComplex complex = skull_cube();
-    const Triangle copy{complex.triangles[3][1], complex.triangles[3][2], complex.triangles[3][0]};  // rotated
+    const Triangle copy{complex.triangles[3][1], complex.triangles[3][2], complex.triangles[3][0]}; // rotated
     complex.add_triangle(copy, complex.sides[3]);
     const CheckReport report = check_complex(complex);
     EXPECT_FALSE(report.ok());
@@ -94,7 +94,7 @@ TEST(CheckComplexDefects, DuplicateTriangleIsAnError)
 TEST(CheckComplexDefects, DegenerateTrianglesAreErrors)
 {
     InterfaceComplex complex = skull_cube();
-    testing::add_lone_triangle(complex, {10, 0, 0}, {11, 1, 1}, {13, 3, 3}, {1, 0});  // collinear
+    testing::add_lone_triangle(complex, {10, 0, 0}, {11, 1, 1}, {13, 3, 3}, {1, 0}); // collinear
     complex.add_triangle({0, 1, 1}, {1, 0});                                         // repeated vertex
     const CheckReport report = check_complex(complex);
     EXPECT_FALSE(report.ok());
@@ -103,7 +103,7 @@ TEST(CheckComplexDefects, DegenerateTrianglesAreErrors)
     EXPECT_TRUE(mentions(*degenerate[0], "collinear")) << degenerate[0]->description;
     EXPECT_EQ(degenerate[0]->triangles, (std::vector<std::uint32_t>{12}));
     EXPECT_TRUE(mentions(*degenerate[1], "repeated vertex")) << degenerate[1]->description;
-    EXPECT_EQ(report.count(DefectKind::needle_triangle), 0u);  // degenerate, not merely thin
+    EXPECT_EQ(report.count(DefectKind::needle_triangle), 0u); // degenerate, not merely thin
 }
 
 TEST(CheckComplexDefects, DuplicateVerticesAreErrors)
@@ -122,7 +122,7 @@ TEST(CheckComplexDefects, DuplicateVerticesAreErrors)
     const Defect& defect = *of_kind(report, DefectKind::duplicate_vertex).front();
     EXPECT_EQ(defect.location_mm, (Vec3{1, 1, 1}));
     EXPECT_TRUE(mentions(defect, "vertices 7 and 8")) << defect.description;
-    EXPECT_FALSE(report.tissues.at(1).closed);  // by index the surface is torn at the copy
+    EXPECT_FALSE(report.tissues.at(1).closed); // by index the surface is torn at the copy
 }
 
 TEST(CheckComplexDefects, CopiedVerticesAreNotAlsoReportedAsIntersections)
@@ -158,7 +158,7 @@ TEST(CheckComplexDefects, InsideOutTissueIsInverted)
     for (LabelPair& pair : complex.sides) std::swap(pair.from, pair.to);
     const CheckReport report = check_complex(complex);
     EXPECT_FALSE(report.ok());
-    EXPECT_EQ(report.count(DefectKind::inverted_tissue), 2u);  // skull encloses -1 mm^3, air +1 mm^3
+    EXPECT_EQ(report.count(DefectKind::inverted_tissue), 2u); // skull encloses -1 mm^3, air +1 mm^3
     EXPECT_NEAR(report.tissues.at(1).volume_mm3, -1.0, 1e-12);
 }
 
@@ -182,7 +182,7 @@ TEST(CheckComplexDefects, NeedlesAreWarningsOnly)
 TEST(CheckComplexDefects, StoredDefectsAreCappedButCountsExact)
 {
     InterfaceComplex complex = testing::icosphere(2, 5.0, {0, 0, 0});
-    for (std::size_t t = 0; t < complex.triangles.size(); t += 2) complex.sides[t] = {0, 1};  // half inverted
+    for (std::size_t t = 0; t < complex.triangles.size(); t += 2) complex.sides[t] = {0, 1}; // half inverted
     const CheckReport report = check_complex(complex, {.max_defects_per_kind = 3});
     EXPECT_GT(report.count(DefectKind::orientation_conflict), 3u);
     EXPECT_EQ(of_kind(report, DefectKind::orientation_conflict).size(), 3u);

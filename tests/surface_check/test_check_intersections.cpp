@@ -88,22 +88,22 @@ TEST(CheckComplexIntersections, VertexPushedThroughTheOppositeFaceIsASelfInterse
 TEST(CheckComplexIntersections, TrianglesSharingOnlyAVertexAreFine)
 {
     // Non-coplanar, and coplanar with the wedges at the shared vertex on opposite sides.
-    EXPECT_EQ(intersections(check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 1}, {-1, 0, 1}},
-                                                        {0, 1, 2}, {0, 3, 4}))),
+    EXPECT_EQ(intersections(check_complex(
+                  two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 1}, {-1, 0, 1}}, {0, 1, 2}, {0, 3, 4}))),
               0u);
-    EXPECT_EQ(intersections(check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}},
-                                                        {0, 1, 2}, {0, 3, 4}))),
+    EXPECT_EQ(intersections(check_complex(
+                  two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}}, {0, 1, 2}, {0, 3, 4}))),
               0u);
 }
 
 TEST(CheckComplexIntersections, TrianglesSharingOnlyAnEdgeAreFine)
 {
     // A fold (non-coplanar) and a flat pair (coplanar, third vertices on opposite sides).
-    EXPECT_EQ(intersections(check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0.3}},
-                                                        {0, 1, 2}, {1, 0, 3}))),
+    EXPECT_EQ(intersections(check_complex(
+                  two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0.3}}, {0, 1, 2}, {1, 0, 3}))),
               0u);
-    EXPECT_EQ(intersections(check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0}},
-                                                        {0, 1, 2}, {1, 0, 3}))),
+    EXPECT_EQ(intersections(
+                  check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, -1, 0}}, {0, 1, 2}, {1, 0, 3}))),
               0u);
 }
 
@@ -114,24 +114,23 @@ TEST(CheckComplexIntersections, SharedVertexWithCrossingNearItIsAnIntersection)
         two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.2, 0.2, 1}, {0.2, 0.2, -1}}, {0, 1, 2}, {0, 3, 4}));
     EXPECT_EQ(pierced.count(DefectKind::patch_intersection), 1u);
     // Coplanar, overlapping wedges at the shared vertex.
-    const CheckReport overlapping = check_complex(
-        two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5, 2, 0}}, {0, 1, 2}, {0, 3, 4}));
+    const CheckReport overlapping =
+        check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5, 2, 0}}, {0, 1, 2}, {0, 3, 4}));
     EXPECT_EQ(overlapping.count(DefectKind::patch_intersection), 1u);
 }
 
 TEST(CheckComplexIntersections, SharedEdgeFoldedFlatOntoItselfIsAnIntersection)
 {
     // Coplanar, third vertices on the same side of the shared edge: the triangles overlap.
-    const CheckReport report = check_complex(
-        two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.6, 0.8, 0}}, {0, 1, 2}, {1, 0, 3}));
+    const CheckReport report =
+        check_complex(two_triangles({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.6, 0.8, 0}}, {0, 1, 2}, {1, 0, 3}));
     EXPECT_EQ(report.count(DefectKind::patch_intersection), 1u);
 }
 
 TEST(CheckComplexIntersections, CoplanarOverlapWithoutSharedVerticesIsAnIntersection)
 {
-    const CheckReport report = check_complex(
-        two_triangles({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}}, {0, 1, 2},
-                      {3, 4, 5}));
+    const CheckReport report = check_complex(two_triangles(
+        {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {3, 0.5, 0}, {0.5, 3, 0}}, {0, 1, 2}, {3, 4, 5}));
     ASSERT_EQ(report.count(DefectKind::patch_intersection), 1u);
     const Defect& defect = *of_kind(report, DefectKind::patch_intersection).front();
     // The overlap is the triangle (0.5, 0.5), (1.5, 0.5), (0.5, 1.5) in z = 0; its centroid is reported.
@@ -159,9 +158,8 @@ TEST(CheckComplexIntersections, CoplanarContactsAreDecidedExactly)
 TEST(CheckComplexIntersections, TouchingWithoutSharingTheVertexIsAnIntersection)
 {
     // The second triangle's corner lies on the first one's interior, but is a different vertex.
-    const CheckReport report = check_complex(
-        two_triangles({{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {0.5, 0.5, 1}, {1, 0.5, 1}}, {0, 1, 2},
-                      {3, 4, 5}));
+    const CheckReport report = check_complex(two_triangles(
+        {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0.5, 0.5, 0}, {0.5, 0.5, 1}, {1, 0.5, 1}}, {0, 1, 2}, {3, 4, 5}));
     EXPECT_EQ(report.count(DefectKind::patch_intersection), 1u);
 }
 
@@ -172,7 +170,7 @@ TEST(CheckComplexIntersections, CanBeSkipped)
     testing::add_box(complex, {1, 1, 1}, {3, 3, 3}, 2, 0);
     const CheckReport report = check_complex(complex, {.check_intersections = false});
     EXPECT_FALSE(report.intersections_checked);
-    EXPECT_TRUE(report.ok());  // what was checked passed; the caller knows intersections were not
+    EXPECT_TRUE(report.ok()); // what was checked passed; the caller knows intersections were not
 }
 
 } // namespace

@@ -10,8 +10,8 @@ namespace {
 
 using surface::check_complex;
 using surface::CheckReport;
-using testing::VoxelBlock;
 using testing::voxel_faces;
+using testing::VoxelBlock;
 
 std::string defects_of(const CheckReport& report)
 {
@@ -48,7 +48,7 @@ TEST(CheckComplex, AcceptsCubeWithExactVolume)
     const CheckReport report = check_complex(complex);
     EXPECT_TRUE(report.ok()) << defects_of(report);
     EXPECT_EQ(report.triangles, 12u);
-    EXPECT_EQ(report.edges, 18u);  // 12 cube edges and 6 face diagonals
+    EXPECT_EQ(report.edges, 18u); // 12 cube edges and 6 face diagonals
     EXPECT_NEAR(report.tissues.at(5).volume_mm3, 8.0, 1e-12);
     EXPECT_NEAR(report.tissues.at(0).volume_mm3, -8.0, 1e-12);
 }
@@ -63,7 +63,7 @@ TEST(CheckComplex, AcceptsNestedCubesWithExactVolumes)
     const CheckReport report = check_complex(complex);
     EXPECT_TRUE(report.ok()) << defects_of(report);
     ASSERT_EQ(report.tissues.size(), 3u);
-    const double voxel = 0.125;  // 0.5^3 mm^3, exact in binary
+    const double voxel = 0.125; // 0.5^3 mm^3, exact in binary
     EXPECT_NEAR(report.tissues.at(2).volume_mm3, 1 * voxel, 1e-12);
     EXPECT_NEAR(report.tissues.at(1).volume_mm3, 26 * voxel, 1e-12);
     EXPECT_NEAR(report.tissues.at(0).volume_mm3, -27 * voxel, 1e-12);
@@ -140,8 +140,8 @@ TEST(CheckComplex, IcosphereVolumeIsThePolyhedronVolume)
     // Same quantity about a different origin: equal up to rounding of ~1e3 terms of size ~1 mm^3.
     EXPECT_NEAR(volume, fan, 1e-9 * fan);
     const double pi = 3.14159265358979323846;
-    EXPECT_LT(volume, 4.0 / 3.0 * pi * radius * radius * radius);  // inscribed in the sphere
-    EXPECT_GT(volume, 4.0 / 3.0 * pi * inradius * inradius * inradius);  // contains the insphere
+    EXPECT_LT(volume, 4.0 / 3.0 * pi * radius * radius * radius);       // inscribed in the sphere
+    EXPECT_GT(volume, 4.0 / 3.0 * pi * inradius * inradius * inradius); // contains the insphere
     EXPECT_EQ(report.tissues.at(1).components, 1u);
 }
 

@@ -52,7 +52,7 @@ TEST(CheckSurfaceCli, NestedBoxesAreFitAndExitZero)
     EXPECT_NEAR(summary["tissues"][0]["volume_mm3"].get<double>(), -27.0, 1e-9);
     EXPECT_NEAR(summary["tissues"][1]["volume_mm3"].get<double>(), 26.0, 1e-9);
     EXPECT_NEAR(summary["tissues"][2]["volume_mm3"].get<double>(), 1.0, 1e-9);
-    EXPECT_EQ(summary["tissues"][1]["components"], 2);  // skull's outer and inner sheets
+    EXPECT_EQ(summary["tissues"][1]["components"], 2); // skull's outer and inner sheets
     // Each tissue fills 90 degrees about its box's edges (the skull 270 about the brain's), 180 about face diagonals.
     EXPECT_NEAR(summary["min_tissue_sector_deg"].get<double>(), 90.0, 1e-9);
 }
@@ -77,7 +77,7 @@ TEST(CheckSurfaceCli, IntersectingBoxesExitOneNamingTissuesAndPlace)
     const nlohmann::json summary = read_json(dir / "c.json");
     EXPECT_EQ(summary["fit_for_tetrahedralization"], false);
     EXPECT_GT(summary["defect_counts"]["patch-intersection"].get<int>(), 3);
-    ASSERT_EQ(summary["defects"].size(), 3u);  // --max-report 3
+    ASSERT_EQ(summary["defects"].size(), 3u); // --max-report 3
     for (const auto& defect : summary["defects"]) {
         // The boxes' surfaces cross only within their overlap [1, 2]^3 (1e-9 mm: rounded construction).
         for (int axis = 0; axis < 3; ++axis) {

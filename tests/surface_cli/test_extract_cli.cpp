@@ -87,8 +87,8 @@ TEST(ExtractCli, PriorityKeepsAOneVoxelShellBetweenBallAndOutside)
     io::write_label_image(image::make_phantom("thin", {.voxel_mm = 2.0}).image, dir / "thin.nii.gz");
     std::ofstream(dir / "names.json") << R"({"1": "shell", "2": "ball"})";
     const auto ball_meets_outside = [&](const std::vector<std::string>& extra) {
-        std::vector<std::string> args{"-i", (dir / "thin.nii.gz").string(), "-o", (dir / "out.ply").string(),
-                                      "--labels", (dir / "names.json").string(), "--json", (dir / "s.json").string()};
+        std::vector<std::string> args{"-i",       (dir / "thin.nii.gz").string(), "-o",     (dir / "out.ply").string(),
+                                      "--labels", (dir / "names.json").string(),  "--json", (dir / "s.json").string()};
         args.insert(args.end(), extra.begin(), extra.end());
         const auto result = run_cli("tm-extract", args);
         EXPECT_EQ(result.exit_code, 0) << result.err;
@@ -114,8 +114,9 @@ TEST(ExtractCli, PriorityCsfMatchesALabelFileSayingCsfAndUnknownNamesListTheKnow
     TempDir dir;
     io::write_label_image(image::make_phantom("thin", {.voxel_mm = 4.0}).image, dir / "thin.nii.gz");
     std::ofstream(dir / "names.json") << R"({"0": "Air", "1": "CSF", "2": "Grey Matter"})";
-    const std::vector<std::string> common{"-i", (dir / "thin.nii.gz").string(), "-o", (dir / "out.ply").string(),
-                                          "--labels", (dir / "names.json").string(), "--json", (dir / "s.json").string()};
+    const std::vector<std::string> common{
+        "-i",       (dir / "thin.nii.gz").string(), "-o",     (dir / "out.ply").string(),
+        "--labels", (dir / "names.json").string(),  "--json", (dir / "s.json").string()};
     const auto with = [&](std::vector<std::string> extra) {
         extra.insert(extra.begin(), common.begin(), common.end());
         return run_cli("tm-extract", extra);
@@ -130,7 +131,8 @@ TEST(ExtractCli, PriorityCsfMatchesALabelFileSayingCsfAndUnknownNamesListTheKnow
     EXPECT_NE(unknown.err.find("0 Air, 1 CSF, 2 Grey Matter"), std::string::npos) << unknown.err;
     const auto wrapped = with({"--tissues", "65537"});
     EXPECT_EQ(wrapped.exit_code, 2);
-    EXPECT_NE(wrapped.err.find("tissue 65537 is not a label number; labels are 0..65535"), std::string::npos) << wrapped.err;
+    EXPECT_NE(wrapped.err.find("tissue 65537 is not a label number; labels are 0..65535"), std::string::npos)
+        << wrapped.err;
 }
 
 TEST(ExtractCli, StreamedPlyEqualsTheInMemoryPathByteForByte)
@@ -141,7 +143,7 @@ TEST(ExtractCli, StreamedPlyEqualsTheInMemoryPathByteForByte)
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
     io::write_label_image(phantom.image, dir / "s4.nii.gz");
     const auto extract = [&](const std::string& name, std::vector<std::string> extra) {
-        std::vector<std::string> args{"-i", (dir / "s4.nii.gz").string(), "-o", (dir / name).string(), "-q",
+        std::vector<std::string> args{"-i",     (dir / "s4.nii.gz").string(),     "-o", (dir / name).string(), "-q",
                                       "--json", (dir / (name + ".json")).string()};
         args.insert(args.end(), extra.begin(), extra.end());
         const auto result = run_cli("tm-extract", args);
@@ -174,7 +176,7 @@ TEST(ExtractCli, HeadPeakMemoryStaysUnderTenTimesTheImage)
                                                (dir / "head.ply").string(), "-q", "--json", (dir / "s.json").string()});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     const nlohmann::json summary = testing::read_json(dir / "s.json");
-#ifndef __SANITIZE_ADDRESS__  // ASan's shadow memory and quarantine of freed blocks inflate the peak
+#ifndef __SANITIZE_ADDRESS__ // ASan's shadow memory and quarantine of freed blocks inflate the peak
     const double image_mib = summary["voxels"].get<double>() * sizeof(Label) / (1024.0 * 1024.0);
     EXPECT_LT(summary["peak_memory_mb"].get<double>(), 10 * image_mib);
 #endif
@@ -206,9 +208,11 @@ TEST(ExtractCli, BadInputExitsTwoWithOneLineAndNoOutput)
         {{"-i", (dir / "broken.nii.gz").string(), "-o", (dir / "out.ply").string()}, "broken.nii.gz"},
         {{"-i", (dir / "missing.nii.gz").string(), "-o", (dir / "out.ply").string()}, "missing.nii.gz"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.stl").string()}, ".ply or .vtp"},
-        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "7"}, "has no tissue 7"},
-        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "1",
-          "--background", "1"}, "background"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "7"},
+         "has no tissue 7"},
+        {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--tissues", "1", "--background",
+          "1"},
+         "background"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "bone=1"},
          "--priority bone=1"},
         {{"-i", (dir / "small.nii.gz").string(), "-o", (dir / "out.ply").string(), "--priority", "7=1"},

@@ -35,9 +35,9 @@ TEST(RepairCli, BrokenComplexComesOutFitWithAReport)
     EXPECT_EQ(check.exit_code, 1);
     EXPECT_TRUE(contains(check.err, "tm-repair may fix it")) << check.err;
 
-    const auto repaired = run_cli("tm-repair", {"-i", (dir / "broken.ply").string(), "-o", (dir / "fixed.ply").string(),
-                                                "--image", (dir / "j.nii.gz").string(), "--gap-mm", "0.1", "--json",
-                                                (dir / "r.json").string()});
+    const auto repaired =
+        run_cli("tm-repair", {"-i", (dir / "broken.ply").string(), "-o", (dir / "fixed.ply").string(), "--image",
+                              (dir / "j.nii.gz").string(), "--gap-mm", "0.1", "--json", (dir / "r.json").string()});
     ASSERT_EQ(repaired.exit_code, 0) << repaired.err;
     const nlohmann::json r = testing::read_json(dir / "r.json");
     EXPECT_EQ(r.at("flipped_triangles").get<std::size_t>(), 1u);
@@ -69,7 +69,8 @@ TEST(RepairCli, HolesFailWithExitOneAndNothingWritten)
     const auto repaired = run_cli("tm-repair", {"-i", (dir / "hole.ply").string(), "-o", (dir / "out.ply").string()});
     EXPECT_EQ(repaired.exit_code, 1);
     EXPECT_TRUE(contains(repaired.err, "open-edge defects remain")) << repaired.err;
-    EXPECT_TRUE(contains(repaired.err, "re-extract the interfaces from the label image with tm-extract")) << repaired.err;
+    EXPECT_TRUE(contains(repaired.err, "re-extract the interfaces from the label image with tm-extract"))
+        << repaired.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));
 }
 
@@ -80,7 +81,8 @@ TEST(RepairCli, RefusesLossyFormatsAndBadOptions)
     const auto stl = run_cli("tm-repair", {"-i", (dir / "s.ply").string(), "-o", (dir / "out.stl").string()});
     EXPECT_EQ(stl.exit_code, 2);
     EXPECT_TRUE(contains(stl.err, "written as .ply or .vtp")) << stl.err;
-    const auto gap = run_cli("tm-repair", {"-i", (dir / "s.ply").string(), "-o", (dir / "out.ply").string(), "--gap-mm", "-1"});
+    const auto gap =
+        run_cli("tm-repair", {"-i", (dir / "s.ply").string(), "-o", (dir / "out.ply").string(), "--gap-mm", "-1"});
     EXPECT_EQ(gap.exit_code, 2);
     EXPECT_TRUE(contains(gap.err, "gap -1 mm must not be negative")) << gap.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "out.ply"));

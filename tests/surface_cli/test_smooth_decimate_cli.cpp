@@ -36,13 +36,13 @@ TEST(SmoothDecimateCli, ChainKeepsTheComplexFitAndReportsCounts)
 {
     const TempDir dir;
     const Inputs in = write_inputs(dir);
-    const auto smooth = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "s.ply").string(), "--json",
-                                              (dir / "s.json").string()});
+    const auto smooth = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", (dir / "s.ply").string(),
+                                              "--json", (dir / "s.json").string()});
     ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
     const nlohmann::json s = testing::read_json((dir / "s.json").string());
     EXPECT_GT(s.at("moves").get<std::size_t>(), 0u);
-    const auto decimate = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "d.ply").string(), "--json",
-                                                  (dir / "d.json").string(), "--max-distance-mm", "3"});
+    const auto decimate = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "d.ply").string(),
+                                                  "--json", (dir / "d.json").string(), "--max-distance-mm", "3"});
     ASSERT_EQ(decimate.exit_code, 0) << decimate.err;
     const nlohmann::json d = testing::read_json((dir / "d.json").string());
     EXPECT_LT(d.at("triangles_after").get<std::size_t>(), d.at("triangles_before").get<std::size_t>());
@@ -50,18 +50,19 @@ TEST(SmoothDecimateCli, ChainKeepsTheComplexFitAndReportsCounts)
     const InterfaceComplex result = io::read_surface((dir / "d.ply").string());
     EXPECT_EQ(result.triangle_count(), d.at("triangles_after").get<std::size_t>());
     EXPECT_TRUE(surface::check_complex(result).ok());
-    const auto remeshed = run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "r.ply").string(), "--edge-mm",
-                                                "12", "--edge-mm-pair", "2:3=9", "--json", (dir / "r.json").string()});
+    const auto remeshed =
+        run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "r.ply").string(), "--edge-mm", "12",
+                              "--edge-mm-pair", "2:3=9", "--json", (dir / "r.json").string()});
     ASSERT_EQ(remeshed.exit_code, 0) << remeshed.err;
     const nlohmann::json r = testing::read_json(dir / "r.json");
     EXPECT_GT(r.at("triangles_after").get<std::size_t>(), 0u);
     EXPECT_TRUE(surface::check_complex(io::read_surface((dir / "r.ply").string())).ok());
-    const auto bad_pair = run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "x.ply").string(),
-                                                "--edge-mm-pair", "2=9"});
+    const auto bad_pair =
+        run_cli("tm-remesh", {"-i", (dir / "d.ply").string(), "-o", (dir / "x.ply").string(), "--edge-mm-pair", "2=9"});
     EXPECT_EQ(bad_pair.exit_code, 2);
     EXPECT_NE(bad_pair.err.find("expected TISSUE:TISSUE=MM"), std::string::npos) << bad_pair.err;
-    const auto sized = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "z.ply").string(), "--mode", "size",
-                                               "--target-edge-mm", "12"});
+    const auto sized = run_cli("tm-decimate", {"-i", (dir / "s.ply").string(), "-o", (dir / "z.ply").string(), "--mode",
+                                               "size", "--target-edge-mm", "12"});
     EXPECT_EQ(sized.exit_code, 0) << sized.err;
 }
 
@@ -109,20 +110,21 @@ TEST(SmoothDecimateCli, CheckStampSkipsTheSecondCheckOfTheSameComplexOnly)
     const TempDir dir;
     const Inputs in = write_inputs(dir);
     const std::string smoothed = (dir / "s.ply").string();
-    const auto smooth = run_cli("tm-smooth", {"-i", in.surface, "--image", in.image, "-o", smoothed, "--json",
-                                              (dir / "s.json").string()});
+    const auto smooth = run_cli(
+        "tm-smooth", {"-i", in.surface, "--image", in.image, "-o", smoothed, "--json", (dir / "s.json").string()});
     ASSERT_EQ(smooth.exit_code, 0) << smooth.err;
     // tm-extract writes no stamp: tm-smooth checked its input; its output carries the stamp of its check.
     EXPECT_TRUE(testing::read_json(dir / "s.json").at("input_checked").get<bool>());
     const std::string stamp = stamp_of(smoothed);
     EXPECT_EQ(stamp.rfind("tissuemesh-checked ", 0), 0u) << stamp;
-    const auto skipped = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d.ply").string(), "--max-distance-mm", "3",
-                                                 "--json", (dir / "d.json").string()});
+    const auto skipped = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d.ply").string(), "--max-distance-mm",
+                                                 "3", "--json", (dir / "d.json").string()});
     ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
     EXPECT_FALSE(testing::read_json(dir / "d.json").at("input_checked").get<bool>());
-    EXPECT_NE(skipped.err.find("input check skipped: " + smoothed + " carries the stamp"), std::string::npos) << skipped.err;
-    const auto forced = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d2.ply").string(), "--max-distance-mm", "3",
-                                                "--check-input", "--json", (dir / "d2.json").string()});
+    EXPECT_NE(skipped.err.find("input check skipped: " + smoothed + " carries the stamp"), std::string::npos)
+        << skipped.err;
+    const auto forced = run_cli("tm-decimate", {"-i", smoothed, "-o", (dir / "d2.ply").string(), "--max-distance-mm",
+                                                "3", "--check-input", "--json", (dir / "d2.json").string()});
     ASSERT_EQ(forced.exit_code, 0) << forced.err;
     EXPECT_TRUE(testing::read_json(dir / "d2.json").at("input_checked").get<bool>());
     // The same stamp on a changed complex (a triangle less: holes) is not trusted: the check runs and refuses.

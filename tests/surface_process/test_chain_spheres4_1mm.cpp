@@ -30,8 +30,8 @@ double report_stage(const std::string& stage, const image::Phantom& phantom, con
 {
     const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
     const surface::CheckReport check = surface::check_complex(complex, {.check_intersections = false});
-    std::cout << "[ figures  ] spheres4 1 mm " << stage << ": " << complex.triangle_count() << " triangles ("
-              << seconds << " s); vertex distance to the exact spheres max/mean " << figures.max_voxels << "/"
+    std::cout << "[ figures  ] spheres4 1 mm " << stage << ": " << complex.triangle_count() << " triangles (" << seconds
+              << " s); vertex distance to the exact spheres max/mean " << figures.max_voxels << "/"
               << figures.mean_voxels << " voxel; volume error";
     double worst = 0;
     for (const auto& [tissue, facts] : check.tissues) {
@@ -81,12 +81,12 @@ void run_chain(double max_edge_mm)
     ASSERT_TRUE(before.ok());
 
     start = std::chrono::steady_clock::now();
-    surface::smooth(complex, phantom.image, {.fit_passes = 3});  // Taubin alone ends 0.54 voxel off
+    surface::smooth(complex, phantom.image, {.fit_passes = 3}); // Taubin alone ends 0.54 voxel off
     report_stage("smoothed", phantom, complex, seconds_since(start));
     // A quarter voxel from the smoothed surface: that surface is within 0.34 voxel of the exact spheres, and
     // the remeshed vertices land on the decimated one (with 0.5 mm the chain ended 0.54 voxel off).
-    decimate_remesh_and_check(phantom, complex, before, {.max_distance_mm = 0.1, .max_edge_mm = max_edge_mm},
-                              extracted, 0.2);
+    decimate_remesh_and_check(phantom, complex, before, {.max_distance_mm = 0.1, .max_edge_mm = max_edge_mm}, extracted,
+                              0.2);
 }
 
 TEST(SurfaceChain, LongSpheres4At1mmMeetsTheIssueFigures) { run_chain(0); }

@@ -27,15 +27,16 @@ void check_decimation(const std::string& name, double voxel_mm, const surface::D
     const surface::CheckReport after = surface::check_complex(complex);
     std::cout << "[ figures  ] " << name << " at " << voxel_mm << " mm: " << report.triangles_before << " -> "
               << report.triangles_after << " triangles (" << report.collapses << " collapses, refused "
-              << report.refused_by_distance << " by distance, " << report.refused_by_checks
-              << " by checks: topology " << report.refused_topology << " shape " << report.refused_shape << " fold "
-              << report.refused_fold << " intersection " << report.refused_intersection << " gap " << report.refused_gap
+              << report.refused_by_distance << " by distance, " << report.refused_by_checks << " by checks: topology "
+              << report.refused_topology << " shape " << report.refused_shape << " fold " << report.refused_fold
+              << " intersection " << report.refused_intersection << " gap " << report.refused_gap
               << "); tracked distance max " << report.max_distance_mm << " mm; vertex distance to the exact "
-              << "interfaces max/mean " << raw.max_voxels << "/" << raw.mean_voxels << " -> " << after_figures.max_voxels
-              << "/" << after_figures.mean_voxels << " voxel\n";
+              << "interfaces max/mean " << raw.max_voxels << "/" << raw.mean_voxels << " -> "
+              << after_figures.max_voxels << "/" << after_figures.mean_voxels << " voxel\n";
     EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
     EXPECT_LE(report.max_distance_mm, options.max_distance_mm);
-    EXPECT_GE(static_cast<double>(report.triangles_before), min_reduction * static_cast<double>(report.triangles_after));
+    EXPECT_GE(static_cast<double>(report.triangles_before),
+              min_reduction * static_cast<double>(report.triangles_after));
     ASSERT_EQ(after.tissues.size(), before.tissues.size());
     for (const auto& [tissue, facts] : before.tissues) {
         const surface::TissueCheck& now = after.tissues.at(tissue);
@@ -71,7 +72,8 @@ TEST(Decimate, RefusesCollapsesThatWouldCrossTheOtherSideOfAThinLayer)
 
 TEST(Decimate, SizeModeSplitsAndCollapses)
 {
-    check_decimation("junction", 2.0, {.mode = surface::DecimateMode::size, .max_distance_mm = 1.0, .target_edge_mm = 6.0}, 3);
+    check_decimation("junction", 2.0,
+                     {.mode = surface::DecimateMode::size, .max_distance_mm = 1.0, .target_edge_mm = 6.0}, 3);
 }
 
 TEST(Decimate, TargetTriangleCountStopsEarly)
@@ -124,8 +126,9 @@ TEST(Decimate, RejectsBadOptions)
     EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size}), InputError);
     EXPECT_THROW(surface::decimate(complex, {.max_edge_mm = -1}), InputError);
     // Size mode bounds its edges by its target; a second bound there would be silently ignored.
-    EXPECT_THROW(surface::decimate(complex, {.mode = surface::DecimateMode::size, .max_edge_mm = 3, .target_edge_mm = 2}),
-                 InputError);
+    EXPECT_THROW(
+        surface::decimate(complex, {.mode = surface::DecimateMode::size, .max_edge_mm = 3, .target_edge_mm = 2}),
+        InputError);
     EXPECT_THROW(surface::decimate(complex, {.slabs = surface::DecimateOptions::max_slabs + 1}), InputError);
 }
 

@@ -33,8 +33,10 @@ double thinnest(const InterfaceComplex& complex)
             if (complex.sides[a].from != 1 || complex.sides[b].from != 2) continue;
             const Triangle& ta = complex.triangles[a];
             const Triangle& tb = complex.triangles[b];
-            const surface::detail::TriangleCorners ca{complex.vertices[ta[0]], complex.vertices[ta[1]], complex.vertices[ta[2]]};
-            const surface::detail::TriangleCorners cb{complex.vertices[tb[0]], complex.vertices[tb[1]], complex.vertices[tb[2]]};
+            const surface::detail::TriangleCorners ca{complex.vertices[ta[0]], complex.vertices[ta[1]],
+                                                      complex.vertices[ta[2]]};
+            const surface::detail::TriangleCorners cb{complex.vertices[tb[0]], complex.vertices[tb[1]],
+                                                      complex.vertices[tb[2]]};
             for (int k = 0; k < 3; ++k) {
                 d = std::min(d, distance(cb[k], surface::detail::closest_point_on_triangle(cb[k], ca)));
                 d = std::min(d, distance(ca[k], surface::detail::closest_point_on_triangle(ca[k], cb)));

@@ -44,10 +44,11 @@ void compare_slabs_with_whole(const std::string& name, double voxel_mm, std::siz
     const Outcome whole = decimate_in(phantom, smoothed, 1);
     const Outcome cut = decimate_in(phantom, smoothed, slabs);
     std::cout << "[ figures  ] " << name << " at " << voxel_mm << " mm, " << smoothed.triangle_count()
-              << " triangles: whole -> " << whole.report.triangles_after << " (distance to the exact interfaces max/mean "
-              << whole.distances.max_voxels << "/" << whole.distances.mean_voxels << " voxel), " << cut.report.slabs
-              << " slabs -> " << cut.report.triangles_after << " (" << cut.distances.max_voxels << "/"
-              << cut.distances.mean_voxels << " voxel)\n";
+              << " triangles: whole -> " << whole.report.triangles_after
+              << " (distance to the exact interfaces max/mean " << whole.distances.max_voxels << "/"
+              << whole.distances.mean_voxels << " voxel), " << cut.report.slabs << " slabs -> "
+              << cut.report.triangles_after << " (" << cut.distances.max_voxels << "/" << cut.distances.mean_voxels
+              << " voxel)\n";
     EXPECT_EQ(whole.report.slabs, 1u);
     EXPECT_EQ(cut.report.slabs, slabs);
     EXPECT_LE(cut.report.max_distance_mm, 0.5);

@@ -11,9 +11,9 @@ namespace tissuemesh {
 namespace {
 
 using surface::detail::ComplexEditor;
+using surface::detail::fan_order;
 using surface::detail::FanBlade;
 using surface::detail::FanOrder;
-using surface::detail::fan_order;
 
 // Three patches around the edge from (0,0,0) to (0,0,1): blades towards +x, +y and -x-y. The right-hand
 // turn about +z goes +x -> +y -> -x-y. Tissue 1 lies between +x and +y, 2 between +y and -x-y, 3 between
@@ -23,7 +23,8 @@ const Vec3 a{0, 0, 0}, b{0, 0, 1};
 TEST(EdgeFan, ThreePatchesInOrder)
 {
     // Forward blades have the tissue ahead of the turn in front (`to`).
-    const std::vector<FanBlade> blades{{{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
+    const std::vector<FanBlade> blades{
+        {{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, blades), FanOrder::in_order);
     // The same triangles listed backwards along the edge (from b to a): nothing changes.
     std::vector<FanBlade> reversed = blades;
@@ -37,18 +38,22 @@ TEST(EdgeFan, ThreePatchesInOrder)
 TEST(EdgeFan, SwappedBladesAreOutOfOrder)
 {
     // The +y blade moved past -x-y (to -y): tissue 2 now lies on both sides of the -x-y blade.
-    const std::vector<FanBlade> blades{{{1, 0, 0.5}, {3, 1}, true}, {{0.2, -1, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
+    const std::vector<FanBlade> blades{
+        {{1, 0, 0.5}, {3, 1}, true}, {{0.2, -1, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, blades), FanOrder::out_of_order);
 }
 
 TEST(EdgeFan, CoincidentOrFlatBladesOverlap)
 {
-    const std::vector<FanBlade> same{{{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{2, 0, 0.9}, {2, 3}, true}};
+    const std::vector<FanBlade> same{
+        {{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{2, 0, 0.9}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, same), FanOrder::overlapping);
-    const std::vector<FanBlade> flat{{{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{0, 0, 3}, {2, 3}, true}};
+    const std::vector<FanBlade> flat{
+        {{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{0, 0, 3}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, flat), FanOrder::overlapping);
     // Opposite blades (at pi from each other) are fine.
-    const std::vector<FanBlade> opposite{{{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{-1, 0, 0.5}, {2, 3}, true}};
+    const std::vector<FanBlade> opposite{
+        {{1, 0, 0.5}, {3, 1}, true}, {{0, 1, 0.5}, {1, 2}, true}, {{-1, 0, 0.5}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, opposite), FanOrder::in_order);
 }
 
@@ -58,9 +63,11 @@ TEST(EdgeFan, DecidedExactlyWhenBladesAreNearlyCoplanar)
     EXPECT_EQ(surface::detail::orientation(a, b, {1, 0, 0}, {1, 1e-200, 0}), 1);
     EXPECT_EQ(surface::detail::orientation(a, b, {1, 0, 0}, {1, -1e-200, 0}), -1);
     EXPECT_EQ(surface::detail::orientation(a, b, {1, 0, 0}, {2, 0, 7}), 0);
-    const std::vector<FanBlade> thin{{{1, 0, 0.5}, {3, 1}, true}, {{1, 1e-200, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
+    const std::vector<FanBlade> thin{
+        {{1, 0, 0.5}, {3, 1}, true}, {{1, 1e-200, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, thin), FanOrder::in_order);
-    const std::vector<FanBlade> crossed{{{1, 0, 0.5}, {3, 1}, true}, {{1, -1e-200, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
+    const std::vector<FanBlade> crossed{
+        {{1, 0, 0.5}, {3, 1}, true}, {{1, -1e-200, 0.5}, {1, 2}, true}, {{-1, -1, 0.5}, {2, 3}, true}};
     EXPECT_EQ(fan_order(a, b, crossed), FanOrder::out_of_order);
 }
 
@@ -72,7 +79,7 @@ InterfaceComplex two_pockets(double d_height)
     complex.names = {{0, "air"}, {1, "one"}, {2, "two"}};
     complex.vertices = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1.3, 1.3, d_height}, {1.3, 1.3, -3}};
     const std::uint32_t A = 0, B = 1, C = 2, D = 3, E = 4;
-    complex.add_triangle({A, B, C}, {2, 1});  // normal +z: from two (below) into one (above)
+    complex.add_triangle({A, B, C}, {2, 1}); // normal +z: from two (below) into one (above)
     for (const Triangle& t : {Triangle{A, B, D}, Triangle{B, C, D}, Triangle{C, A, D}}) complex.add_triangle(t, {1, 0});
     for (const Triangle& t : {Triangle{B, A, E}, Triangle{C, B, E}, Triangle{A, C, E}}) complex.add_triangle(t, {2, 0});
     return complex;

@@ -16,7 +16,7 @@ namespace {
 struct StepFigures {
     double max_voxels = 0;
     double mean_voxels = 0;
-    int answered = 0;  ///< of the 2000 points, those the field gave a step for
+    int answered = 0; ///< of the 2000 points, those the field gave a step for
 };
 
 /// One Newton step from 2000 random points of the exact sphere of `radius_mm` between tissues `inside`
@@ -57,22 +57,24 @@ void expect_close(const image::Phantom& phantom, const std::string& what, double
 TEST(LabelField, ZeroLevelHugsTheExactSpheres)
 {
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
-    expect_close(phantom, "spheres4 2 mm", 92, 1, 0, 0.35, 0.1);  // scalp|outside
-    expect_close(phantom, "spheres4 2 mm", 86, 2, 1, 0.35, 0.1);  // skull|scalp
+    expect_close(phantom, "spheres4 2 mm", 92, 1, 0, 0.35, 0.1); // scalp|outside
+    expect_close(phantom, "spheres4 2 mm", 86, 2, 1, 0.35, 0.1); // skull|scalp
 }
 
-// The CSF is 2 mm thick: at 1 mm the narrow blur answers on both its sides (measured max 0.47, mean 0.11 voxel); at 2 mm, one voxel,
-// even the narrow blur reaches the tissue beyond, and the field gives (almost) no answer rather than a level
-// pulled 0.3 voxel into the layer.
+// The CSF is 2 mm thick: at 1 mm the narrow blur answers on both its sides (measured max 0.47, mean 0.11 voxel); at 2
+// mm, one voxel, even the narrow blur reaches the tissue beyond, and the field gives (almost) no answer rather than a
+// level pulled 0.3 voxel into the layer.
 TEST(LabelField, ThinLayersGetTheNarrowBlurOrNone)
 {
     const image::Phantom fine = image::make_phantom("spheres4", {.voxel_mm = 1.0});
-    expect_close(fine, "spheres4 1 mm", 80, 3, 2, 0.5, 0.15);  // CSF|skull
-    expect_close(fine, "spheres4 1 mm", 78, 4, 3, 0.5, 0.15);  // brain|CSF
+    expect_close(fine, "spheres4 1 mm", 80, 3, 2, 0.5, 0.15); // CSF|skull
+    expect_close(fine, "spheres4 1 mm", 78, 4, 3, 0.5, 0.15); // brain|CSF
     const image::Phantom coarse = image::make_phantom("spheres4", {.voxel_mm = 2.0});
-    for (const auto& [radius, inside, outside] : {std::tuple{80.0, Label{3}, Label{2}}, std::tuple{78.0, Label{4}, Label{3}}}) {
+    for (const auto& [radius, inside, outside] :
+         {std::tuple{80.0, Label{3}, Label{2}}, std::tuple{78.0, Label{4}, Label{3}}}) {
         const StepFigures figures = steps_from_exact_sphere(coarse, radius, inside, outside);
-        std::cout << "[ figures  ] spheres4 2 mm, sphere " << radius << " mm: " << figures.answered << " of 2000 answered\n";
+        std::cout << "[ figures  ] spheres4 2 mm, sphere " << radius << " mm: " << figures.answered
+                  << " of 2000 answered\n";
         EXPECT_LT(figures.answered, 200);
     }
 }
@@ -81,7 +83,7 @@ TEST(LabelField, NoStepFarFromBothTissues)
 {
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
     const surface::detail::LabelField field(phantom.image, 0, 1.0);
-    EXPECT_FALSE(field.step_to_interface({0, 0, 0}, 1, 0, 0.5).has_value());  // deep in the brain
+    EXPECT_FALSE(field.step_to_interface({0, 0, 0}, 1, 0, 0.5).has_value()); // deep in the brain
 }
 
 } // namespace

@@ -33,10 +33,10 @@ InterfaceComplex pocket(std::uint32_t& apex)
     apex = static_cast<std::uint32_t>(complex.vertices.size());
     complex.vertices.push_back({0.5, 0.5, 1});
     const auto p = [&](int i, int j) { return grid.at({i, j}); };
-    const LabelPair sides{1, 0};  // normals outwards: from tissue 1 to the background
+    const LabelPair sides{1, 0}; // normals outwards: from tissue 1 to the background
     for (int j = 0; j < n; ++j)
         for (int i = 0; i + j < n; ++i) {
-            complex.add_triangle({p(i, j), p(i, j + 1), p(i + 1, j)}, sides);  // base: normals down
+            complex.add_triangle({p(i, j), p(i, j + 1), p(i + 1, j)}, sides); // base: normals down
             if (i + j < n - 1) complex.add_triangle({p(i + 1, j), p(i, j + 1), p(i + 1, j + 1)}, sides);
         }
     for (int k = 0; k < n; ++k) {
@@ -47,10 +47,7 @@ InterfaceComplex pocket(std::uint32_t& apex)
     return complex;
 }
 
-double signed_volume(const std::array<Vec3, 4>& p)
-{
-    return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]) / 6;
-}
+double signed_volume(const std::array<Vec3, 4>& p) { return dot(cross(p[1] - p[0], p[2] - p[0]), p[3] - p[0]) / 6; }
 
 TEST(LocalEditor, AMoveThroughTheOppositeFaceIsRefusedThoughEveryStepLooksFine)
 {
@@ -64,7 +61,8 @@ TEST(LocalEditor, AMoveThroughTheOppositeFaceIsRefusedThoughEveryStepLooksFine)
     // Through the base: the side triangles tilt by 11 degrees and meet nothing, but the pocket would be inside out.
     EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, -0.05}));
     EXPECT_DOUBLE_EQ(editor.position(apex)[2], 0.05);
-    EXPECT_GT(signed_volume({editor.position(0), editor.position(5), editor.position(20), editor.position(apex)}), 0);  // the corners
+    EXPECT_GT(signed_volume({editor.position(0), editor.position(5), editor.position(20), editor.position(apex)}),
+              0); // the corners
     EXPECT_TRUE(surface::check_complex(editor.result()).ok());
     // Beside the base (not through it) the same depth would make triangles cross: refused as before.
     EXPECT_FALSE(editor.try_move(apex, {2.5, 2.5, -0.05}));
@@ -85,9 +83,10 @@ TEST(LocalEditor, AMoveThatClosesATissueSectorBelowTheLimitIsRefused)
     surface::detail::LocalLimits with = without;
     with.min_sector_deg = 15;
     LocalEditor editor(complex, with, 2.0);
-    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.2}));   // 21.8 and 15.8 degrees
-    EXPECT_NEAR(surface::detail::smallest_sector_deg(editor.result()), std::atan(0.2 / std::sqrt(0.5)) * 180 / pi, 1e-9);
-    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.1}));  // 8.0 degrees at the third edge
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.2})); // 21.8 and 15.8 degrees
+    EXPECT_NEAR(surface::detail::smallest_sector_deg(editor.result()), std::atan(0.2 / std::sqrt(0.5)) * 180 / pi,
+                1e-9);
+    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.1})); // 8.0 degrees at the third edge
     EXPECT_DOUBLE_EQ(editor.position(apex)[2], 0.2);
     // Without the rule the same move is made; with it again, a sector under the limit may open but not close.
     editor.set_limits(without);

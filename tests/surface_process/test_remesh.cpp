@@ -35,11 +35,12 @@ TEST(Remesh, JunctionTowardsTargetEdgeLength)
     const surface::RemeshReport report = surface::remesh(complex, {.target_edge_mm = 4.0});
     const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
     std::cout << "[ figures  ] junction 2 mm remeshed to 4 mm edges: " << report.triangles_before << " -> "
-              << report.triangles_after << " triangles, mean edge " << report.mean_edge_after_mm << " mm, smallest angle "
-              << report.min_angle_before_deg << " -> " << report.min_angle_after_deg << " deg; " << report.splits
-              << " splits, " << report.collapses << " collapses, " << report.flips << " flips, " << report.moves
-              << " moves, " << report.refused << " refused; vertices to input max " << report.max_distance_mm
-              << " mm, to exact interfaces max/mean " << figures.max_voxels << "/" << figures.mean_voxels << " voxel\n";
+              << report.triangles_after << " triangles, mean edge " << report.mean_edge_after_mm
+              << " mm, smallest angle " << report.min_angle_before_deg << " -> " << report.min_angle_after_deg
+              << " deg; " << report.splits << " splits, " << report.collapses << " collapses, " << report.flips
+              << " flips, " << report.moves << " moves, " << report.refused << " refused; vertices to input max "
+              << report.max_distance_mm << " mm, to exact interfaces max/mean " << figures.max_voxels << "/"
+              << figures.mean_voxels << " voxel\n";
     expect_same_tissues(before, surface::check_complex(complex));
     EXPECT_LT(report.triangles_after, report.triangles_before / 3);
     EXPECT_NEAR(report.mean_edge_after_mm, 4.0, 1.5);
@@ -57,8 +58,9 @@ TEST(Remesh, TheChainKeepsEveryTissueSectorOpen)
     const image::Phantom phantom = image::make_phantom("junction", {.voxel_mm = 2.0});
     const auto chain = [&](double min_sector_deg) {
         InterfaceComplex complex = surface::extract_interfaces(phantom.image);
-        surface::decimate(complex, {.max_distance_mm = 1, .max_edge_mm = 8, .max_normal_change_deg = 45,
-                                    .min_sector_deg = min_sector_deg});
+        surface::decimate(
+            complex,
+            {.max_distance_mm = 1, .max_edge_mm = 8, .max_normal_change_deg = 45, .min_sector_deg = min_sector_deg});
         surface::remesh(complex, {.target_edge_mm = 6, .min_sector_deg = min_sector_deg});
         EXPECT_TRUE(surface::check_complex(complex).ok());
         return surface::detail::smallest_sector_deg(complex);
@@ -74,7 +76,8 @@ TEST(Remesh, RejectsMissingTarget)
 {
     InterfaceComplex complex;
     EXPECT_THROW(surface::remesh(complex, {}), InputError);
-    EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 2, .slabs = surface::RemeshOptions::max_slabs + 1}), InputError);
+    EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 2, .slabs = surface::RemeshOptions::max_slabs + 1}),
+                 InputError);
 }
 
 /// The whole surface chain on spheres4 (issue 4's figures): extract -> smooth -> decimate -> remesh.
@@ -92,8 +95,8 @@ TEST(SurfaceChain, LongSpheres4At2mm)
     const testing::DistanceFigures figures = testing::phantom_distances(phantom, complex);
     const surface::CheckReport after = surface::check_complex(complex);
     std::cout << "[ figures  ] spheres4 2 mm chain: " << extracted << " -> " << complex.triangle_count()
-              << " triangles; vertex distance to the exact spheres max/mean " << raw.max_voxels << "/" << raw.mean_voxels
-              << " -> " << figures.max_voxels << "/" << figures.mean_voxels << " voxel\n";
+              << " triangles; vertex distance to the exact spheres max/mean " << raw.max_voxels << "/"
+              << raw.mean_voxels << " -> " << figures.max_voxels << "/" << figures.mean_voxels << " voxel\n";
     for (const auto& [tissue, facts] : after.tissues) {
         if (tissue == 0) continue;
         const double exact = phantom.geometry.volume_mm3(tissue);
@@ -128,8 +131,8 @@ void check_chain(const std::string& what, const LabelImage& image, std::size_t s
     const surface::RemeshReport remeshed = surface::remesh(complex, {.target_edge_mm = edge_mm});
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     expect_same_tissues(before, surface::check_complex(complex));
-    std::cout << "[ figures  ] " << what << ": " << extracted << " -> " << complex.triangle_count()
-              << " triangles in " << seconds << " s (smooth " << smooth_iterations << " iterations), smallest angle "
+    std::cout << "[ figures  ] " << what << ": " << extracted << " -> " << complex.triangle_count() << " triangles in "
+              << seconds << " s (smooth " << smooth_iterations << " iterations), smallest angle "
               << remeshed.min_angle_after_deg << " deg\n";
 }
 

@@ -33,7 +33,8 @@ struct Shape {
 };
 
 /// Volume (tissue 3 inside positive) and area of tissue 3's triangles, with vertex v at p.
-Shape pocket_shape(const LocalEditor& editor, const std::vector<std::uint32_t>& triangles, std::uint32_t v, const Vec3& p)
+Shape pocket_shape(const LocalEditor& editor, const std::vector<std::uint32_t>& triangles, std::uint32_t v,
+                   const Vec3& p)
 {
     Shape shape;
     for (const std::uint32_t t : triangles) {
@@ -74,7 +75,8 @@ TEST(SmallPieces, APocketBetweenTwoTissuesIsNotFlattened)
                 const bool thin = after.fatness() < 0.02 && after.fatness() < before;
                 if (editor.try_move(v, to)) {
                     ++accepted;
-                    EXPECT_FALSE(thin) << "vertex " << v << " step " << step << ": fatness " << before << " -> " << after.fatness();
+                    EXPECT_FALSE(thin) << "vertex " << v << " step " << step << ": fatness " << before << " -> "
+                                       << after.fatness();
                 } else {
                     refused_thin += thin;
                 }

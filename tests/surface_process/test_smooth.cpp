@@ -23,9 +23,9 @@ void check_smoothing(const std::string& phantom_name, double voxel_mm, double ma
     const surface::SmoothReport report = surface::smooth(complex, phantom.image);
     const testing::DistanceFigures smoothed = testing::phantom_distances(phantom, complex);
     std::cout << "[ figures  ] " << phantom_name << " at " << voxel_mm << " mm: vertex distance max/mean "
-              << raw.max_voxels << "/" << raw.mean_voxels << " -> " << smoothed.max_voxels << "/" << smoothed.mean_voxels
-              << " voxel; " << report.moves << " moves, refused " << report.refused_by_image << " by the image, "
-              << report.refused_by_checks << " by the checks\n";
+              << raw.max_voxels << "/" << raw.mean_voxels << " -> " << smoothed.max_voxels << "/"
+              << smoothed.mean_voxels << " voxel; " << report.moves << " moves, refused " << report.refused_by_image
+              << " by the image, " << report.refused_by_checks << " by the checks\n";
     const surface::CheckReport after = surface::check_complex(complex);
     EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
     for (const auto& [tissue, facts] : before.tissues) {
@@ -70,8 +70,8 @@ TEST(Smooth, CheckingOnceFollowsPairByPair)
         const double d = distance(once.vertices[v], each.vertices[v]) / 2.0;
         largest = std::max(largest, d), sum += d, moved += distance(raw.vertices[v], each.vertices[v]) / 2.0;
     }
-    std::cout << "[ figures  ] junction 2 mm, checked once against pair by pair: mean " << sum / count
-              << " voxel, max " << largest << " voxel (mean displacement " << moved / count << " voxel)\n";
+    std::cout << "[ figures  ] junction 2 mm, checked once against pair by pair: mean " << sum / count << " voxel, max "
+              << largest << " voxel (mean displacement " << moved / count << " voxel)\n";
     EXPECT_LT(sum / count, 0.005);
     EXPECT_LT(largest, 0.25);
     EXPECT_GT(moved, 0);

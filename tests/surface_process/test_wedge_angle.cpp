@@ -37,8 +37,9 @@ TEST(WedgeAngle, OppositeTrianglesOfAFlatFanAreWide)
     // 90 degrees apart along it. Regression: the crossing test took the zero vector (the planes' normals are
     // equal, so their cross product vanishes) for a common point and answered 0.
     EXPECT_NEAR(detail::wedge_angle_deg(origin, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}), 90, 1e-9);
-    EXPECT_NEAR(detail::wedge_angle_deg(origin, {0.3, -0.4, 0.1}, {0.2, 0.5, -0.3}, {-0.3, 0.4, -0.1}, {-0.2, -0.5, 0.3}),
-                180 - std::acos((0.3 * 0.2 - 0.4 * 0.5 - 0.1 * 0.3) / std::sqrt(0.26 * 0.38)) * 180 / pi, 1e-9);
+    EXPECT_NEAR(
+        detail::wedge_angle_deg(origin, {0.3, -0.4, 0.1}, {0.2, 0.5, -0.3}, {-0.3, 0.4, -0.1}, {-0.2, -0.5, 0.3}),
+        180 - std::acos((0.3 * 0.2 - 0.4 * 0.5 - 0.1 * 0.3) / std::sqrt(0.26 * 0.38)) * 180 / pi, 1e-9);
 }
 
 TEST(WedgeAngle, CertainlyOpenOnlyWhenTheAngleSaysSo)
@@ -55,7 +56,8 @@ TEST(WedgeAngle, CertainlyOpenOnlyWhenTheAngleSaysSo)
         const detail::TriangleCorners ca{origin, Vec3{next(), next(), next()}, Vec3{next(), next(), next()}};
         // Half the trials: the second triangle near the first one's plane, where wedges are thin.
         const double lift = trial % 2 ? 0.02 : 1.0;
-        const detail::TriangleCorners cb{origin, Vec3{next(), next(), lift * next()}, Vec3{next(), next(), lift * next()}};
+        const detail::TriangleCorners cb{origin, Vec3{next(), next(), lift * next()},
+                                         Vec3{next(), next(), lift * next()}};
         for (const double limit : {1.0, 10.0}) {
             if (!detail::wedge_certainly_open(a, ca, b, cb, limit)) continue;
             ++open;
@@ -89,8 +91,8 @@ TEST(WedgeAngle, OnlyTrianglesSharingExactlyOneVertexHaveAWedge)
     const detail::TriangleCorners a{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0, 1, 0}};
     const detail::TriangleCorners b{Vec3{0, 0, 0}, Vec3{1, 1, 0.01}, Vec3{0.5, 0.5, 0.01}};
     EXPECT_TRUE(detail::wedge_between({0, 1, 2}, a, {0, 3, 4}, b).has_value());
-    EXPECT_FALSE(detail::wedge_between({0, 1, 2}, a, {0, 1, 4}, b).has_value());  // an edge
-    EXPECT_FALSE(detail::wedge_between({0, 1, 2}, a, {5, 3, 4}, b).has_value());  // nothing
+    EXPECT_FALSE(detail::wedge_between({0, 1, 2}, a, {0, 1, 4}, b).has_value()); // an edge
+    EXPECT_FALSE(detail::wedge_between({0, 1, 2}, a, {5, 3, 4}, b).has_value()); // nothing
     EXPECT_NEAR(*detail::wedge_between({0, 1, 2}, a, {0, 3, 4}, b), std::atan(0.01 / std::sqrt(2.0)) * 180 / pi, 1e-9);
 }
 

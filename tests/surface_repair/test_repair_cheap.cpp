@@ -69,9 +69,9 @@ TEST(RepairCheap, RepeatsAndRepeatedVertexTrianglesAreDropped)
     InterfaceComplex complex = icosphere(1, 10.0, {0, 0, 0});
     const std::size_t triangles = complex.triangle_count();
     const Triangle t = complex.triangles[3];
-    complex.add_triangle(t, complex.sides[3]);                                   // the same triangle again
-    complex.add_triangle({t[0], t[2], t[1]}, {complex.sides[3].to, complex.sides[3].from});  // the same, other way round
-    complex.add_triangle({t[0], t[0], t[1]}, {1, 0});                           // a repeated vertex
+    complex.add_triangle(t, complex.sides[3]);                                              // the same triangle again
+    complex.add_triangle({t[0], t[2], t[1]}, {complex.sides[3].to, complex.sides[3].from}); // the same, other way round
+    complex.add_triangle({t[0], t[0], t[1]}, {1, 0});                                       // a repeated vertex
     const surface::RepairReport report = surface::repair(complex);
     EXPECT_EQ(report.removed_duplicates, 2u);
     EXPECT_EQ(report.removed_degenerate, 1u);

@@ -31,14 +31,16 @@ double layer_thickness(const InterfaceComplex& complex)
 {
     double thinnest = 1e300;
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
-        if (complex.sides[t].from != 1) continue;  // the outer surface, 1|0
+        if (complex.sides[t].from != 1) continue; // the outer surface, 1|0
         const Triangle& tri = complex.triangles[t];
-        const surface::detail::TriangleCorners c{complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]};
+        const surface::detail::TriangleCorners c{complex.vertices[tri[0]], complex.vertices[tri[1]],
+                                                 complex.vertices[tri[2]]};
         for (std::size_t s = 0; s < complex.triangles.size(); ++s)
             if (complex.sides[s].from == 2)
                 for (const std::uint32_t v : complex.triangles[s])
-                    thinnest = std::min(thinnest, distance(complex.vertices[v],
-                                                           surface::detail::closest_point_on_triangle(complex.vertices[v], c)));
+                    thinnest = std::min(thinnest,
+                                        distance(complex.vertices[v],
+                                                 surface::detail::closest_point_on_triangle(complex.vertices[v], c)));
     }
     return thinnest;
 }
@@ -64,12 +66,12 @@ void expect_fit(const InterfaceComplex& complex)
 TEST(RepairContacts, CrossingLayerSurfacesAreMovedApart)
 {
     InterfaceComplex complex = layered_ball(3, 20.0, 19.0);
-    bulge_inner(complex, {0, 0, 19}, 4.0, 20.6);  // the ball pokes through its 1 mm layer
+    bulge_inner(complex, {0, 0, 19}, 4.0, 20.6); // the ball pokes through its 1 mm layer
     const surface::CheckReport broken = surface::check_complex(complex);
     ASSERT_GT(broken.count(surface::DefectKind::patch_intersection), 0u);
     const surface::RepairReport report = surface::repair(complex, {.gap_mm = 0.1});
-    std::cout << "[ figures  ] bulge through a 1 mm layer: " << report.patch_intersections_before
-              << " crossing pairs, " << report.near_contacts_before << " near-contacts; " << report.moved_vertices
+    std::cout << "[ figures  ] bulge through a 1 mm layer: " << report.patch_intersections_before << " crossing pairs, "
+              << report.near_contacts_before << " near-contacts; " << report.moved_vertices
               << " vertices moved (at most " << report.max_move_mm << " mm) in " << report.rounds
               << " rounds; layer thickness now " << layer_thickness(complex) << " mm\n";
     expect_fit(complex);
@@ -93,7 +95,7 @@ TEST(RepairContacts, CrossingLayerSurfacesAreMovedApart)
 TEST(RepairContacts, NearContactsArePushedToTheGap)
 {
     InterfaceComplex complex = layered_ball(3, 20.0, 19.0);
-    bulge_inner(complex, {19, 0, 0}, 3.0, 19.95);  // 0.05 mm from the outer surface, no crossing
+    bulge_inner(complex, {19, 0, 0}, 3.0, 19.95); // 0.05 mm from the outer surface, no crossing
     ASSERT_TRUE(surface::check_complex(complex).ok());
     ASSERT_LT(layer_thickness(complex), 0.1);
     const surface::RepairReport report = surface::repair(complex, {.gap_mm = 0.2});
@@ -136,7 +138,7 @@ TEST(RepairContacts, ImageKeepsMovedVerticesNearTheirVoxels)
     centre = (1.0 / static_cast<double>(complex.vertices.size())) * centre;
     std::vector<char> ball(complex.vertices.size(), 0);
     for (std::size_t t = 0; t < complex.triangles.size(); ++t)
-        if (complex.sides[t].from + complex.sides[t].to == 3)  // the 1|2 patch
+        if (complex.sides[t].from + complex.sides[t].to == 3) // the 1|2 patch
             for (const std::uint32_t v : complex.triangles[t]) ball[v] = 1;
     const auto seed = static_cast<std::size_t>(std::find(ball.begin(), ball.end(), 1) - ball.begin());
     const Vec3 around = complex.vertices[seed];

@@ -58,7 +58,7 @@ TEST(HugePages, BigBlocksAreAdvised)
     const auto big = std::make_unique<char[]>(64 * mib);
     // The middle of the block lies on a whole 2 MiB page of it, which must carry the advice.
     EXPECT_TRUE(advised_huge(big.get() + 32 * mib)) << mapping_flags(big.get() + 32 * mib);
-    big[64 * mib - 1] = 1;  // the block is usable to its end
+    big[64 * mib - 1] = 1; // the block is usable to its end
 }
 
 // Sizes the compiler cannot see, so that it neither warns about them nor drops the calls.

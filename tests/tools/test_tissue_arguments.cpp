@@ -12,7 +12,12 @@ namespace {
 /// The names of the usc19-5 head's label file ("CSF" in capitals), tissues 0..6 in the input.
 TissueTable head_table()
 {
-    return {{{0, "ambient air"}, {1, "scalp"}, {2, "skull"}, {3, "CSF"}, {4, "grey matter"}, {5, "white matter"},
+    return {{{0, "ambient air"},
+             {1, "scalp"},
+             {2, "skull"},
+             {3, "CSF"},
+             {4, "grey matter"},
+             {5, "white matter"},
              {6, "air cavities"}},
             {0, 1, 2, 3, 4, 5, 6},
             "head.nii.gz"};
@@ -58,7 +63,7 @@ TEST(TissueArguments, CsfMatchesALabelFileSayingCsfInCapitalsAndAnUnknownNameLis
 // Issue 32: tm-tetra --max-volume 65537=2 exited 0 and bounded tissue 1 (65537 wrapped to a 16-bit label).
 TEST(TissueArguments, Label65537IsOutOfRangeNotTissue1)
 {
-    const TissueTable anything;  // no names, labels present unknown: any label number is taken
+    const TissueTable anything; // no names, labels present unknown: any label number is taken
     EXPECT_EQ(parse_tissue("65535", anything, "--max-volume"), 65535);
     for (const char* text : {"65537", "99999999999999999999999", "-1"}) {
         const std::string message = error_of([&] { parse_tissue(text, anything, "--max-volume 65537=2"); });
@@ -71,7 +76,8 @@ TEST(TissueArguments, ALabelTheInputLacksIsAnErrorListingTheLabelsItHas)
 {
     const std::string message = error_of([&] { parse_tissue("9", head_table(), "--tissues"); });
     EXPECT_NE(message.find("--tissues: head.nii.gz has no tissue 9; its tissues are 0 ambient air, 1 scalp"),
-              std::string::npos) << message;
+              std::string::npos)
+        << message;
 }
 
 TEST(TissueArguments, ANameInTwoCasesForTwoLabelsAsksForTheNumber)

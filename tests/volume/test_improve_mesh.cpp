@@ -28,7 +28,8 @@ std::map<Label, double> volumes(const TetMesh& mesh)
 void expect_valid(const TetMesh& mesh)
 {
     for (const Tet& t : mesh.tets)
-        ASSERT_GT(detail::exact_side(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]), 0);
+        ASSERT_GT(
+            detail::exact_side(mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]), 0);
     const MeshCheckReport check = check_mesh(mesh);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
 }
@@ -64,7 +65,8 @@ TEST(ImproveMesh, FlatInterfacesKeepVolumesTissuesAndPlaces)
     // The bar (10 deg); the default target (18 deg) bounds what the improver works on.
     EXPECT_GE(report.after.min_dihedral_deg, std::max(10.0, report.before.min_dihedral_deg));
     const auto after_volumes = volumes(mesh);
-    for (const auto& [label, v] : before_volumes) EXPECT_NEAR(after_volumes.at(label), v, 1e-9 * v) << "tissue " << label;
+    for (const auto& [label, v] : before_volumes)
+        EXPECT_NEAR(after_volumes.at(label), v, 1e-9 * v) << "tissue " << label;
     const InterfaceDistance distance = interface_distance(mesh, complex);
     EXPECT_LT(distance.max_node_mm, 1e-9);
     EXPECT_LT(distance.max_face_mm, 1e-9);
@@ -81,7 +83,7 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
     InterfaceComplex complex = testing::voxel_faces(block);
     for (Vec3& v : complex.vertices) {
         v[0] *= 3, v[1] *= 3;
-        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3;  // the layer: z in [3, 3.3]
+        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3; // the layer: z in [3, 3.3]
     }
     TetMesh mesh = tetrahedralize(complex, {.improve = false});
     const std::size_t slivers = interface_slivers(mesh, 10);
@@ -89,13 +91,16 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
     const auto before_volumes = volumes(mesh);
     const ImproveReport report = improve_mesh(mesh, complex, {.max_face_deviation = 0});
     expect_valid(mesh);
-    std::printf("[ figures  ] thin layer: %zu slivers under 10 deg with four interface nodes; smallest dihedral %.2f -> %.2f "
-                "deg, %zu + %zu new nodes\n", slivers, report.before.min_dihedral_deg, report.after.min_dihedral_deg,
-                report.nodes_inserted, report.nodes_inserted_on_interfaces);
+    std::printf(
+        "[ figures  ] thin layer: %zu slivers under 10 deg with four interface nodes; smallest dihedral %.2f -> %.2f "
+        "deg, %zu + %zu new nodes\n",
+        slivers, report.before.min_dihedral_deg, report.after.min_dihedral_deg, report.nodes_inserted,
+        report.nodes_inserted_on_interfaces);
     EXPECT_EQ(interface_slivers(mesh, 10), 0u);
     EXPECT_GE(report.after.min_dihedral_deg, 10.0);
     const auto after_volumes = volumes(mesh);
-    for (const auto& [label, v] : before_volumes) EXPECT_NEAR(after_volumes.at(label), v, 1e-9 * v) << "tissue " << label;
+    for (const auto& [label, v] : before_volumes)
+        EXPECT_NEAR(after_volumes.at(label), v, 1e-9 * v) << "tissue " << label;
     EXPECT_LT(interface_distance(mesh, complex).max_face_mm, 1e-9);
 }
 
@@ -122,7 +127,8 @@ TEST(ImproveMesh, CurvedInterfacesStayOnTheComplexAndTheRunIsDeterministic)
     // Chords of the 1.7 mm triangles on a 6 mm sphere: within a few hundredths of a mm.
     EXPECT_LT(distance.max_face_mm, 0.1);
     const auto after_volumes = volumes(mesh);
-    for (const auto& [label, v] : before_volumes) EXPECT_NEAR(after_volumes.at(label), v, 1e-3 * v) << "tissue " << label;
+    for (const auto& [label, v] : before_volumes)
+        EXPECT_NEAR(after_volumes.at(label), v, 1e-3 * v) << "tissue " << label;
     improve_mesh(again, complex);
     EXPECT_EQ(again.vertices, mesh.vertices);
     EXPECT_EQ(again.tets, mesh.tets);

@@ -33,7 +33,7 @@ TEST(ImproveQuality, GradientsMatchFiniteDifferences)
     // A few irregular tets, slivers among them; central differences with a step far below their edges.
     const std::vector<TetCorners> tets{
         {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{0.2, 1, 0}, Vec3{0.3, 0.3, 0.8}},
-        {Vec3{0, 0, 0}, Vec3{2, 0, 0.1}, Vec3{2, 2, 0}, Vec3{0, 2, 0.1}},  // a sliver: four nearly coplanar corners
+        {Vec3{0, 0, 0}, Vec3{2, 0, 0.1}, Vec3{2, 2, 0}, Vec3{0, 2, 0.1}}, // a sliver: four nearly coplanar corners
         {Vec3{1, 2, 3}, Vec3{4, 2, 3.5}, Vec3{2, 5, 3}, Vec3{2.5, 3, 0.2}},
     };
     const double h = 1e-6;
@@ -45,7 +45,8 @@ TEST(ImproveQuality, GradientsMatchFiniteDifferences)
                 TetCorners plus = tet, minus = tet;
                 plus[k][axis] += h, minus[k][axis] -= h;
                 const std::array<double, 6> up = dihedral_sines(plus), down = dihedral_sines(minus);
-                for (int e = 0; e < 6; ++e) EXPECT_NEAR(g[e][axis], (up[e] - down[e]) / (2 * h), 1e-6) << "corner " << k << " edge " << e;
+                for (int e = 0; e < 6; ++e)
+                    EXPECT_NEAR(g[e][axis], (up[e] - down[e]) / (2 * h), 1e-6) << "corner " << k << " edge " << e;
             }
         }
     }
@@ -141,7 +142,8 @@ TetMesh bipyramid(double r, double h, bool two)
     TetMesh mesh;
     mesh.vertices = {{0, 0, -h}, {0, 0, h}};
     for (int k = 0; k < 3; ++k) mesh.vertices.push_back({r * std::cos(2.0944 * k), r * std::sin(2.0944 * k), 0});
-    mesh.tets = two ? std::vector<Tet>{{0, 2, 3, 4}, {1, 2, 4, 3}} : std::vector<Tet>{{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}};
+    mesh.tets =
+        two ? std::vector<Tet>{{0, 2, 3, 4}, {1, 2, 4, 3}} : std::vector<Tet>{{0, 1, 2, 3}, {0, 1, 3, 4}, {0, 1, 4, 2}};
     mesh.tet_labels.assign(mesh.tets.size(), 1);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         if (signed_volume(mesh, t) < 0) std::swap(mesh.tets[t][2], mesh.tets[t][3]);
@@ -151,7 +153,8 @@ TetMesh bipyramid(double r, double h, bool two)
 double worst(const TetMesh& mesh)
 {
     double q = 1;
-    for (const Tet& t : mesh.tets) q = std::min(q, min_sine({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]}));
+    for (const Tet& t : mesh.tets)
+        q = std::min(q, min_sine({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]}));
     return q;
 }
 

@@ -26,7 +26,7 @@ namespace {
 struct Case {
     std::string phantom;
     double voxel_mm;
-    std::map<Label, int> priority;  ///< thin tissues that must stay whole (see tm-extract --priority)
+    std::map<Label, int> priority; ///< thin tissues that must stay whole (see tm-extract --priority)
 };
 
 std::string case_name(const ::testing::TestParamInfo<Case>& info)
@@ -64,7 +64,8 @@ std::map<Label, std::size_t> outer_shells(const InterfaceComplex& complex)
             const std::uint32_t t = triangles[i];
             const Triangle& tri = complex.triangles[t];
             const double sign = complex.sides[t].from == label ? 1.0 : -1.0;
-            volume[root(i)] += sign * dot(complex.vertices[tri[0]], cross(complex.vertices[tri[1]], complex.vertices[tri[2]])) / 6;
+            volume[root(i)] +=
+                sign * dot(complex.vertices[tri[0]], cross(complex.vertices[tri[1]], complex.vertices[tri[2]])) / 6;
         }
         double total = 0;
         for (const auto& [piece, v] : volume) {
@@ -77,7 +78,8 @@ std::map<Label, std::size_t> outer_shells(const InterfaceComplex& complex)
 }
 
 /// Area of the faces per tissue pair.
-std::map<std::pair<Label, Label>, double> area_by_pair(const std::vector<Vec3>& vertices, const std::vector<Triangle>& faces,
+std::map<std::pair<Label, Label>, double> area_by_pair(const std::vector<Vec3>& vertices,
+                                                       const std::vector<Triangle>& faces,
                                                        const std::vector<LabelPair>& sides)
 {
     std::map<std::pair<Label, Label>, double> area;
@@ -104,8 +106,8 @@ struct Leeway {
 /// per outer shell of its surface in the complex, and as many as its 26-connected voxel pieces (a one-voxel
 /// layer kept whole by the priority rule is one piece under 26-connectivity), and Dice >= `min_dice` per
 /// tissue. Returns the check.
-volume::MeshCheckReport expect_faithful_mesh(const LabelImage& image, const InterfaceComplex& complex, const TetMesh& mesh,
-                          double min_dice, const Leeway& leeway = {})
+volume::MeshCheckReport expect_faithful_mesh(const LabelImage& image, const InterfaceComplex& complex,
+                                             const TetMesh& mesh, double min_dice, const Leeway& leeway = {})
 {
     const volume::MeshCheckReport check = volume::check_mesh(mesh, &image);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
@@ -163,12 +165,13 @@ void check_phantom(const Case& c)
     EXPECT_GT(check.quality.min_dihedral_deg, std::max(5.0, tetgen.quality.min_dihedral_deg));
     for (const auto& [label, stats] : tetgen.tissues) {
         EXPECT_EQ(check.tissues.at(label).components, stats.components) << "tissue " << label;
-        EXPECT_NEAR(check.tissues.at(label).volume_mm3, stats.volume_mm3, 1e-3 * stats.volume_mm3) << "tissue " << label;
+        EXPECT_NEAR(check.tissues.at(label).volume_mm3, stats.volume_mm3, 1e-3 * stats.volume_mm3)
+            << "tissue " << label;
         EXPECT_GE(check.tissues.at(label).dice, stats.dice - 1e-3) << "tissue " << label;
     }
     const volume::InterfaceDistance distance = volume::interface_distance(improved, complex);
     EXPECT_LT(distance.max_node_mm, 1e-9);
-    EXPECT_LT(distance.max_face_mm, 0.02 * c.voxel_mm);  // 1% of the mean input edge (about a voxel), with room
+    EXPECT_LT(distance.max_face_mm, 0.02 * c.voxel_mm); // 1% of the mean input edge (about a voxel), with room
 }
 
 TEST_P(TetraPhantom, ConformingFaithfulAndWhole) { check_phantom(GetParam()); }
@@ -207,7 +210,8 @@ TEST(TetraQuality, BoundsHoldForTetsOffTheInterfaces)
     }
     const double share = static_cast<double>(over_ratio) / static_cast<double>(off);
     std::printf("[ figures  ] junction 2 mm: %zu of %zu tets off the interfaces, smallest dihedral %.2f deg, %zu over "
-                "radius-edge 2 (%.3f%%)\n", off, mesh.tets.size(), smallest_dihedral, over_ratio, 100 * share);
+                "radius-edge 2 (%.3f%%)\n",
+                off, mesh.tets.size(), smallest_dihedral, over_ratio, 100 * share);
     ASSERT_GT(off, mesh.tets.size() / 10);
     EXPECT_GE(smallest_dihedral, 5.0);
     EXPECT_LT(share, 0.002);

@@ -21,9 +21,10 @@ public:
     {
         auto v = [&](int i, int j, int k) { return vertex({i ? hi[0] : lo[0], j ? hi[1] : lo[1], k ? hi[2] : lo[2]}); };
         // Corners of each face counter-clockwise seen from outside (normal outward).
-        const int faces[6][4][3] = {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
-                                    {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-                                    {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
+        const int faces[6][4][3] = {
+            {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+            {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+            {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}};
         for (int f = 0; f < 6; ++f) {
             if (outside[f] == skip) continue;
             std::array<std::uint32_t, 4> q;
@@ -110,7 +111,8 @@ TEST(Tetrahedralize, PreservedInterfacesAreTetFacesWithTheirTissues)
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
         const Triangle& tri = mesh.faces[f];
         const std::set<std::uint32_t> corners(tri.begin(), tri.end());
-        const Vec3 normal = cross(mesh.vertices[tri[1]] - mesh.vertices[tri[0]], mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
+        const Vec3 normal =
+            cross(mesh.vertices[tri[1]] - mesh.vertices[tri[0]], mesh.vertices[tri[2]] - mesh.vertices[tri[0]]);
         int behind = 0, in_front = 0;
         for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
             int shared = 0, apex = -1;
@@ -196,11 +198,12 @@ TEST(Tetrahedralize, TissueInTwoPiecesHasItsVolumeBoundInBothPieces)
     boxes.add_box({13, 3, 3}, {17, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
     TetrahedralizeOptions options;
     options.preserve_interfaces = false;
-    options.improve = false;  // TetGen's tets as bounded: the improver's moves may enlarge tets past the bound
+    options.improve = false; // TetGen's tets as bounded: the improver's moves may enlarge tets past the bound
     options.max_volume_per_tissue_mm3 = {{2, 0.5}};
     TetrahedralizeReport report;
     const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
-    const double left = largest_tet_in(mesh, 2, {3, 3, 3}, {7, 7, 7}), right = largest_tet_in(mesh, 2, {13, 3, 3}, {17, 7, 7});
+    const double left = largest_tet_in(mesh, 2, {3, 3, 3}, {7, 7, 7}),
+                 right = largest_tet_in(mesh, 2, {13, 3, 3}, {17, 7, 7});
     EXPECT_GT(left, 0.0);
     EXPECT_GT(right, 0.0);
     EXPECT_LE(left, 0.5 * (1 + 1e-9));
@@ -219,11 +222,12 @@ TEST(Tetrahedralize, TissueInAHollowPieceAndAnIslandInItsCavityHasItsBoundInBoth
     boxes.add_box({5, 5, 5}, {7, 7, 7}, 1, {2, 2, 2, 2, 2, 2});
     TetrahedralizeOptions options;
     options.preserve_interfaces = false;
-    options.improve = false;  // as above (with it, 7 tets here grew to 0.58 mm^3)
+    options.improve = false; // as above (with it, 7 tets here grew to 0.58 mm^3)
     options.max_volume_per_tissue_mm3 = {{1, 0.5}};
     TetrahedralizeReport report;
     const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
-    const double island = largest_tet_in(mesh, 1, {5, 5, 5}, {7, 7, 7}), hollow = largest_tet_in(mesh, 1, {-1, -1, -1}, {13, 13, 13});
+    const double island = largest_tet_in(mesh, 1, {5, 5, 5}, {7, 7, 7}),
+                 hollow = largest_tet_in(mesh, 1, {-1, -1, -1}, {13, 13, 13});
     EXPECT_GT(island, 0.0);
     EXPECT_LE(island, 0.5 * (1 + 1e-9)) << "the island in the cavity lacks the bound";
     EXPECT_LE(hollow, 0.5 * (1 + 1e-9));
@@ -281,7 +285,8 @@ TEST(Tetrahedralize, OptimisationLevelOutsideZeroToTenIsRefusedNotClamped)
             tetrahedralize(nested_boxes(), {.optimisation_level = level});
             FAIL() << "level " << level << " was accepted";
         } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find(concat("level ", level, " is outside 0..10")), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(concat("level ", level, " is outside 0..10")), std::string::npos)
+                << e.what();
         }
     }
 }

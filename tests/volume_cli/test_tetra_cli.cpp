@@ -24,7 +24,8 @@ void make_surface(const TempDir& dir, const std::string& phantom, const std::str
     const auto image = (dir / (phantom + ".nii.gz")).string();
     ASSERT_EQ(run_cli("tm-phantom", {phantom, "--voxel-mm", voxel_mm, "-o", image, "-q"}).exit_code, 0);
     const auto names = (dir / (phantom + ".labels.json")).string();
-    const auto extracted = run_cli("tm-extract", {"-i", image, "--labels", names, "-o", (dir / "surface.ply").string(), "-q"});
+    const auto extracted =
+        run_cli("tm-extract", {"-i", image, "--labels", names, "-o", (dir / "surface.ply").string(), "-q"});
     ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
 }
 
@@ -35,8 +36,9 @@ TEST(TetraCli, JunctionPhantomBecomesAConformingMeshMatchingTheVoxels)
     const auto tetra = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "mesh.msh").string(),
                                             "--json", (dir / "tetra.json").string(), "-q"});
     ASSERT_EQ(tetra.exit_code, 0) << tetra.err;
-    const auto check = run_cli("tm-check-mesh", {(dir / "mesh.msh").string(), "--image", (dir / "junction.nii.gz").string(),
-                                                 "--json", (dir / "check.json").string(), "-q"});
+    const auto check =
+        run_cli("tm-check-mesh", {(dir / "mesh.msh").string(), "--image", (dir / "junction.nii.gz").string(), "--json",
+                                  (dir / "check.json").string(), "-q"});
     EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
     const nlohmann::json summary = read_json(dir / "check.json");
     EXPECT_TRUE(summary["ok"].get<bool>());
@@ -57,7 +59,9 @@ TEST(TetraCli, EveryOutputFormatReadsBackWithItsTissues)
     TempDir dir;
     make_surface(dir, "thin", "4");
     for (const char* name : {"mesh.msh", "mesh.mesh", "mesh.vtu"})
-        ASSERT_EQ(run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / name).string(), "-q"}).exit_code, 0) << name;
+        ASSERT_EQ(
+            run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / name).string(), "-q"}).exit_code, 0)
+            << name;
     const TetMesh msh = io::read_tet_mesh(dir / "mesh.msh");
     const TetMesh medit = io::read_tet_mesh(dir / "mesh.mesh");
     EXPECT_EQ(msh.tets.size(), medit.tets.size());
@@ -92,7 +96,8 @@ TEST(TetraCli, BadOptionsAndFilesExitTwoWithOneLine)
     TempDir dir;
     make_surface(dir, "thin", "4");
     const auto surface = (dir / "surface.ply").string();
-    const auto unknown = run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.msh").string(), "--max-volume", "liver=3"});
+    const auto unknown =
+        run_cli("tm-tetra", {"-i", surface, "-o", (dir / "m.msh").string(), "--max-volume", "liver=3"});
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.err.find("unknown tissue \"liver\""), std::string::npos) << unknown.err;
     EXPECT_NE(unknown.err.find("1 shell"), std::string::npos) << "the known tissues are listed: " << unknown.err;
@@ -111,15 +116,16 @@ TEST(TetraCli, MaxVolumeFor65537IsAnErrorNamingTheRangeNotABoundOnTissue1)
     TempDir dir;
     make_surface(dir, "thin", "4");
     for (const char* option : {"--max-volume", "--max-edge-mm"}) {
-        const auto result = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
-                                                 option, "65537=2"});
+        const auto result = run_cli(
+            "tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(), option, "65537=2"});
         EXPECT_EQ(result.exit_code, 2) << option;
         EXPECT_NE(result.err.find(concat(option, " 65537=2: tissue 65537 is not a label number; labels are 0..65535")),
-                  std::string::npos) << result.err;
+                  std::string::npos)
+            << result.err;
         EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "one line: " << result.err;
     }
-    const auto absent = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
-                                             "--max-volume", "7=2"});
+    const auto absent = run_cli(
+        "tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(), "--max-volume", "7=2"});
     EXPECT_EQ(absent.exit_code, 2);
     EXPECT_NE(absent.err.find("surface.ply has no tissue 7"), std::string::npos) << absent.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "m.msh")) << "no mesh may be left behind";
@@ -133,8 +139,8 @@ TEST(TetraCli, OptimiseAndInsertBelowOutOfRangeAreErrorsNotClamped)
 {
     TempDir dir;
     make_surface(dir, "thin", "4");
-    const auto optimise = run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(),
-                                               "--optimise", "11"});
+    const auto optimise =
+        run_cli("tm-tetra", {"-i", (dir / "surface.ply").string(), "-o", (dir / "m.msh").string(), "--optimise", "11"});
     EXPECT_EQ(optimise.exit_code, 2);
     EXPECT_NE(optimise.err.find("--optimise"), std::string::npos) << optimise.err;
     EXPECT_NE(optimise.err.find("11"), std::string::npos) << optimise.err;

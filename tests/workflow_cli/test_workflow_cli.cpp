@@ -32,7 +32,8 @@ std::map<std::string, fs::file_time_type> summary_times(const fs::path& out)
 }
 
 /// The steps whose summary changed between two snapshots.
-std::vector<std::string> changed(const std::map<std::string, fs::file_time_type>& before, const std::map<std::string, fs::file_time_type>& after)
+std::vector<std::string> changed(const std::map<std::string, fs::file_time_type>& before,
+                                 const std::map<std::string, fs::file_time_type>& after)
 {
     std::vector<std::string> names;
     for (const auto& [name, time] : after)
@@ -44,15 +45,21 @@ class WorkflowCli : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        const auto result = run_cli("tm-phantom", {"boxes", "--voxel-mm", "4", "-o", (dir / "boxes.nii.gz").string(), "-q"});
+        const auto result =
+            run_cli("tm-phantom", {"boxes", "--voxel-mm", "4", "-o", (dir / "boxes.nii.gz").string(), "-q"});
         ASSERT_EQ(result.exit_code, 0) << result.err;
     }
     /// make -C data/workflows with the small-phantom parameters and `extra` variables.
     testing::CliResult make(const std::vector<std::string>& extra, const std::string& out = "out")
     {
-        std::vector<std::string> args{"-C", testing::data_path("workflows").string(), "IMAGE=" + (dir / "boxes.nii.gz").string(),
-                                      "LABELS=" + (dir / "boxes.labels.json").string(), "OUT=" + (dir / out).string(),
-                                      "BIN=" TM_TOOLS_DIR, "REMESH_EDGE_MM=6", "REFINE_ARGS=--iterations 2"};
+        std::vector<std::string> args{"-C",
+                                      testing::data_path("workflows").string(),
+                                      "IMAGE=" + (dir / "boxes.nii.gz").string(),
+                                      "LABELS=" + (dir / "boxes.labels.json").string(),
+                                      "OUT=" + (dir / out).string(),
+                                      "BIN=" TM_TOOLS_DIR,
+                                      "REMESH_EDGE_MM=6",
+                                      "REFINE_ARGS=--iterations 2"};
         args.insert(args.end(), extra.begin(), extra.end());
         return run_program("make", args);
     }
@@ -76,9 +83,10 @@ TEST_F(WorkflowCli, ChainsEveryStepAndRerunsOnlyWhatAParameterChanges)
     EXPECT_FALSE(first.count("smooth"));
     EXPECT_NEAR(testing::read_json(out / "decimate.json")["max_edge_mm"].get<double>(), 8.0, 1e-9);
     EXPECT_EQ(testing::read_json(out / "refine.json")["mode"], "constrained");
-    EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 3u);  // round 0 and 2 rounds
+    EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 3u); // round 0 and 2 rounds
     const std::string html = read_text(out / "report.html");
-    for (const char* tissue : {"cube", "box_a", "box_b"}) EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos) << tissue;
+    for (const char* tissue : {"cube", "box_a", "box_b"})
+        EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos) << tissue;
     for (const char* picture : {"surface", "section", "quality", "convergence"})
         EXPECT_NE(html.find(std::string("<figcaption>") + picture + "</figcaption>"), std::string::npos) << picture;
 
@@ -99,7 +107,8 @@ TEST_F(WorkflowCli, ChainsEveryStepAndRerunsOnlyWhatAParameterChanges)
     result = make({"RENDER_SECTION_ARGS=--axis x", "REFINE_ARGS=--iterations 1"});
     ASSERT_EQ(result.exit_code, 0) << result.err;
     EXPECT_EQ(changed(second, summary_times(out)),
-              (std::vector<std::string>{"check-mesh", "refine", "render-convergence", "render-quality", "render-section", "report"}));
+              (std::vector<std::string>{"check-mesh", "refine", "render-convergence", "render-quality",
+                                        "render-section", "report"}));
     EXPECT_EQ(testing::read_json(out / "refine.json")["iterations"].size(), 2u);
 
     // The earlier chain on request: marching cubes, then tm-smooth; everything from extraction on is redone.
@@ -116,9 +125,10 @@ TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
     fs::create_directory(subjects);
     fs::copy_file(dir / "boxes.nii.gz", subjects / "s01.nii.gz");
     fs::copy_file(dir / "boxes.nii.gz", subjects / "s02.nii.gz");
-    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "cohort", "-j2", "COHORT=" + subjects.string(),
-                                             "COHORT_OUT=" + (dir / "cohort").string(), "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6",
-                                             "REFINE_ARGS=--iterations 1"});
+    const auto result =
+        run_program("make", {"-C", testing::data_path("workflows").string(), "cohort", "-j2",
+                             "COHORT=" + subjects.string(), "COHORT_OUT=" + (dir / "cohort").string(),
+                             "BIN=" TM_TOOLS_DIR, "REMESH_ARGS=--edge-mm 6", "REFINE_ARGS=--iterations 1"});
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
     EXPECT_NE(result.out.find("cohort: 2 subjects"), std::string::npos) << result.out;
     for (const char* subject : {"s01", "s02"}) {
@@ -126,7 +136,8 @@ TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
         EXPECT_EQ(testing::read_json(dir / "cohort" / subject / "check-mesh.json")["status"], "ok") << subject;
     }
 
-    const auto missing = run_program("make", {"-C", testing::data_path("workflows").string(), "OUT=" + (dir / "x").string()});
+    const auto missing =
+        run_program("make", {"-C", testing::data_path("workflows").string(), "OUT=" + (dir / "x").string()});
     EXPECT_EQ(missing.exit_code, 2);
     EXPECT_NE(missing.err.find("IMAGE is not set"), std::string::npos) << missing.err;
 }
@@ -135,15 +146,17 @@ TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
 {
     // scripts/demo's target: about 7 min on 2 shared cores (smoothing 800 k triangles dominates).
     TempDir dir;
-    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "sphere-head", "OUT=" + (dir / "head").string(),
-                                             "BIN=" TM_TOOLS_DIR});
+    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "sphere-head",
+                                             "OUT=" + (dir / "head").string(), "BIN=" TM_TOOLS_DIR});
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
     const fs::path out = dir / "head";
     EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
     EXPECT_EQ(testing::read_json(out / "solve.json")["status"], "ok");
-    for (const char* tissue : {"1", "2", "3", "4"}) EXPECT_GT(testing::read_json(out / "check-mesh.json")["tissues"][tissue]["dice"].get<double>(), 0.9);
+    for (const char* tissue : {"1", "2", "3", "4"})
+        EXPECT_GT(testing::read_json(out / "check-mesh.json")["tissues"][tissue]["dice"].get<double>(), 0.9);
     const std::string html = read_text(out / "report.html");
-    for (const char* tissue : {"scalp", "skull", "csf", "brain"}) EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos);
+    for (const char* tissue : {"scalp", "skull", "csf", "brain"})
+        EXPECT_NE(html.find(std::string("<td>") + tissue + "</td>"), std::string::npos);
     for (const char* picture : {"surface", "section", "quality", "convergence"})
         EXPECT_NE(html.find(std::string("<figcaption>") + picture + "</figcaption>"), std::string::npos) << picture;
     EXPECT_NE(html.find("<td>tm-solve</td>"), std::string::npos);
@@ -162,8 +175,10 @@ TEST(WorkflowCliLong, Usc19HeadEndsWithAFemFitMeshAndASolvedModel)
     const auto check = testing::read_json(out / "check-mesh.json");
     EXPECT_EQ(check["ok"], true);
     EXPECT_EQ(check["unmarked_interfaces"], 0);
-    EXPECT_EQ(testing::read_json(out / "tetra.json")["interface_faces"], testing::read_json(out / "tetra.json")["input_triangles"]);
-    for (const char* tissue : {"1", "2", "3", "4", "5", "6"}) EXPECT_GT(check["tissues"][tissue]["dice"].get<double>(), 0.9) << tissue;
+    EXPECT_EQ(testing::read_json(out / "tetra.json")["interface_faces"],
+              testing::read_json(out / "tetra.json")["input_triangles"]);
+    for (const char* tissue : {"1", "2", "3", "4", "5", "6"})
+        EXPECT_GT(check["tissues"][tissue]["dice"].get<double>(), 0.9) << tissue;
     const auto solve = testing::read_json(out / "solve.json");
     EXPECT_EQ(solve["status"], "ok");
     EXPECT_LT(solve["relative_residual"].get<double>(), 1e-6);

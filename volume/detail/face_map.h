@@ -11,7 +11,7 @@
 namespace tissuemesh::volume::detail {
 
 struct FaceKey {
-    std::array<std::uint32_t, 3> v;  ///< ascending vertex indices
+    std::array<std::uint32_t, 3> v; ///< ascending vertex indices
     bool operator==(const FaceKey&) const = default;
 };
 

@@ -56,7 +56,7 @@ bool remove_faces(WorkMesh& mesh, std::uint32_t t, int i, std::size_t max_ring)
     const std::uint32_t a = first[static_cast<std::size_t>(i)];
     // (a, x, y, z) positive: the ring x, y, z turns counter-clockwise seen from b, beyond the face.
     std::uint32_t x = first[(i + 1) % 4], y = first[(i + 2) % 4], z = first[(i + 3) % 4];
-    if (i % 2 == 1) std::swap(y, z);  // an odd cyclic shift: restore the even order
+    if (i % 2 == 1) std::swap(y, z); // an odd cyclic shift: restore the even order
     if (mesh.face_with(x, y, z)) return false;
     const std::optional<std::uint32_t> across = mesh.tet_across(t, i);
     if (!across || mesh.label(*across) != mesh.label(t)) return false;
@@ -105,7 +105,8 @@ bool remove_faces(WorkMesh& mesh, std::uint32_t t, int i, std::size_t max_ring)
     }
     if (best_ring.empty()) return false;
     std::vector<Tet> new_tets;
-    for (std::size_t k = 0; k < best_ring.size(); ++k) new_tets.push_back({a, b, best_ring[k], best_ring[(k + 1) % best_ring.size()]});
+    for (std::size_t k = 0; k < best_ring.size(); ++k)
+        new_tets.push_back({a, b, best_ring[k], best_ring[(k + 1) % best_ring.size()]});
     replace(mesh, best_removed, new_tets, label);
     return true;
 }

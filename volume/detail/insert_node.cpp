@@ -12,8 +12,8 @@
 namespace tissuemesh::volume::detail {
 namespace {
 
-constexpr std::size_t max_cavity = 48;   ///< tets in a Delaunay cavity at most
-constexpr int max_walk = 64;             ///< steps of the walk to the tet holding the point
+constexpr std::size_t max_cavity = 48; ///< tets in a Delaunay cavity at most
+constexpr int max_walk = 64;           ///< steps of the walk to the tet holding the point
 /// A new node keeps at least this fraction of the local size (WorkMesh::scale(): the shortest edge of the mesh
 /// on entry at the bad tet's nodes, inherited by the new node) from every node it is joined to. Without it,
 /// insertions repeated at one place left clusters of nodes microns apart (torso at 3 mm: edges of 6 um,
@@ -23,7 +23,8 @@ constexpr double min_edge_fraction = 0.3;
 
 bool holds_all(const Tet& tet, const std::vector<std::uint32_t>& nodes)
 {
-    return std::all_of(nodes.begin(), nodes.end(), [&](std::uint32_t v) { return std::find(tet.begin(), tet.end(), v) != tet.end(); });
+    return std::all_of(nodes.begin(), nodes.end(),
+                       [&](std::uint32_t v) { return std::find(tet.begin(), tet.end(), v) != tet.end(); });
 }
 
 Tet replaced(Tet tet, std::uint32_t old_node, std::uint32_t new_node)
@@ -75,7 +76,8 @@ std::optional<std::uint32_t> locate(const WorkMesh& mesh, std::uint32_t t, const
 }
 
 /// The cavity's boundary: (cavity tet, corner) pairs whose opposite face the cavity does not share.
-std::vector<std::pair<std::uint32_t, int>> cavity_boundary(const WorkMesh& mesh, const std::vector<std::uint32_t>& cavity)
+std::vector<std::pair<std::uint32_t, int>> cavity_boundary(const WorkMesh& mesh,
+                                                           const std::vector<std::uint32_t>& cavity)
 {
     std::vector<std::pair<std::uint32_t, int>> boundary;
     for (const std::uint32_t u : cavity)
@@ -88,7 +90,8 @@ std::vector<std::pair<std::uint32_t, int>> cavity_boundary(const WorkMesh& mesh,
 
 /// Whether the boundary faces make one closed surface of a sphere's Euler characteristic holding every node of
 /// the cavity (no node swallowed, no pinched edge).
-bool sphere_boundary(const WorkMesh& mesh, const std::vector<std::uint32_t>& cavity, const std::vector<std::pair<std::uint32_t, int>>& boundary)
+bool sphere_boundary(const WorkMesh& mesh, const std::vector<std::uint32_t>& cavity,
+                     const std::vector<std::pair<std::uint32_t, int>>& boundary)
 {
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
     std::vector<std::uint32_t> nodes;
@@ -107,7 +110,8 @@ bool sphere_boundary(const WorkMesh& mesh, const std::vector<std::uint32_t>& cav
     for (const std::uint32_t u : cavity)
         for (const std::uint32_t v : mesh.tet(u))
             if (!std::binary_search(nodes.begin(), nodes.end(), v)) return false;
-    const auto euler = static_cast<std::int64_t>(nodes.size()) - static_cast<std::int64_t>(edges.size()) + static_cast<std::int64_t>(boundary.size());
+    const auto euler = static_cast<std::int64_t>(nodes.size()) - static_cast<std::int64_t>(edges.size()) +
+                       static_cast<std::int64_t>(boundary.size());
     return euler == 2;
 }
 
@@ -177,7 +181,8 @@ std::optional<std::uint32_t> insert_in_cavity(WorkMesh& mesh, std::uint32_t t, c
     if (!sphere_boundary(mesh, cavity, boundary)) return std::nullopt;
     const std::uint32_t m = mesh.add_node(p);
     std::vector<Tet> made;
-    for (const auto& [u, i] : boundary) made.push_back(replaced(mesh.tet(u), mesh.tet(u)[static_cast<std::size_t>(i)], m));
+    for (const auto& [u, i] : boundary)
+        made.push_back(replaced(mesh.tet(u), mesh.tet(u)[static_cast<std::size_t>(i)], m));
     for (const std::uint32_t u : cavity) mesh.remove_tet(u);
     for (const Tet& tet : made) mesh.add_tet(tet, label);
     return m;
@@ -211,7 +216,8 @@ std::optional<Vec3> on_reference(const WorkMesh& mesh, const std::vector<std::ui
     return reference.onto_patch(p, tissues[0], tissues[1], reach);
 }
 
-std::vector<Candidate> candidates(const WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces)
+std::vector<Candidate> candidates(const WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference,
+                                  bool on_interfaces)
 {
     const Tet tet = mesh.tet(t);
     const TetCorners c = mesh.corners(t);
@@ -221,14 +227,16 @@ std::vector<Candidate> candidates(const WorkMesh& mesh, std::uint32_t t, const S
         const Vec3 middle = 0.5 * (c[e[0]] + c[e[1]]);
         if (!mesh.constrained_edge(edge[0], edge[1])) found.push_back({edge, middle});
         else if (on_interfaces)
-            if (const auto p = on_reference(mesh, edge, middle, reference, distance(c[e[0]], c[e[1]]))) found.push_back({edge, *p});
+            if (const auto p = on_reference(mesh, edge, middle, reference, distance(c[e[0]], c[e[1]])))
+                found.push_back({edge, *p});
     }
     for (int i = 0; i < 4; ++i) {
         const std::vector<std::uint32_t> face{tet[(i + 1) % 4], tet[(i + 2) % 4], tet[(i + 3) % 4]};
         const Vec3 centre = (1.0 / 3) * (c[(i + 1) % 4] + c[(i + 2) % 4] + c[(i + 3) % 4]);
         if (!mesh.face_with(face[0], face[1], face[2])) found.push_back({face, centre});
         else if (on_interfaces)
-            if (const auto p = on_reference(mesh, face, centre, reference, distance(centre, c[i]))) found.push_back({face, *p});
+            if (const auto p = on_reference(mesh, face, centre, reference, distance(centre, c[i])))
+                found.push_back({face, *p});
     }
     // A cap on an interface (two of its faces constraint faces meeting at an edge, bent little): a cavity at a
     // point inside the tissue above that edge, so that each of the two faces gets a tet of its own.
@@ -265,21 +273,23 @@ bool has_edge_shorter_than(const WorkMesh& mesh, std::uint32_t v, double length)
 }
 
 /// Applies a candidate, then mends the new node's star: its node smoothed, and the tets around it still no
-/// better than `bar` flipped where that helps (twice). Whether t is gone, a node was made and none of its edges is shorter
-/// than min_edge_fraction of the local size.
+/// better than `bar` flipped where that helps (twice). Whether t is gone, a node was made and none of its edges is
+/// shorter than min_edge_fraction of the local size.
 bool apply(WorkMesh& mesh, std::uint32_t t, const Candidate& candidate, const SurfaceReference& reference, double bar,
            double face_tolerance_mm)
 {
     double scale = std::numeric_limits<double>::infinity();
     for (const std::uint32_t v : mesh.tet(t)) scale = std::min(scale, mesh.scale(v));
-    const std::optional<std::uint32_t> node =
-        candidate.simplex.empty() ? insert_in_cavity(mesh, t, candidate.p) : split_simplex(mesh, candidate.simplex, candidate.p);
+    const std::optional<std::uint32_t> node = candidate.simplex.empty()
+                                                  ? insert_in_cavity(mesh, t, candidate.p)
+                                                  : split_simplex(mesh, candidate.simplex, candidate.p);
     if (!node || mesh.alive(t)) return false;
     mesh.set_scale(*node, scale);
     for (const std::uint32_t f : mesh.faces_of(*node)) {
         const ConstraintFace& face = mesh.face(f);
         const Triangle& c = face.corners;
-        if (!reference.holds_triangle(mesh.point(c[0]), mesh.point(c[1]), mesh.point(c[2]), face.sides.from, face.sides.to, face_tolerance_mm))
+        if (!reference.holds_triangle(mesh.point(c[0]), mesh.point(c[1]), mesh.point(c[2]), face.sides.from,
+                                      face.sides.to, face_tolerance_mm))
             return false;
     }
     smooth_node(mesh, *node, reference, face_tolerance_mm);
@@ -304,10 +314,11 @@ bool apply(WorkMesh& mesh, std::uint32_t t, const Candidate& candidate, const Su
 
 } // namespace
 
-bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces, double face_tolerance_mm)
+bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces,
+                    double face_tolerance_mm)
 {
     const std::vector<Candidate> tries = candidates(mesh, t, reference, on_interfaces);
-    const double bar = mesh.quality(t) + 0.05;  // tets around the new node this bad are worth a flip
+    const double bar = mesh.quality(t) + 0.05; // tets around the new node this bad are worth a flip
     std::size_t best = tries.size();
     double best_gain = 0;
     for (std::size_t k = 0; k < tries.size(); ++k) {

@@ -29,6 +29,7 @@ std::optional<std::uint32_t> insert_in_cavity(WorkMesh& mesh, std::uint32_t t, c
 /// Delaunay cavity. `on_interfaces` false leaves interface splits out; the faces an interface split makes
 /// must hold to the reference (SurfaceReference::holds_triangle with `face_tolerance_mm`).
 /// @returns whether a node was inserted (edits of `mesh`, journaled)
-bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces, double face_tolerance_mm);
+bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces,
+                    double face_tolerance_mm);
 
 } // namespace tissuemesh::volume::detail

@@ -73,7 +73,9 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     std::vector<std::uint32_t> ring, tets;
     bool open = false;
     if (!mesh.edge_ring(a, b, ring, tets, &open) || ring.size() > max_ring) return false;
-    const auto at = [&](std::uint32_t v) { return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin()); };
+    const auto at = [&](std::uint32_t v) {
+        return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
+    };
     const std::size_t ic = at(c), id = at(d), n = ring.size();
     if (ic == n || id == n) return false;
 
@@ -107,15 +109,18 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
         const std::size_t last = side.polygon.size() - 1;
         for (const auto& [i, k, j] : triangles) {
             for (const auto& [u, w] : {std::pair{i, k}, std::pair{k, j}, std::pair{i, j}})
-                if (w - u >= 2 && !(u == 0 && w == last) && mesh.has_edge(side.polygon[u], side.polygon[w])) return false;
+                if (w - u >= 2 && !(u == 0 && w == last) && mesh.has_edge(side.polygon[u], side.polygon[w]))
+                    return false;
             side.made.push_back({a, side.polygon[i], side.polygon[k], side.polygon[j]});
             side.made.push_back({b, side.polygon[i], side.polygon[j], side.polygon[k]});
         }
     }
-    const Triangle new_a = oriented(mesh, {a, c, d}, first.sides, parts), new_b = oriented(mesh, {b, d, c}, first.sides, parts);
+    const Triangle new_a = oriented(mesh, {a, c, d}, first.sides, parts),
+                   new_b = oriented(mesh, {b, d, c}, first.sides, parts);
     // The new faces stay on the patch and turn the way the old ones did (on the outer boundary no tet beyond
     // them would tell a fold); normals all taken from first.sides.from to first.sides.to.
-    const Vec3 old_normal = normal(mesh, first.corners) + (second.sides.from == first.sides.from ? 1.0 : -1.0) * normal(mesh, second.corners);
+    const Vec3 old_normal = normal(mesh, first.corners) +
+                            (second.sides.from == first.sides.from ? 1.0 : -1.0) * normal(mesh, second.corners);
     for (const Triangle& face : {new_a, new_b}) {
         if (dot(normal(mesh, face), old_normal) <= 0) return false;
         if (!reference.holds_triangle(mesh.point(face[0]), mesh.point(face[1]), mesh.point(face[2]), first.sides.from,

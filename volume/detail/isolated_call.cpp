@@ -23,7 +23,8 @@ public:
     TempFile() : file_(std::tmpfile())
     {
         if (file_ == nullptr)
-            throw IoError(concat("cannot create a temporary file (", std::strerror(errno), "); check that TMPDIR or /tmp is writable"));
+            throw IoError(concat("cannot create a temporary file (", std::strerror(errno),
+                                 "); check that TMPDIR or /tmp is writable"));
     }
     ~TempFile() { std::fclose(file_); }
     TempFile(const TempFile&) = delete;
@@ -37,7 +38,8 @@ public:
         std::string text;
         char buffer[1 << 16];
         off_t offset = 0;
-        for (ssize_t n; (n = ::pread(fd(), buffer, sizeof buffer, offset)) > 0; offset += n) text.append(buffer, static_cast<std::size_t>(n));
+        for (ssize_t n; (n = ::pread(fd(), buffer, sizeof buffer, offset)) > 0; offset += n)
+            text.append(buffer, static_cast<std::size_t>(n));
         return text;
     }
 
@@ -94,9 +96,11 @@ std::string last_lines(const std::string& text, int count)
     std::vector<std::string> lines;
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);)
-        if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line.substr(line.find_first_not_of(" \t\r")));
+        if (line.find_first_not_of(" \t\r") != std::string::npos)
+            lines.push_back(line.substr(line.find_first_not_of(" \t\r")));
     std::string joined;
-    const std::size_t first = lines.size() > static_cast<std::size_t>(count) ? lines.size() - static_cast<std::size_t>(count) : 0;
+    const std::size_t first =
+        lines.size() > static_cast<std::size_t>(count) ? lines.size() - static_cast<std::size_t>(count) : 0;
     for (std::size_t i = first; i < lines.size(); ++i) joined += (joined.empty() ? "" : " / ") + lines[i];
     return joined;
 }
@@ -107,10 +111,11 @@ IsolatedResult run_isolated(const std::string& what, const std::function<std::st
 {
     TempFile result;
     TempFile printed;
-    std::fflush(nullptr);  // nothing buffered in the parent may be written twice
+    std::fflush(nullptr); // nothing buffered in the parent may be written twice
     const pid_t child = ::fork();
     if (child < 0)
-        throw IoError(concat("cannot start a process for ", what, " (", std::strerror(errno), "); the machine may be out of memory or processes"));
+        throw IoError(concat("cannot start a process for ", what, " (", std::strerror(errno),
+                             "); the machine may be out of memory or processes"));
     if (child == 0) run_child(work, result.fd(), printed.fd());
 
     const int status = wait_for(child);
@@ -118,15 +123,19 @@ IsolatedResult run_isolated(const std::string& what, const std::function<std::st
     if (WIFSIGNALED(status)) {
         const int signal = WTERMSIG(status);
         const char* name = ::sigabbrev_np(signal);
-        throw AlgorithmError(concat(what, " crashed (SIG", name != nullptr ? name : "?", ", ", ::strsignal(signal), ")",
-                                    out.printed.empty() ? std::string() : concat("; it said: ", last_lines(out.printed, 2))));
+        throw AlgorithmError(
+            concat(what, " crashed (SIG", name != nullptr ? name : "?", ", ", ::strsignal(signal), ")",
+                   out.printed.empty() ? std::string() : concat("; it said: ", last_lines(out.printed, 2))));
     }
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     if (code == kChildThrew)
-        throw AlgorithmError(out.printed.empty() ? out.bytes : concat(out.bytes, " (", what, " said: ", last_lines(out.printed, 3), ")"));
+        throw AlgorithmError(out.printed.empty()
+                                 ? out.bytes
+                                 : concat(out.bytes, " (", what, " said: ", last_lines(out.printed, 3), ")"));
     if (code != kChildDone)
-        throw AlgorithmError(concat(what, " ended with exit code ", code, " before it returned its result",
-                                    out.printed.empty() ? std::string() : concat("; it said: ", last_lines(out.printed, 2))));
+        throw AlgorithmError(
+            concat(what, " ended with exit code ", code, " before it returned its result",
+                   out.printed.empty() ? std::string() : concat("; it said: ", last_lines(out.printed, 2))));
     return out;
 }
 

@@ -10,8 +10,8 @@ namespace tissuemesh::volume::detail {
 
 /// What the child printed and returned.
 struct IsolatedResult {
-    std::string bytes;    ///< what `work` returned
-    std::string printed;  ///< everything the child wrote to stdout and stderr
+    std::string bytes;   ///< what `work` returned
+    std::string printed; ///< everything the child wrote to stdout and stderr
 };
 
 /// Forks; the child runs `work` with its stdout and stderr captured and hands the bytes `work` returns

@@ -9,7 +9,7 @@
 namespace tissuemesh::volume::detail {
 namespace {
 
-constexpr double cone_tolerance = -1e-9;  // a direction on a corner's boundary still counts as inside
+constexpr double cone_tolerance = -1e-9; // a direction on a corner's boundary still counts as inside
 
 std::vector<double> flatten(const std::vector<Vec3>& points)
 {
@@ -19,7 +19,10 @@ std::vector<double> flatten(const std::vector<Vec3>& points)
     return flat;
 }
 
-Vec3 point_at(const std::vector<double>& flat, int index) { return {flat[3 * index], flat[3 * index + 1], flat[3 * index + 2]}; }
+Vec3 point_at(const std::vector<double>& flat, int index)
+{
+    return {flat[3 * index], flat[3 * index + 1], flat[3 * index + 2]};
+}
 
 /// TetGen's tets as positively oriented Tets over `vertices`.
 std::vector<Tet> oriented(const TetgenOutput& out, const std::vector<Vec3>& vertices)
@@ -92,7 +95,8 @@ std::vector<Tet> delaunay_tets(const std::vector<Vec3>& points)
     return oriented(out, points);
 }
 
-TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points, const std::vector<std::uint32_t>& source_tets)
+TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
+                           const std::vector<std::uint32_t>& source_tets)
 {
     TetgenInput input;
     input.points = flatten(mesh.vertices);
@@ -106,7 +110,8 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
 
     TetMesh result;
     result.names = mesh.names, result.faces = mesh.faces, result.face_sides = mesh.face_sides;
-    for (int v = 0; v < static_cast<int>(out.points.size() / 3); ++v) result.vertices.push_back(point_at(out.points, v));
+    for (int v = 0; v < static_cast<int>(out.points.size() / 3); ++v)
+        result.vertices.push_back(point_at(out.points, v));
     const std::size_t old_nodes = mesh.vertices.size(), placed = old_nodes + points.size();
     const NodeTets around = node_tets(mesh);
     for (const Tet& tet : oriented(out, result.vertices)) {
@@ -117,13 +122,15 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
             if (source >= 0) break;
             if (v >= old_nodes) continue;
             any_known = true;
-            const Vec3 centroid = 0.25 * (result.vertices[tet[0]] + result.vertices[tet[1]] + result.vertices[tet[2]] + result.vertices[tet[3]]);
+            const Vec3 centroid = 0.25 * (result.vertices[tet[0]] + result.vertices[tet[1]] + result.vertices[tet[2]] +
+                                          result.vertices[tet[3]]);
             source = old_tet_towards(mesh, around, v, centroid);
         }
         if (!any_known)
-            throw AlgorithmError("TetGen made a tetrahedron of Steiner points only while refining; its tissue is unknown. "
-                                 "Refine with a smaller --batch, or remesh with tm-tetra");
-        if (source < 0) continue;  // in a hole of the old mesh
+            throw AlgorithmError(
+                "TetGen made a tetrahedron of Steiner points only while refining; its tissue is unknown. "
+                "Refine with a smaller --batch, or remesh with tm-tetra");
+        if (source < 0) continue; // in a hole of the old mesh
         result.tets.push_back(tet);
         result.tet_labels.push_back(mesh.tet_labels[static_cast<std::size_t>(source)]);
     }

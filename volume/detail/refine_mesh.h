@@ -20,7 +20,8 @@ std::vector<Tet> delaunay_tets(const std::vector<Vec3>& points);
 /// region (holes of `mesh`) are dropped. Faces and names are copied.
 /// @pre  every points[i] lies strictly inside old tet source_tets[i]
 /// @throws AlgorithmError when TetGen fails or a tet has neither an old nor a new node (Steiner points only)
-TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points, const std::vector<std::uint32_t>& source_tets);
+TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
+                           const std::vector<std::uint32_t>& source_tets);
 
 /// `mesh` without nodes no tet uses (indices renumbered in order).
 void drop_unused_nodes(TetMesh& mesh);

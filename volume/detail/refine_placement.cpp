@@ -7,8 +7,8 @@
 namespace tissuemesh::volume::detail {
 namespace {
 
-constexpr double min_weight = 0.05;  // constrained mode: smallest barycentric weight of a new node
-constexpr int bisections = 4;        // a quarter-voxel step bisected 4 times: 1/64 voxel
+constexpr double min_weight = 0.05; // constrained mode: smallest barycentric weight of a new node
+constexpr int bisections = 4;       // a quarter-voxel step bisected 4 times: 1/64 voxel
 
 double tet_volume6(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
 {
@@ -50,7 +50,8 @@ Vec3 longest_edge_midpoint(const std::array<Vec3, 4>& v)
 }
 
 /// The first tissue change on the segment from `start` to `end` (sampled every `step_mm`, bisected), if any.
-std::optional<Vec3> first_change(const LabelImage& image, const Vec3& start, const Vec3& end, double step_mm, Label background)
+std::optional<Vec3> first_change(const LabelImage& image, const Vec3& start, const Vec3& end, double step_mm,
+                                 Label background)
 {
     const Label first = voxel_label_at(image, start, background);
     const double length = distance(start, end);
@@ -68,7 +69,8 @@ std::optional<Vec3> first_change(const LabelImage& image, const Vec3& start, con
 }
 
 /// Of the changes found along the strategy's rays, the one farthest from the tet's corners.
-std::optional<Vec3> material_change(const LabelImage& image, const std::array<Vec3, 4>& v, Placement placement, Label background)
+std::optional<Vec3> material_change(const LabelImage& image, const std::array<Vec3, 4>& v, Placement placement,
+                                    Label background)
 {
     const Vec3& spacing = image.spacing_mm();
     const double step_mm = 0.25 * std::min({spacing[0], spacing[1], spacing[2]});
@@ -100,10 +102,12 @@ std::optional<Vec3> material_change(const LabelImage& image, const std::array<Ve
 Label voxel_label_at(const LabelImage& image, const Vec3& world_mm, Label background)
 {
     const Vec3 index = image.world_to_index(world_mm);
-    const Index3 nearest{static_cast<std::int64_t>(std::floor(index[0] + 0.5)), static_cast<std::int64_t>(std::floor(index[1] + 0.5)),
+    const Index3 nearest{static_cast<std::int64_t>(std::floor(index[0] + 0.5)),
+                         static_cast<std::int64_t>(std::floor(index[1] + 0.5)),
                          static_cast<std::int64_t>(std::floor(index[2] + 0.5))};
     if (!image.contains(nearest)) return background;
-    return image.at(static_cast<std::size_t>(nearest[0]), static_cast<std::size_t>(nearest[1]), static_cast<std::size_t>(nearest[2]));
+    return image.at(static_cast<std::size_t>(nearest[0]), static_cast<std::size_t>(nearest[1]),
+                    static_cast<std::size_t>(nearest[2]));
 }
 
 Vec3 place_node(const LabelImage& image, const std::array<Vec3, 4>& corners, Placement placement, Label background,

@@ -30,7 +30,8 @@ inline double new_tet_quality(const WorkMesh& mesh, const Tet& tet, double bar)
 /// out (the ring's own worst tet, so only improvements count).
 class RingTriangulation {
 public:
-    RingTriangulation(const WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& ring, double bar)
+    RingTriangulation(const WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& ring,
+                      double bar)
         : n_(ring.size()), best_(n_ * n_, invalid), split_(n_ * n_, 0)
     {
         for (std::size_t i = 0; i + 1 < n_; ++i) best_[i * n_ + i + 1] = std::numeric_limits<double>::infinity();
@@ -40,10 +41,13 @@ public:
                 for (std::size_t k = i + 1; k < j; ++k) {
                     const double sides = std::min(best_[i * n_ + k], best_[k * n_ + j]);
                     if (!(sides > best_[i * n_ + j])) continue;
-                    // The ring turns counter-clockwise seen from b: (a, r_i, r_k, r_j) and (b, r_i, r_j, r_k) are positive.
-                    const double below = new_tet_quality(mesh, {a, ring[i], ring[k], ring[j]}, std::max(bar, best_[i * n_ + j]));
+                    // The ring turns counter-clockwise seen from b: (a, r_i, r_k, r_j) and (b, r_i, r_j, r_k) are
+                    // positive.
+                    const double below =
+                        new_tet_quality(mesh, {a, ring[i], ring[k], ring[j]}, std::max(bar, best_[i * n_ + j]));
                     if (below == invalid) continue;
-                    const double above = new_tet_quality(mesh, {b, ring[i], ring[j], ring[k]}, std::max(bar, best_[i * n_ + j]));
+                    const double above =
+                        new_tet_quality(mesh, {b, ring[i], ring[j], ring[k]}, std::max(bar, best_[i * n_ + j]));
                     const double value = std::min({sides, below, above});
                     if (value > best_[i * n_ + j]) best_[i * n_ + j] = value, split_[i * n_ + j] = k;
                 }

@@ -9,12 +9,12 @@
 namespace tissuemesh::volume::detail {
 namespace {
 
-constexpr double active_band = 1e-4;  ///< sines this close to the minimum count as active
+constexpr double active_band = 1e-4; ///< sines this close to the minimum count as active
 constexpr std::size_t max_active = 6;
-constexpr double model_band = 0.25;   ///< sines this close to the minimum enter the step's linear model
+constexpr double model_band = 0.25; ///< sines this close to the minimum enter the step's linear model
 constexpr int max_halvings = 10;
-constexpr double max_step_fraction = 0.4;  ///< of the shortest edge at the node, per step
-constexpr double min_gain = 1e-2;          ///< a move is kept when it raises the smallest sine by this much
+constexpr double max_step_fraction = 0.4; ///< of the shortest edge at the node, per step
+constexpr double min_gain = 1e-2;         ///< a move is kept when it raises the smallest sine by this much
 
 /// The six sines of each of v's tets with v at some point (6 per tet, in tet order), and their minimum.
 struct Evaluation {
@@ -48,7 +48,8 @@ public:
         for (const Tet& tet : tets_)
             for (const std::uint32_t w : tet)
                 if (w != v) shortest_edge_ = std::min(shortest_edge_, distance(mesh.point(w), mesh.point(v)));
-        for (const std::uint32_t f : mesh.faces_of(v)) faces_.push_back(mesh.face(f).corners), face_sides_.push_back(mesh.face(f).sides);
+        for (const std::uint32_t f : mesh.faces_of(v))
+            faces_.push_back(mesh.face(f).corners), face_sides_.push_back(mesh.face(f).sides);
     }
 
     bool set_freedom()
@@ -60,12 +61,13 @@ public:
             for (const std::uint32_t f : mesh_.faces_of(v_)) {
                 const ConstraintFace& face = mesh_.face(f);
                 Vec3 n = face_normal(face.corners, v_, mesh_.point(v_));
-                if (face.sides.from > face.sides.to) n = -1.0 * n;  // all faces of one pair turned alike
+                if (face.sides.from > face.sides.to) n = -1.0 * n; // all faces of one pair turned alike
                 sum = sum + n;
             }
             if (norm(sum) == 0) return false;
             freedom_.axis = (1.0 / norm(sum)) * sum;
-            pair_ = {mesh_.face(mesh_.faces_of(v_).front()).sides.from, mesh_.face(mesh_.faces_of(v_).front()).sides.to};
+            pair_ = {mesh_.face(mesh_.faces_of(v_).front()).sides.from,
+                     mesh_.face(mesh_.faces_of(v_).front()).sides.to};
         } else if (freedom_.kind == NodeKind::curve) {
             const std::vector<std::uint32_t> ends = mesh_.curve_neighbours(v_);
             if (ends.size() != 2) return false;
@@ -83,7 +85,7 @@ public:
         Evaluation now = evaluate(p);
         const double start = now.minimum;
         std::vector<Vec3> gradients(now.values.size());
-        std::vector<std::size_t> modelled;  // sines in the linear model (their tets' gradients computed)
+        std::vector<std::size_t> modelled; // sines in the linear model (their tets' gradients computed)
         std::vector<Vec3> active;
         for (int step = 0; step < max_steps; ++step) {
             // Gradients only for the tets near the minimum: the others cannot become the minimum within a step
@@ -94,11 +96,14 @@ public:
                 if (*std::min_element(six, six + 6) > now.minimum + model_band) continue;
                 TetCorners c = mesh_.corners(tets_[i]);
                 c[static_cast<std::size_t>(corner_[i])] = p;
-                const std::array<Vec3, 6> g = dihedral_sine_gradients(c, corner_[i], {six[0], six[1], six[2], six[3], six[4], six[5]});
-                for (int e = 0; e < 6; ++e) gradients[6 * i + e] = freedom_.restrict(g[e]), modelled.push_back(6 * i + e);
+                const std::array<Vec3, 6> g =
+                    dihedral_sine_gradients(c, corner_[i], {six[0], six[1], six[2], six[3], six[4], six[5]});
+                for (int e = 0; e < 6; ++e)
+                    gradients[6 * i + e] = freedom_.restrict(g[e]), modelled.push_back(6 * i + e);
             }
             for (const std::size_t i : modelled)
-                if (now.values[i] <= now.minimum + active_band && active.size() < max_active) active.push_back(gradients[i]);
+                if (now.values[i] <= now.minimum + active_band && active.size() < max_active)
+                    active.push_back(gradients[i]);
             const Vec3 d = min_norm_point(active);
             const double rate = dot(d, d);
             if (!(rate * shortest_edge_ * shortest_edge_ > 1e-18)) break;
@@ -156,7 +161,8 @@ private:
             const std::uint32_t w1 = f[0] == v_ ? f[1] : f[0], w2 = f[2] == v_ ? f[1] : f[2];
             const Vec3 &p1 = mesh_.point(w1), &p2 = mesh_.point(w2);
             if (!reference_.within((1.0 / 3) * (q + p1 + p2), from, to, face_tolerance_mm_) ||
-                !reference_.within(0.5 * (q + p1), from, to, face_tolerance_mm_) || !reference_.within(0.5 * (q + p2), from, to, face_tolerance_mm_))
+                !reference_.within(0.5 * (q + p1), from, to, face_tolerance_mm_) ||
+                !reference_.within(0.5 * (q + p2), from, to, face_tolerance_mm_))
                 return false;
         }
         return true;
@@ -228,7 +234,8 @@ Vec3 min_norm_point(const std::vector<Vec3>& points)
     return best;
 }
 
-bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm, int max_steps)
+bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm,
+                 int max_steps)
 {
     if (mesh.tets_of(v).empty()) return false;
     NodeSmoother smoother(mesh, v, reference, face_tolerance_mm);

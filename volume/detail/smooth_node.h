@@ -24,6 +24,7 @@ Vec3 min_norm_point(const std::vector<Vec3>& points);
 /// oriented (exact predicate), no constraint face at v turns over, every constraint face at v stays on the
 /// reference (SurfaceReference::holds_triangle within `face_tolerance_mm`), and the minimum rises.
 /// @returns whether v moved (the moves are edits of `mesh`, journaled like any other)
-bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm, int max_steps = 8);
+bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm,
+                 int max_steps = 8);
 
 } // namespace tissuemesh::volume::detail

@@ -34,18 +34,20 @@ SurfaceReference::SurfaceReference(const InterfaceComplex& complex)
 {
 }
 
-SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Triangle> triangles, const std::vector<LabelPair>& sides)
+SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Triangle> triangles,
+                                   const std::vector<LabelPair>& sides)
     : vertices_(std::move(vertices)), triangles_(std::move(triangles))
 {
     std::vector<surface::detail::CompactBox> boxes(triangles_.size());
     std::vector<std::uint32_t> ids(triangles_.size());
     // Edges with the tissues of the triangles on them, in a sorted list (deterministic, no hashing).
-    std::vector<std::pair<std::array<std::uint32_t, 2>, std::uint32_t>> edges;  // edge, triangle
+    std::vector<std::pair<std::array<std::uint32_t, 2>, std::uint32_t>> edges; // edge, triangle
     double edge_sum = 0;
     for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
         const Triangle& tri = triangles_[t];
         pairs_.push_back(pair_key(sides[t].from, sides[t].to));
-        boxes[t] = surface::detail::compact(surface::detail::bounding_box({vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]}));
+        boxes[t] = surface::detail::compact(
+            surface::detail::bounding_box({vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]}));
         ids[t] = t;
         for (int k = 0; k < 3; ++k) {
             const auto [a, b] = std::minmax(tri[k], tri[(k + 1) % 3]);
@@ -66,7 +68,8 @@ SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Trian
         if (j - i >= 3) {
             std::sort(tissues.begin(), tissues.end());
             tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
-            const auto set = tissue_sets_.emplace(tissues, static_cast<std::uint32_t>(tissue_sets_.size())).first->second;
+            const auto set =
+                tissue_sets_.emplace(tissues, static_cast<std::uint32_t>(tissue_sets_.size())).first->second;
             segments_.push_back(edges[i].first);
             segment_tissues_.push_back(set);
         }
@@ -83,7 +86,8 @@ SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Trian
 }
 
 template <class Closest>
-std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach, Closest closest) const
+std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach,
+                                              Closest closest) const
 {
     // The search box grows from a quarter of a typical edge until it holds the nearest point found (nothing
     // outside it can be nearer) or reaches `reach`.
@@ -127,13 +131,14 @@ std::optional<Vec3> SurfaceReference::onto_curve(const Vec3& p, const std::vecto
 double SurfaceReference::distance_to(const Vec3& p, Label a, Label b, bool any_pair, double reach) const
 {
     const std::uint32_t key = pair_key(a, b);
-    const std::optional<Vec3> q = nearest(triangle_index_, p, reach, [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
-        if (!any_pair && pairs_[t] != key) return std::nullopt;
-        const Triangle& tri = triangles_[t];
-        const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};
-        if (box_distance(p, surface::detail::bounding_box(c)) > so_far) return std::nullopt;
-        return surface::detail::closest_point_on_triangle(p, c);
-    });
+    const std::optional<Vec3> q =
+        nearest(triangle_index_, p, reach, [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
+            if (!any_pair && pairs_[t] != key) return std::nullopt;
+            const Triangle& tri = triangles_[t];
+            const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};
+            if (box_distance(p, surface::detail::bounding_box(c)) > so_far) return std::nullopt;
+            return surface::detail::closest_point_on_triangle(p, c);
+        });
     return q ? distance(p, *q) : std::numeric_limits<double>::infinity();
 }
 
@@ -143,18 +148,21 @@ bool SurfaceReference::within(const Vec3& p, Label a, Label b, double tolerance)
     const double squared = tolerance * tolerance;
     bool found = false;
     // Any triangle of the pair that near will do: the visit stops at the first.
-    triangle_index_.visit(Box3{p - Vec3{tolerance, tolerance, tolerance}, p + Vec3{tolerance, tolerance, tolerance}}, [&](std::uint32_t t) {
-        if (pairs_[t] != key) return false;
-        const Triangle& tri = triangles_[t];
-        const Vec3 q = surface::detail::closest_point_on_triangle(p, {vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]});
-        const Vec3 d = p - q;
-        found = dot(d, d) <= squared;
-        return found;
-    });
+    triangle_index_.visit(Box3{p - Vec3{tolerance, tolerance, tolerance}, p + Vec3{tolerance, tolerance, tolerance}},
+                          [&](std::uint32_t t) {
+                              if (pairs_[t] != key) return false;
+                              const Triangle& tri = triangles_[t];
+                              const Vec3 q = surface::detail::closest_point_on_triangle(
+                                  p, {vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]});
+                              const Vec3 d = p - q;
+                              found = dot(d, d) <= squared;
+                              return found;
+                          });
     return found;
 }
 
-bool SurfaceReference::holds_triangle(const Vec3& a, const Vec3& b, const Vec3& c, Label from, Label to, double tolerance) const
+bool SurfaceReference::holds_triangle(const Vec3& a, const Vec3& b, const Vec3& c, Label from, Label to,
+                                      double tolerance) const
 {
     // The centroid first: it is the farthest from the corners, which lie on the patch.
     for (const Vec3& p : {(1.0 / 3) * (a + b + c), 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)})

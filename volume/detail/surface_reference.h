@@ -44,13 +44,14 @@ public:
 
 private:
     template <class Closest>
-    std::optional<Vec3> nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach, Closest closest) const;
+    std::optional<Vec3> nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach,
+                                Closest closest) const;
 
     std::vector<Vec3> vertices_;
     std::vector<Triangle> triangles_;
-    std::vector<std::uint32_t> pairs_;  ///< per triangle: smaller label << 16 | larger label
+    std::vector<std::uint32_t> pairs_; ///< per triangle: smaller label << 16 | larger label
     std::vector<std::array<std::uint32_t, 2>> segments_;
-    std::vector<std::uint32_t> segment_tissues_;  ///< per segment: index into tissue_sets_
+    std::vector<std::uint32_t> segment_tissues_; ///< per segment: index into tissue_sets_
     std::map<std::vector<Label>, std::uint32_t> tissue_sets_;
     surface::detail::BoxIndex triangle_index_, segment_index_;
     double mean_edge_mm_ = 1;

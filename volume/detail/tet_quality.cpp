@@ -25,7 +25,7 @@ double six_volume(const TetCorners& p) { return dot(p[1] - p[0], cross(p[2] - p[
 std::array<double, 6> dihedral_sines(const TetCorners& p)
 {
     const double v6 = six_volume(p);
-    std::array<double, 4> area2;  // twice the face areas
+    std::array<double, 4> area2; // twice the face areas
     for (int i = 0; i < 4; ++i) area2[i] = norm(face_vector(p, i));
     std::array<double, 6> sines;
     for (int e = 0; e < 6; ++e) {

@@ -12,7 +12,8 @@ using TetCorners = std::array<Vec3, 4>;
 
 /// Edges of a tet by local corners; edge e joins edge_corners[e][0] and [1], and its two faces are the
 /// faces opposite edge_corners[e][2] and [3] (the other two corners).
-inline constexpr int edge_corners[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
+inline constexpr int edge_corners[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2},
+                                           {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
 
 /// sin(theta_e) = 6V * l_e / (4 A_f A_g) for each edge e (faces f, g on it): the sine of the dihedral angle
 /// at e, with the sign of the volume (negative for an inverted tet). A regular tet has sqrt(8)/3 everywhere.

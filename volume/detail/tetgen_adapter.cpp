@@ -71,9 +71,11 @@ public:
         const std::uint64_t markers = out.trifacemarkerlist != nullptr ? faces : 0;
         for (const std::uint64_t count : {points, tets, attributes, faces, markers}) bytes.put(&count, 1);
         bytes.put(out.pointlist, 3 * points);
-        for (std::uint64_t t = 0; t < tets; ++t) bytes.put(out.tetrahedronlist + t * static_cast<std::uint64_t>(out.numberofcorners), 4);
+        for (std::uint64_t t = 0; t < tets; ++t)
+            bytes.put(out.tetrahedronlist + t * static_cast<std::uint64_t>(out.numberofcorners), 4);
         for (std::uint64_t t = 0; t < attributes; ++t)
-            bytes.put(out.tetrahedronattributelist + t * static_cast<std::uint64_t>(out.numberoftetrahedronattributes), 1);
+            bytes.put(out.tetrahedronattributelist + t * static_cast<std::uint64_t>(out.numberoftetrahedronattributes),
+                      1);
         bytes.put(out.trifacelist, 3 * faces);
         bytes.put(out.trifacemarkerlist, markers);
         return std::move(bytes.text_);
@@ -96,7 +98,8 @@ public:
         bytes.get(result.tet_attributes.data(), counts[2]);
         bytes.get(result.faces.data(), result.faces.size());
         bytes.get(result.face_markers.data(), counts[4]);
-        if (bytes.offset_ != bytes.text_.size()) throw AlgorithmError("TetGen's result came back incomplete from its process");
+        if (bytes.offset_ != bytes.text_.size())
+            throw AlgorithmError("TetGen's result came back incomplete from its process");
         return result;
     }
 
@@ -104,7 +107,7 @@ private:
     template <typename T>
     void put(const T* values, std::uint64_t count)
     {
-        if (count == 0) return;  // TetGen leaves the lists it did not fill null
+        if (count == 0) return; // TetGen leaves the lists it did not fill null
         text_.append(reinterpret_cast<const char*>(values), count * sizeof(T));
     }
     template <typename T>
@@ -112,7 +115,8 @@ private:
     {
         const std::uint64_t size = count * sizeof(T);
         if (size == 0) return;
-        if (size > text_.size() - offset_) throw AlgorithmError("TetGen's result came back incomplete from its process");
+        if (size > text_.size() - offset_)
+            throw AlgorithmError("TetGen's result came back incomplete from its process");
         std::memcpy(values, text_.data() + offset_, size);
         offset_ += size;
     }

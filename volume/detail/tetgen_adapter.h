@@ -9,24 +9,24 @@
 namespace tissuemesh::volume::detail {
 
 struct TetgenRegion {
-    std::array<double, 3> seed;  ///< a point strictly inside the region
-    int attribute = 0;           ///< region attribute (our tissue label)
-    double max_volume = -1;      ///< volume bound; negative: none
+    std::array<double, 3> seed; ///< a point strictly inside the region
+    int attribute = 0;          ///< region attribute (our tissue label)
+    double max_volume = -1;     ///< volume bound; negative: none
 };
 
 struct TetgenInput {
-    std::vector<double> points;                  ///< 3 per point
-    std::vector<std::array<int, 3>> triangles;   ///< one facet each; marker = index + 1
+    std::vector<double> points;                ///< 3 per point
+    std::vector<std::array<int, 3>> triangles; ///< one facet each; marker = index + 1
     std::vector<TetgenRegion> regions;
-    std::string switches;                        ///< e.g. "pYzQnnq2/5O2"
+    std::string switches; ///< e.g. "pYzQnnq2/5O2"
 };
 
 struct TetgenOutput {
-    std::vector<double> points;                  ///< 3 per point; input points come first, unchanged
+    std::vector<double> points; ///< 3 per point; input points come first, unchanged
     std::vector<std::array<int, 4>> tets;
-    std::vector<double> tet_attributes;          ///< one per tet when regions were given
-    std::vector<std::array<int, 3>> faces;       ///< subfaces (on input triangles)
-    std::vector<int> face_markers;               ///< input triangle index + 1
+    std::vector<double> tet_attributes;    ///< one per tet when regions were given
+    std::vector<std::array<int, 3>> faces; ///< subfaces (on input triangles)
+    std::vector<int> face_markers;         ///< input triangle index + 1
 };
 
 /// The exact sign of dot(d - a, cross(b - a, c - a)), by TetGen's robust orient3d: +1 when d lies on the

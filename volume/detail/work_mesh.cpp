@@ -24,7 +24,8 @@ bool even_order(const Tet& tet, std::uint32_t a, std::uint32_t b, std::uint32_t 
 {
     const std::uint32_t wanted[4] = {a, b, c, d};
     int position[4];
-    for (int i = 0; i < 4; ++i) position[i] = static_cast<int>(std::find(tet.begin(), tet.end(), wanted[i]) - tet.begin());
+    for (int i = 0; i < 4; ++i)
+        position[i] = static_cast<int>(std::find(tet.begin(), tet.end(), wanted[i]) - tet.begin());
     int inversions = 0;
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) inversions += position[i] > position[j];
@@ -36,8 +37,8 @@ bool even_order(const Tet& tet, std::uint32_t a, std::uint32_t b, std::uint32_t 
 WorkMesh::WorkMesh(const TetMesh& mesh)
     : points_(mesh.vertices), kinds_(mesh.vertices.size(), NodeKind::interior), tets_of_(mesh.vertices.size()),
       faces_of_(mesh.vertices.size()), tets_(mesh.tets), labels_(mesh.tet_labels), alive_(mesh.tets.size(), 1),
-      quality_(mesh.tets.size()), volume_(mesh.tets.size(), 0), stamps_(mesh.tets.size(), 0), births_(mesh.tets.size(), 0), alive_count_(mesh.tets.size()),
-      names_(mesh.names)
+      quality_(mesh.tets.size()), volume_(mesh.tets.size(), 0), stamps_(mesh.tets.size(), 0),
+      births_(mesh.tets.size(), 0), alive_count_(mesh.tets.size()), names_(mesh.names)
 {
     // Built directly, not through the journaled edits: nothing here is ever undone.
     std::vector<std::uint32_t> degree(points_.size(), 0);
@@ -57,7 +58,8 @@ WorkMesh::WorkMesh(const TetMesh& mesh)
     face_index_.reserve(2 * mesh.faces.size() + 64);
     faces_.reserve(mesh.faces.size() + 64);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-        if (!face_with(mesh.faces[f][0], mesh.faces[f][1], mesh.faces[f][2])) add_face(mesh.faces[f], mesh.face_sides[f], true);
+        if (!face_with(mesh.faces[f][0], mesh.faces[f][1], mesh.faces[f][2]))
+            add_face(mesh.faces[f], mesh.face_sides[f], true);
     // Faces the tissues or the outer boundary imply but the list lacks are kept all the same. The faces of all
     // tets sorted by their nodes pair up the two sides of each (a sort is faster here than hashing them).
     struct Side {
@@ -90,7 +92,8 @@ WorkMesh::WorkMesh(const TetMesh& mesh)
             // Outward from t: the face opposite its corner turned away from it.
             const auto& local = local_faces[sides[j].corner];
             const Tet& tet = tets_[t];
-            add_face({tet[local[0]], tet[local[2]], tet[local[1]]}, {labels_[t], boundary ? Label{0} : labels_[other]}, false);
+            add_face({tet[local[0]], tet[local[2]], tet[local[1]]}, {labels_[t], boundary ? Label{0} : labels_[other]},
+                     false);
         }
         k = end;
     }
@@ -113,7 +116,8 @@ TetMesh WorkMesh::result() const
 std::vector<Label> WorkMesh::tissues_at(std::uint32_t v) const
 {
     std::vector<Label> tissues;
-    for (const std::uint32_t f : faces_of_[v]) tissues.push_back(faces_[f].sides.from), tissues.push_back(faces_[f].sides.to);
+    for (const std::uint32_t f : faces_of_[v])
+        tissues.push_back(faces_[f].sides.from), tissues.push_back(faces_[f].sides.to);
     std::sort(tissues.begin(), tissues.end());
     tissues.erase(std::unique(tissues.begin(), tissues.end()), tissues.end());
     return tissues;
@@ -138,7 +142,7 @@ NodeKind WorkMesh::compute_kind(std::uint32_t v) const
 {
     const auto& star = faces_of_[v];
     if (star.empty()) return NodeKind::interior;
-    std::vector<std::pair<std::uint32_t, int>> ring;  // neighbour, faces on the edge to it
+    std::vector<std::pair<std::uint32_t, int>> ring; // neighbour, faces on the edge to it
     for (const std::uint32_t f : star)
         for (const std::uint32_t w : faces_[f].corners) {
             if (w == v) continue;
@@ -162,7 +166,10 @@ NodeKind WorkMesh::compute_kind(std::uint32_t v) const
 
 TetCorners WorkMesh::corners(std::uint32_t t) const { return corners(tets_[t]); }
 
-TetCorners WorkMesh::corners(const Tet& tet) const { return {points_[tet[0]], points_[tet[1]], points_[tet[2]], points_[tet[3]]}; }
+TetCorners WorkMesh::corners(const Tet& tet) const
+{
+    return {points_[tet[0]], points_[tet[1]], points_[tet[2]], points_[tet[3]]};
+}
 
 std::optional<std::uint32_t> WorkMesh::face_with(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
 {
@@ -173,7 +180,8 @@ std::optional<std::uint32_t> WorkMesh::face_with(std::uint32_t a, std::uint32_t 
 
 bool WorkMesh::constrained_edge(std::uint32_t a, std::uint32_t b) const
 {
-    return std::any_of(faces_of_[a].begin(), faces_of_[a].end(), [&](std::uint32_t f) { return holds(faces_[f].corners, b); });
+    return std::any_of(faces_of_[a].begin(), faces_of_[a].end(),
+                       [&](std::uint32_t f) { return holds(faces_[f].corners, b); });
 }
 
 bool WorkMesh::has_edge(std::uint32_t a, std::uint32_t b) const
@@ -190,7 +198,8 @@ void WorkMesh::tets_of_edge(std::uint32_t a, std::uint32_t b, std::vector<std::u
         if (holds(tets_[t], b)) out.push_back(t);
 }
 
-std::optional<std::uint32_t> WorkMesh::tet_with(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) const
+std::optional<std::uint32_t> WorkMesh::tet_with(std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                                std::uint32_t d) const
 {
     for (const std::uint32_t t : tets_of_[a])
         if (holds(tets_[t], b) && holds(tets_[t], c) && holds(tets_[t], d)) return t;
@@ -206,13 +215,13 @@ std::optional<std::uint32_t> WorkMesh::tet_across(std::uint32_t t, int i) const
     return std::nullopt;
 }
 
-bool WorkMesh::edge_ring(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& ring, std::vector<std::uint32_t>& tets,
-                         bool* open) const
+bool WorkMesh::edge_ring(std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& ring,
+                         std::vector<std::uint32_t>& tets, bool* open) const
 {
     std::vector<std::uint32_t> around;
     tets_of_edge(a, b, around);
     // Each tet (a, b, c, d) positively oriented joins c to d in the ring.
-    std::vector<std::array<std::uint32_t, 3>> links;  // from, to, tet
+    std::vector<std::array<std::uint32_t, 3>> links; // from, to, tet
     for (const std::uint32_t t : around) {
         std::uint32_t other[2], n = 0;
         for (const std::uint32_t v : tets_[t])
@@ -226,7 +235,8 @@ bool WorkMesh::edge_ring(std::uint32_t a, std::uint32_t b, std::vector<std::uint
     std::uint32_t start = links[0][0];
     bool chain = false;
     for (const auto& l : links)
-        if (std::none_of(links.begin(), links.end(), [&](const auto& m) { return m[1] == l[0]; })) start = l[0], chain = true;
+        if (std::none_of(links.begin(), links.end(), [&](const auto& m) { return m[1] == l[0]; }))
+            start = l[0], chain = true;
     if (chain && open == nullptr) return false;
     if (!chain && links.size() < 3) return false;
     std::uint32_t at = start;
@@ -254,7 +264,8 @@ std::uint32_t WorkMesh::add_tet(const Tet& tet, Label label)
         tets_[t] = tet, labels_[t] = label, alive_[t] = 1, ++births_[t];
     } else {
         t = static_cast<std::uint32_t>(tets_.size());
-        tets_.push_back(tet), labels_.push_back(label), alive_.push_back(1), quality_.push_back(0), volume_.push_back(0), stamps_.push_back(0), births_.push_back(0);
+        tets_.push_back(tet), labels_.push_back(label), alive_.push_back(1), quality_.push_back(0),
+            volume_.push_back(0), stamps_.push_back(0), births_.push_back(0);
     }
     link_tet(t);
     ++alive_count_;
@@ -324,8 +335,9 @@ void WorkMesh::rollback(std::size_t mark)
             free_slots_.push_back(e.index);
             break;
         case Change::tet_removed:
-            alive_[e.index] = 1, link_tet(e.index), ++alive_count_, refresh_quality(e.index), births_[e.index] = e.birth;
-            freed_now_.pop_back();  // the newest freed slot is this one: the journal unwinds in order
+            alive_[e.index] = 1, link_tet(e.index), ++alive_count_, refresh_quality(e.index),
+            births_[e.index] = e.birth;
+            freed_now_.pop_back(); // the newest freed slot is this one: the journal unwinds in order
             break;
         case Change::node_moved:
             points_[e.index] = e.point;

@@ -23,7 +23,7 @@ enum class NodeKind : std::uint8_t { interior, surface, curve, corner };
 struct ConstraintFace {
     Triangle corners{};
     LabelPair sides;
-    bool listed = true;   ///< one of the mesh's faces (false: implied by the tissues or the outer boundary only)
+    bool listed = true; ///< one of the mesh's faces (false: implied by the tissues or the outer boundary only)
     bool alive = true;
 };
 
@@ -58,11 +58,11 @@ public:
     bool alive(std::uint32_t t) const { return alive_[t] != 0; }
     const Tet& tet(std::uint32_t t) const { return tets_[t]; }
     Label label(std::uint32_t t) const { return labels_[t]; }
-    double quality(std::uint32_t t) const { return quality_[t]; }  ///< min_sine(), cached
+    double quality(std::uint32_t t) const { return quality_[t]; } ///< min_sine(), cached
     /// Volume (mm^3) of each tissue's alive tets, kept up to date by every edit and its undoing.
     const std::map<Label, double>& tissue_volumes() const { return tissue_volumes_; }
-    std::uint32_t stamp(std::uint32_t t) const { return stamps_[t]; }  ///< changes whenever the tet or its shape does
-    std::uint32_t birth(std::uint32_t t) const { return births_[t]; }  ///< changes whenever the slot gets a tet
+    std::uint32_t stamp(std::uint32_t t) const { return stamps_[t]; } ///< changes whenever the tet or its shape does
+    std::uint32_t birth(std::uint32_t t) const { return births_[t]; } ///< changes whenever the slot gets a tet
     TetCorners corners(std::uint32_t t) const;
     TetCorners corners(const Tet& tet) const;
 
@@ -113,13 +113,21 @@ public:
     Balance balance_since(std::size_t mark) const;
 
 private:
-    enum class Change : std::uint8_t { tet_added, tet_removed, node_moved, node_added, face_added, face_removed, kind_set };
+    enum class Change : std::uint8_t {
+        tet_added,
+        tet_removed,
+        node_moved,
+        node_added,
+        face_added,
+        face_removed,
+        kind_set
+    };
     struct Entry {
         Change change;
         std::uint32_t index;
         Vec3 point{};
         NodeKind kind = NodeKind::interior;
-        std::uint32_t birth = 0;  ///< a removed tet's birth, restored when it comes back
+        std::uint32_t birth = 0; ///< a removed tet's birth, restored when it comes back
     };
 
     NodeKind compute_kind(std::uint32_t v) const;
