@@ -110,9 +110,9 @@ CheckReport check_complex(const InterfaceComplex& complex, const CheckOptions& o
 /// (holes, a tissue touching itself, an inverted tissue).
 std::string repair_hint(const CheckReport& report);
 
-/// The smallest angle (degrees) a tissue other than the background fills about an edge, between neighbouring
-/// triangles: no tet mesh that keeps the complex can have a smaller largest-possible dihedral angle there (every
-/// tet of the tissue at the edge lies inside it). 360 when no edge has a tissue sector.
+/// The smallest angle (degrees) a tissue (or the background, which tm-tetra meshes where tissues enclose it)
+/// fills about an edge, between neighbouring triangles: every tet at the edge lies inside such an angle, so no
+/// tet mesh that keeps the complex has a larger smallest dihedral angle there. 360 when no edge has two triangles.
 double smallest_tissue_sector_deg(const InterfaceComplex& complex);
 
 /// For steps that need a valid complex: runs check_complex() and throws when it is not fit.

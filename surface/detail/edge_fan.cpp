@@ -54,7 +54,7 @@ FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blade
     return FanOrder::in_order;
 }
 
-double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades, Label background)
+double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades)
 {
     constexpr double pi = 3.14159265358979323846;
     const std::size_t n = blades.size();
@@ -64,17 +64,16 @@ double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlad
     const Vec3 e = (1 / length) * (b - a);
     const Vec3 across = cross(e, std::abs(e[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0});
     const Vec3 u = (1 / norm(across)) * across, v = cross(e, u);
-    std::array<std::pair<double, Label>, 16> turn{}; // (angle, tissue ahead)
+    std::array<double, 16> turn{};
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 r = blades[i].apex - a;
-        turn[i] = {std::atan2(dot(r, v), dot(r, u)), ahead(blades[i])};
+        turn[i] = std::atan2(dot(r, v), dot(r, u));
     }
     std::sort(turn.begin(), turn.begin() + static_cast<std::ptrdiff_t>(n));
     double smallest = 360;
     for (std::size_t i = 0; i < n; ++i) {
-        if (turn[i].second == background) continue;
-        const double next = i + 1 < n ? turn[i + 1].first : turn[0].first + 2 * pi;
-        smallest = std::min(smallest, (next - turn[i].first) * 180 / pi);
+        const double next = i + 1 < n ? turn[i + 1] : turn[0] + 2 * pi;
+        smallest = std::min(smallest, (next - turn[i]) * 180 / pi);
     }
     return smallest;
 }
@@ -101,8 +100,8 @@ double smallest_sector_deg(const InterfaceComplex& complex)
         for (; j < uses.size() && uses[j].a == uses[i].a && uses[j].b == uses[i].b; ++j)
             blades.push_back(blade_on(complex.triangles[uses[j].triangle], uses[i].a, uses[i].b, complex.vertices,
                                       complex.sides[uses[j].triangle]));
-        smallest = std::min(smallest, smallest_sector_deg(complex.vertices[uses[i].a], complex.vertices[uses[i].b],
-                                                          blades, complex.background));
+        smallest =
+            std::min(smallest, smallest_sector_deg(complex.vertices[uses[i].a], complex.vertices[uses[i].b], blades));
         i = j;
     }
     return smallest;

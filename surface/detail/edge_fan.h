@@ -44,13 +44,14 @@ inline FanBlade blade_on(const Triangle& tri, std::uint32_t a, std::uint32_t b, 
 /// How the triangles `blades` (at least two) lie around the edge from a to b; exact predicates.
 FanOrder fan_order(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades);
 
-/// The smallest angle (degrees) between neighbouring triangles `blades` around the edge from a to b that
-/// holds a tissue other than `background`; 360 when there is none (fewer than two blades, or only the
-/// background between them). Every tet of a tissue at the edge lies inside such an angle, so its dihedral
+/// The smallest angle (degrees) between neighbouring triangles `blades` around the edge from a to b; 360
+/// when there are fewer than two blades. Every tet at the edge lies inside such an angle, so its dihedral
 /// angle at the edge is no larger: a tissue tapering out at a junction curve, or a sharp crease of one
-/// interface, bounds the quality of any tet mesh that keeps the complex. Floating point (a measure, not a
-/// decision the topology depends on).
-double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades, Label background);
+/// interface, bounds the quality of any tet mesh that keeps the complex. The background's angles count too:
+/// tm-tetra meshes the background that tissues enclose (measured on the liver: its worst tets were in such
+/// cavities, 6 degrees, while no tissue sector was under 15). Floating point (a measure, not a decision the
+/// topology depends on).
+double smallest_sector_deg(const Vec3& a, const Vec3& b, std::span<const FanBlade> blades);
 
 /// smallest_sector_deg() over every edge of `complex`.
 double smallest_sector_deg(const InterfaceComplex& complex);

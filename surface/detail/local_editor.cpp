@@ -272,7 +272,7 @@ double LocalEditor::smallest_sector_deg(std::uint32_t a, std::uint32_t b) const
         if (count == blades.size()) return 360; // no judgement on crowded edges
         blades[count++] = blade_on(triangles_[t], a, b, positions_, sides_[t]);
     }
-    return detail::smallest_sector_deg(positions_[a], positions_[b], std::span(blades.data(), count), background_);
+    return detail::smallest_sector_deg(positions_[a], positions_[b], std::span(blades.data(), count));
 }
 
 double LocalEditor::smallest_sector_deg(const std::vector<std::uint32_t>& triangles) const

@@ -37,12 +37,12 @@ struct LocalLimits {
     double max_tilt_deg = 45; ///< a new triangle's normal against the one of the triangle it replaces
     double min_gap_mm = 0.1;  ///< triangles sharing no vertex keep this distance (unless closer before)
     double max_edge_mm = 0;   ///< collapses and flips may not make a longer edge (0: no bound)
-    /// Around every edge of a new triangle, the angle between neighbouring triangles that holds a tissue
-    /// (not the background) keeps at least this much, unless the edit makes the smallest such angle near it
-    /// no smaller (0: no rule). Why: every tet of that tissue at the edge lies inside the angle, so its
-    /// dihedral angle there is no larger; a thin tissue tapering out at a junction curve, or a sharp crease,
-    /// leaves tm-tetra only slivers (measured on the 1 mm usc19-5 head: remeshing without the rule turned
-    /// 77 such angles under 10 degrees at junction edges into 197).
+    /// Around every edge of a new triangle, the angle between neighbouring triangles (holding a tissue, or
+    /// background that tm-tetra meshes where tissues enclose it) keeps at least this much, unless the edit makes the
+    /// smallest such angle near it no smaller (0: no rule). Why: every tet of that tissue at the edge lies inside the
+    /// angle, so its dihedral angle there is no larger; a thin tissue tapering out at a junction curve, or a sharp
+    /// crease, leaves tm-tetra only slivers (measured on the 1 mm usc19-5 head: remeshing without the rule turned 77
+    /// such angles under 10 degrees at junction edges into 197).
     double min_sector_deg = 0;
 };
 
@@ -135,8 +135,8 @@ private:
     static bool overlap(const Box& a, const Box& b);
     std::uint16_t cell_at(double x, int axis) const;
     bool fans_ok(const std::vector<std::uint32_t>& changed);
-    /// The smallest angle (degrees) between neighbouring triangles around edge ab that holds a tissue other
-    /// than the background (360 when none: an edge of one triangle, or only background sectors).
+    /// The smallest angle (degrees) between neighbouring triangles around edge ab, the background's included
+    /// (360 on an edge of one triangle).
     double smallest_sector_deg(std::uint32_t a, std::uint32_t b) const;
     /// The smallest of smallest_sector_deg() over the edges of `triangles` (alive, current positions); 360
     /// when the sector rule is off.
