@@ -37,6 +37,11 @@ struct ImproveFlags {
                    "turns insertion on where the tool leaves it off)")
                 ->check(CLI::Range(0.0, 70.0))
                 ->capture_default_str();
+        app.add_option("--improve-max-face-deviation", options.max_face_deviation,
+                       "Improver: interface faces it makes stay this close to the surface, as a fraction of the "
+                       "surface's mean edge (0.04 of 2.5 mm edges is 0.1 mm)")
+            ->check(CLI::Range(0.0, 1.0))
+            ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
                      "Improver: interface nodes stay where they are and none is added on interfaces");
     }

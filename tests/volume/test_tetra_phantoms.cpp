@@ -171,7 +171,8 @@ void check_phantom(const Case& c)
     }
     const volume::InterfaceDistance distance = volume::interface_distance(improved, complex);
     EXPECT_LT(distance.max_node_mm, 1e-9);
-    EXPECT_LT(distance.max_face_mm, 0.02 * c.voxel_mm); // 1% of the mean input edge (about a voxel), with room
+    // The improver's tolerance is 4% of the mean input edge (about a voxel here); a tenth of a voxel is the bound.
+    EXPECT_LT(distance.max_face_mm, 0.1 * c.voxel_mm);
 }
 
 TEST_P(TetraPhantom, ConformingFaithfulAndWhole) { check_phantom(GetParam()); }
