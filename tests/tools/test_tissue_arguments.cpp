@@ -95,5 +95,25 @@ TEST(TissueArguments, ASettingWithoutValueShowsTheExample)
     EXPECT_NE(message.find("--priority csf=2,3=1"), std::string::npos) << message;
 }
 
+// Issue 32: tm-extract --priority and tm-assess --extract-priority are parsed by one function, "auto" included.
+TEST(TissueArguments, ExtractPriorityIsPairsOrAutoAlone)
+{
+    LabelImage image({5, 1, 1}, {1, 1, 1});
+    for (std::size_t i = 0; i < 5; ++i) image.at(i, 0, 0) = i < 4 ? 4 : 3; // 4 voxels of grey matter, 1 of CSF
+    const TissueTable table = head_table();
+    EXPECT_TRUE(parse_extract_priority({}, image, 0, table, "--priority").empty());
+    EXPECT_EQ(parse_extract_priority({"csf=2", "4=-1"}, image, 0, table, "--priority"),
+              (std::map<Label, int>{{3, 2}, {4, -1}}));
+    const std::map<Label, int> ranked = parse_extract_priority({"auto"}, image, 0, table, "--priority");
+    ASSERT_EQ(ranked.size(), 2u);
+    EXPECT_GT(ranked.at(3), ranked.at(4)) << "the thinner tissue ranks higher";
+    EXPECT_NE(error_of([&] {
+                  parse_extract_priority({"auto", "csf=1"}, image, 0, table, "--extract-priority");
+              }).find("--extract-priority auto ranks every tissue itself: give it alone"),
+              std::string::npos);
+    const std::string message = error_of([&] { parse_extract_priority({"csf=2.5"}, image, 0, table, "--priority"); });
+    EXPECT_EQ(message, "--priority csf=2.5: expected TISSUE=INTEGER (e.g. --priority csf=2,3=1)");
+}
+
 } // namespace
 } // namespace tissuemesh::tools
