@@ -15,6 +15,17 @@
 
 namespace tissuemesh::tools {
 
+/// The files of a surface step: -i/--input (the complex), -o/--output (`output_help`, e.g. "Smoothed interface complex
+/// (.ply or .vtp)") and --check-input (check even an input that carries the stamp of a passed check).
+inline void add_step_files(CLI::App& app, std::string& input, std::string& output, bool& check_input,
+                           const std::string& output_help)
+{
+    app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
+    app.add_option("-o,--output", output, output_help)->required();
+    app.add_flag("--check-input", check_input,
+                 "Check the input in full even when it carries the stamp of a passed check");
+}
+
 /// Refuses output formats without label pairs per triangle, before any work is done.
 inline void require_complex_output(const std::string& output)
 {

@@ -98,6 +98,7 @@ std::vector<io::VtuArray> assessment_arrays(const volume::Assessment& a)
 int main(int argc, char** argv)
 {
     std::string input, image_path, output, priority;
+    std::vector<std::string> extract_priority;
     bool relabel = false;
     volume::AssessOptions options;
     tools::MeshFormatFlags format_flags;
@@ -114,13 +115,20 @@ int main(int argc, char** argv)
          "volume "
          "error and error volume.",
          "Examples:\n  tm-assess -i head.msh --image head.nii.gz -o head-assessed.vtu --json assess.json\n"
-         "  tm-assess -i head.msh --image head.nii.gz -o relabelled.msh --relabel --priority skull=2,csf=1.5"},
+         "  tm-assess -i head.msh --image head.nii.gz -o relabelled.msh --relabel --priority skull=2,csf=1.5\n"
+         "  tm-assess -i head.msh --image head.nii.gz -o head-assessed.vtu --extract-priority auto\n"
+         "  tm-assess -i head.msh --image head.nii.gz -o head-assessed.vtu --extract-priority csf=1"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Tet mesh (.msh 2.2 or .mesh)")->required();
             app.add_option("--image", image_path, "Label image the mesh should match")->required();
             app.add_option("-o,--output", output, "Output: .vtu (assessment fields) or .msh/.mesh (mesh)")->required();
             app.add_flag("--relabel", relabel, "Set each tet's tissue to its majority (interfaces rebuilt)");
             app.add_option("--priority", priority, "Majority weights: tissue=weight,... (name or label; default 1)");
+            app.add_option("--extract-priority", extract_priority,
+                           "The --priority the surfaces were extracted with (tm-extract --priority: TISSUE=N, name or "
+                           "label, or auto), so that a tet holding no voxel centre is sampled with the tissues the "
+                           "priority rule's split cubes put there")
+                ->delimiter(',');
             app.add_option("--error-weight", options.error_weight, "Quality key weight of misclassified voxels")
                 ->capture_default_str();
             app.add_option("--shape-weight", options.shape_weight, "Quality key weight of the shape term")
@@ -135,8 +143,12 @@ int main(int argc, char** argv)
             format_flags.check();
             TetMesh mesh = io::read_tet_mesh(input);
             const LabelImage image = io::read_label_image(image_path);
-            if (!priority.empty())
-                parse_priority(priority, mesh_and_image_tissues(mesh, image, input, image_path), options);
+            if (!priority.empty() || !extract_priority.empty()) { // the tissue table costs a pass over the voxels
+                const tools::TissueTable tissues = mesh_and_image_tissues(mesh, image, input, image_path);
+                if (!priority.empty()) parse_priority(priority, tissues, options);
+                options.extract_priority = tools::parse_extract_priority(extract_priority, image, options.background,
+                                                                         tissues, "--extract-priority");
+            }
             const auto start = std::chrono::steady_clock::now();
             volume::Assessment assessment = volume::assess_elements(mesh, image, options, context.progress);
             const std::chrono::duration<double> assess_seconds = std::chrono::steady_clock::now() - start;
@@ -159,6 +171,7 @@ int main(int argc, char** argv)
             context.summary = summarize(mesh, assessment, relabelled);
             context.summary["assess_seconds"] = assess_seconds.count();
             context.summary["image_voxels"] = image.voxel_count();
+            context.summary["extract_priority"] = tools::priority_summary(options.extract_priority);
             std::printf(
                 "%s: %zu tets, %zu voxel centres inside, %zu tets sampled, error volume %.1f mm^3 (majority %.1f)\n",
                 input.c_str(), mesh.tets.size(), assessment.voxels_inside, assessment.sampled_tets,

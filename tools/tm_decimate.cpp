@@ -27,10 +27,7 @@ int main(int argc, char** argv)
          "  tm-decimate -i smooth.ply -o coarse.ply --target-triangles 200000\n"
          "  tm-decimate -i smooth.ply -o sized.ply --mode size --target-edge-mm 3\n"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
-            app.add_option("-o,--output", output, "Decimated interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input,
-                         "Check the input in full even when it carries the stamp of a passed check");
+            tools::add_step_files(app, input, output, check_input, "Decimated interface complex (.ply or .vtp)");
             app.add_option("--mode", mode, "What goes first: curvature (quadric error) or size (edge length)")
                 ->check(CLI::IsMember({"curvature", "size"}))
                 ->capture_default_str();

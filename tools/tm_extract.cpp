@@ -2,7 +2,6 @@
 // one closed surface per tissue.
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <optional>
@@ -16,7 +15,6 @@
 #include "surface/extract_interfaces.h"
 #include "surface/extract_surface_nets.h"
 #include "surface/summarize_interfaces.h"
-#include "surface/thin_first_priority.h"
 #include "surface/tissue_surface.h"
 #include "tools/run_tool.h"
 #include "tools/tissue_arguments.h"
@@ -56,29 +54,6 @@ nlohmann::json write_tissue_surfaces(const InterfaceComplex& complex, const surf
         written.push_back(path.string());
     }
     return written;
-}
-
-/// "csf=2", "3=1", ...: tissue (a name or a label number) = integer priority.
-std::map<Label, int> parse_priority(const std::vector<std::string>& items, const tools::TissueTable& tissues)
-{
-    std::map<Label, int> priority;
-    for (const std::string& item : items) {
-        const tools::TissueSetting setting = tools::parse_tissue_setting(item, tissues, "--priority", "csf=2,3=1");
-        int number = 0;
-        const auto [end, error] =
-            std::from_chars(setting.value.data(), setting.value.data() + setting.value.size(), number);
-        if (setting.value.empty() || error != std::errc{} || end != setting.value.data() + setting.value.size())
-            throw InputError(concat("--priority ", item, ": expected TISSUE=INTEGER (e.g. --priority csf=2,3=1)"));
-        priority[setting.tissue] = number;
-    }
-    return priority;
-}
-
-nlohmann::json priority_summary(const std::map<Label, int>& priority)
-{
-    nlohmann::json out = nlohmann::json::object();
-    for (const auto& [label, value] : priority) out[std::to_string(label)] = value;
-    return out;
 }
 
 nlohmann::json tissue_summary(const LabelImage& image, const surface::InterfaceSummary& summary)
@@ -216,20 +191,13 @@ int main(int argc, char** argv)
             const tools::TissueTable table = tools::tissue_table(image, input);
             for (const std::string& tissue : tissues)
                 options.tissues.push_back(tools::parse_tissue(tissue, table, "--tissues"));
-            if (priority.size() > 1 && std::find(priority.begin(), priority.end(), "auto") != priority.end())
-                throw InputError("--priority auto ranks every tissue itself: give it alone (--priority auto) or give "
-                                 "TISSUE=N pairs (--priority csf=2,3=1)");
-            if (priority.size() == 1 && priority.front() == "auto") {
-                // Every tissue ranked by thickness, the thinnest first (surface/thin_first_priority.h).
-                options.priority = surface::thin_first_priority(image, options.background);
-                if (!options.tissues.empty())
-                    std::erase_if(options.priority, [&](const auto& entry) {
-                        return std::find(options.tissues.begin(), options.tissues.end(), entry.first) ==
-                               options.tissues.end();
-                    });
-            } else {
-                options.priority = parse_priority(priority, table);
-            }
+            options.priority = tools::parse_extract_priority(priority, image, options.background, table, "--priority");
+            // "auto" ranks every tissue of the image; only those kept by --tissues are extracted.
+            if (priority == std::vector<std::string>{"auto"} && !options.tissues.empty())
+                std::erase_if(options.priority, [&](const auto& entry) {
+                    return std::find(options.tissues.begin(), options.tissues.end(), entry.first) ==
+                           options.tissues.end();
+                });
             surface::InterfaceSummarizer counter;
             CollectingSink collector;
             surface::SurfaceNetsReport nets_report;
@@ -269,7 +237,7 @@ int main(int argc, char** argv)
                            {"vertices", counts.vertices},
                            {"background", options.background},
                            {"tissues", tissue_summary(image, counts)},
-                           {"priority", priority_summary(options.priority)},
+                           {"priority", tools::priority_summary(options.priority)},
                            {"per_tissue", per_tissue},
                            {"streamed", streamed},
                            {"seconds_read", read_seconds},

@@ -58,10 +58,7 @@ int main(int argc, char** argv)
          "Examples:\n  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 2\n"
          "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --edge-mm-pair csf:skull=1.5,4:3=1.5\n"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
-            app.add_option("-o,--output", output, "Remeshed interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input,
-                         "Check the input in full even when it carries the stamp of a passed check");
+            tools::add_step_files(app, input, output, check_input, "Remeshed interface complex (.ply or .vtp)");
             app.add_option("--edge-mm", options.target_edge_mm, "Target edge length")->capture_default_str();
             app.add_option("--edge-mm-pair", pair_lengths, "Target edge length per tissue pair, TISSUE:TISSUE=MM")
                 ->delimiter(',');

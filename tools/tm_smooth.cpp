@@ -30,11 +30,8 @@ int main(int argc, char** argv)
          "Examples:\n  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply\n"
          "  tm-smooth -i head.ply --image head.nii.gz -o smooth.ply --iterations 20 --json smooth.json\n"},
         [&](CLI::App& app) {
-            app.add_option("-i,--input", input, "Interface complex (.ply, .vtp)")->required();
+            tools::add_step_files(app, input, output, check_input, "Smoothed interface complex (.ply or .vtp)");
             app.add_option("--image", image_path, "The label image the complex was extracted from")->required();
-            app.add_option("-o,--output", output, "Smoothed interface complex (.ply or .vtp)")->required();
-            app.add_flag("--check-input", check_input,
-                         "Check the input in full even when it carries the stamp of a passed check");
             app.add_option("--iterations", options.iterations, "Taubin step pairs")
                 ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();

@@ -110,6 +110,32 @@ TEST(AssessCli, RelabelWritesTheMajorityMeshWithRebuiltInterfaces)
     EXPECT_EQ(read_json(dir / "s.json")["total_error_volume_mm3"].get<double>(), 16 * 0.125);
 }
 
+// Issue 32: tm-assess takes the priority tm-extract was given, in tm-extract's words (TISSUE=N or auto), so that
+// its sub-voxel samples see the tissues of the priority rule's split cubes; the summary says which it used.
+TEST(AssessCli, ExtractPriorityTakesTmExtractsSyntaxAndIsInTheSummary)
+{
+    TempDir dir;
+    write_inputs(dir);
+    const auto assess = [&](const std::string& priority) {
+        const auto result =
+            run_cli("tm-assess", {"-i", (dir / "cube.msh").string(), "--image", (dir / "cube.nii.gz").string(), "-o",
+                                  (dir / "out.vtu").string(), "--extract-priority", priority, "--json",
+                                  (dir / "s.json").string(), "-q"});
+        EXPECT_EQ(result.exit_code, 0) << result.err;
+        return read_json(dir / "s.json")["extract_priority"];
+    };
+    EXPECT_EQ(assess("outer=2,1=1"), (nlohmann::json{{"1", 1}, {"2", 2}}));
+    // auto: the one-voxel plane of tissue 2 ranks above the 3-voxel block of tissue 1; background 0 is not ranked.
+    const nlohmann::json ranked = assess("auto");
+    EXPECT_EQ(ranked.size(), 2u) << ranked;
+    EXPECT_GT(ranked["2"].get<int>(), ranked["1"].get<int>()) << ranked;
+    const auto plain =
+        run_cli("tm-assess", {"-i", (dir / "cube.msh").string(), "--image", (dir / "cube.nii.gz").string(), "-o",
+                              (dir / "out.vtu").string(), "--json", (dir / "s.json").string(), "-q"});
+    ASSERT_EQ(plain.exit_code, 0) << plain.err;
+    EXPECT_EQ(read_json(dir / "s.json")["extract_priority"], nlohmann::json::object());
+}
+
 TEST(AssessCli, BadInputExitsTwoWithOneLineAndNoOutput)
 {
     TempDir dir;
@@ -123,6 +149,12 @@ TEST(AssessCli, BadInputExitsTwoWithOneLineAndNoOutput)
          "unknown tissue \"liver\""},
         {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--priority", "outer=-1"},
          "not tissue=positive"},
+        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--extract-priority", "outer=1.5"},
+         "--extract-priority outer=1.5: expected TISSUE=INTEGER"},
+        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--extract-priority", "bone=1"},
+         "--extract-priority bone=1: unknown tissue \"bone\""},
+        {{"-i", mesh, "--image", image, "-o", (dir / "out.vtu").string(), "--extract-priority", "auto,outer=1"},
+         "--extract-priority auto ranks every tissue itself"},
         {{"-i", mesh, "--image", image, "-o", (dir / "out.xyz").string()}, "unknown output format"},
     };
     for (const auto& [args, expected] : cases) {

@@ -83,19 +83,26 @@ std::pair<double, double> worst_agreement(const TetMesh& mesh, const char* what,
     return {worst_rdm, worst_mag};
 }
 
-TEST(PipelineSpheres, LongSmoothedSurfacesAt2mm)
+/// The spheres4 phantom at `voxel_mm` through the surface chain (the CSF first in ambiguous cubes, smoothed,
+/// decimated within `max_distance_mm`, remeshed to `edge_mm` edges), then tets up to 10 mm^3 as in the icosphere
+/// tests (test_four_shell.cpp): large brain tets around the dipole cost more accuracy than the surfaces.
+TetMesh pipeline_mesh(double voxel_mm, double max_distance_mm, double edge_mm)
 {
-    const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2.0});
+    const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = voxel_mm});
     InterfaceComplex complex = surface::extract_interfaces(phantom.image, {.priority = {{3, 1}}});
     surface::smooth(complex, phantom.image);
-    surface::decimate(complex, {.max_distance_mm = 1.0});
-    surface::remesh(complex, {.target_edge_mm = 3.0});
+    surface::decimate(complex, {.max_distance_mm = max_distance_mm});
+    surface::remesh(complex, {.target_edge_mm = edge_mm});
     volume::TetrahedralizeReport report;
-    // Tets up to 10 mm^3 as in the icosphere tests (test_four_shell.cpp): large brain tets around the
-    // dipole cost more accuracy than the surfaces.
-    const TetMesh mesh = volume::tetrahedralize(complex, {.max_volume_mm3 = 10}, {}, &report);
+    TetMesh mesh = volume::tetrahedralize(complex, {.max_volume_mm3 = 10}, {}, &report);
     std::printf("[pipeline] %zu triangles -> %zu tets, %zu nodes, min dihedral %.2f deg\n", complex.triangle_count(),
                 mesh.tet_count(), mesh.vertex_count(), report.min_dihedral_deg);
+    return mesh;
+}
+
+TEST(PipelineSpheres, LongSmoothedSurfacesAt2mm)
+{
+    const TetMesh mesh = pipeline_mesh(2.0, 1.0, 3.0);
     const auto [rdm, mag] = worst_agreement(mesh, "spheres4 2 mm, smoothed + decimated + remeshed (3 mm)");
     // Measured: RDM 0.014-0.038 and |MAG - 1| <= 0.006 over the six dipoles (121 k nodes, 713 k tets); on the
     // terraced (unsmoothed) 2 mm surfaces the RDM was 0.18. The target (RDM 0.02) is for 1 mm voxels.
@@ -114,15 +121,7 @@ TEST(PipelineSpheres, LongSmoothedSurfacesAt2mm)
 /// 7.8 minutes on 2 cores at low load, 24 while other builds ran (most of it smoothing the 1 mm surfaces).
 TEST(PipelineSpheres, LongSmoothedSurfacesAt1mm)
 {
-    const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 1.0});
-    InterfaceComplex complex = surface::extract_interfaces(phantom.image, {.priority = {{3, 1}}});
-    surface::smooth(complex, phantom.image);
-    surface::decimate(complex, {.max_distance_mm = 0.5});
-    surface::remesh(complex, {.target_edge_mm = 2.0});
-    volume::TetrahedralizeReport report;
-    const TetMesh mesh = volume::tetrahedralize(complex, {.max_volume_mm3 = 10}, {}, &report);
-    std::printf("[pipeline] %zu triangles -> %zu tets, %zu nodes, min dihedral %.2f deg\n", complex.triangle_count(),
-                mesh.tet_count(), mesh.vertex_count(), report.min_dihedral_deg);
+    const TetMesh mesh = pipeline_mesh(1.0, 0.5, 2.0);
     const char* what = "spheres4 1 mm";
     const std::vector<double> up_to_09{0.2, 0.5, 0.8, 0.9};
     const auto [rdm_venant, mag_venant] = worst_agreement(mesh, what, up_to_09, DipoleModel::venant);

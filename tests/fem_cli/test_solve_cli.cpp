@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "io/tet_mesh_io.h"
+#include "tests/fem/fem_meshes.h"
 #include "tests/support/cli.h"
 
 namespace tissuemesh::testing {
@@ -16,29 +17,7 @@ namespace {
 // [0, 20]^3 mm, 4^3 cubes of 6 tets (Kuhn subdivision), tissue 1 "brain".
 TetMesh brain_box()
 {
-    TetMesh mesh;
-    const int n = 4;
-    const double h = 5.0;
-    const auto index = [](int i, int j, int k) { return static_cast<std::uint32_t>((k * (n + 1) + j) * (n + 1) + i); };
-    for (int k = 0; k <= n; ++k)
-        for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) mesh.vertices.push_back({i * h, j * h, k * h});
-    const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i)
-                for (const auto& order : orders) {
-                    int c[3] = {i, j, k};
-                    Tet tet{index(i, j, k), 0, 0, 0};
-                    for (int s = 0; s < 3; ++s) {
-                        ++c[order[s]];
-                        tet[s + 1] = index(c[0], c[1], c[2]);
-                    }
-                    mesh.tets.push_back(tet);
-                    if (signed_volume(mesh, mesh.tets.size() - 1) < 0)
-                        std::swap(mesh.tets.back()[2], mesh.tets.back()[3]);
-                    mesh.tet_labels.push_back(1);
-                }
+    TetMesh mesh = box_mesh(4, 20.0);
     mesh.names = {{0, "background"}, {1, "brain"}};
     return mesh;
 }

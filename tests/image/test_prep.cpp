@@ -9,6 +9,7 @@
 #include "image/relabel.h"
 #include "image/remove_islands.h"
 #include "image/resample_labels.h"
+#include "tests/support/error_message.h"
 
 namespace tissuemesh::image {
 namespace {
@@ -19,16 +20,6 @@ void fill_box(LabelImage& image, std::array<std::size_t, 3> lo, std::array<std::
     for (std::size_t k = lo[2]; k <= hi[2]; ++k)
         for (std::size_t j = lo[1]; j <= hi[1]; ++j)
             for (std::size_t i = lo[0]; i <= hi[0]; ++i) image.at(i, j, k) = label;
-}
-
-std::string message_of(const std::function<void()>& action)
-{
-    try {
-        action();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no InputError)";
 }
 
 TEST(Relabel, SwapsAtOnceAndCarriesNames)
@@ -44,7 +35,7 @@ TEST(Relabel, SwapsAtOnceAndCarriesNames)
     EXPECT_EQ(report.voxels_before.at(1), 32u);
     EXPECT_EQ(report.voxels_after.at(1), 16u);
     EXPECT_EQ(image.names().at(2), "scalp");
-    EXPECT_EQ(message_of([&] {
+    EXPECT_EQ(testing::input_error_message([&] {
                   relabel(image, {{7, 0}});
               }),
               "relabel 7:0: label 7 is not in the image (it has 0,1,2); check the map against tm-info");

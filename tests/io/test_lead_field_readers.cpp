@@ -13,6 +13,7 @@
 #include "io/read_meg_sensors.h"
 #include "io/read_sources.h"
 #include "tests/io/expect_error.h"
+#include "tests/io/reader_files.h"
 #include "tests/support/cli.h"
 
 namespace tissuemesh {
@@ -20,15 +21,7 @@ namespace {
 
 using testing::expect_error;
 
-class LeadFieldReaders : public ::testing::Test {
-protected:
-    std::string write(const std::string& name, const std::string& text)
-    {
-        std::ofstream(dir_ / name, std::ios::binary) << text;
-        return (dir_ / name).string();
-    }
-    testing::TempDir dir_;
-};
+class LeadFieldReaders : public testing::ReaderFiles {};
 
 TEST_F(LeadFieldReaders, SourcesFreeOrOrientedNormalised)
 {

@@ -12,6 +12,7 @@
 #include "io/read_electrodes.h"
 #include "io/read_sensors.h"
 #include "tests/io/expect_error.h"
+#include "tests/io/reader_files.h"
 #include "tests/support/cli.h"
 
 namespace tissuemesh {
@@ -19,26 +20,7 @@ namespace {
 
 using testing::expect_error;
 
-class TableReaders : public ::testing::Test {
-protected:
-    std::string write(const std::string& name, const std::string& text)
-    {
-        std::ofstream(dir_ / name, std::ios::binary) << text;
-        return (dir_ / name).string();
-    }
-
-    /// Writes `text` as `name` and expects `read` to refuse it with an `E` whose message holds every part.
-    template <typename E, typename Read>
-    void expect_refused(Read read, const std::string& name, const std::string& text,
-                        std::initializer_list<std::string> parts)
-    {
-        SCOPED_TRACE(name);
-        const std::string file = write(name, text);
-        expect_error<E>([&] { (void)read(file); }, parts);
-    }
-
-    testing::TempDir dir_;
-};
+class TableReaders : public testing::ReaderFiles {};
 
 TEST_F(TableReaders, SensorsInAnyColumnOrderWithNamesCommentsAndWindowsLineEnds)
 {

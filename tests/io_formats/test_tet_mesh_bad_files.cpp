@@ -26,15 +26,21 @@ void put(const std::filesystem::path& path, const std::string& bytes)
     std::ofstream(path, std::ios::binary) << bytes;
 }
 
+/// The .msh variants (2.2 and 4.1, ASCII and binary) and .mesh, each with its file name, then `last` (.node or .inp).
+std::vector<std::pair<std::string, TetMeshWriteOptions>> file_variants(const std::string& last)
+{
+    return {{"a.msh", {}},
+            {"b.msh", {MshVersion::v2_2, true}},
+            {"c.msh", {MshVersion::v4_1, false}},
+            {"d.msh", {MshVersion::v4_1, true}},
+            {"e.mesh", {}},
+            {last, {}}};
+}
+
 TEST(TetMeshBadFiles, TruncatedFilesOfEveryVariantAreRefused)
 {
     testing::TempDir dir;
-    const std::vector<std::pair<std::string, TetMeshWriteOptions>> variants{{"a.msh", {}},
-                                                                            {"b.msh", {MshVersion::v2_2, true}},
-                                                                            {"c.msh", {MshVersion::v4_1, false}},
-                                                                            {"d.msh", {MshVersion::v4_1, true}},
-                                                                            {"e.mesh", {}},
-                                                                            {"f.node", {}}};
+    const auto variants = file_variants("f.node");
     for (const auto& [name, options] : variants) {
         write_tet_mesh(nested_cubes_mesh(), dir / name, options);
         const std::string bytes = slurp(dir / (name == "f.node" ? "f.ele" : name));
@@ -132,12 +138,7 @@ namespace {
 TEST(TetMeshBadFiles, CorruptedBytesGiveAnErrorOrAValidMeshNeverACrash)
 {
     testing::TempDir dir;
-    const std::vector<std::pair<std::string, TetMeshWriteOptions>> variants{{"a.msh", {}},
-                                                                            {"b.msh", {MshVersion::v2_2, true}},
-                                                                            {"c.msh", {MshVersion::v4_1, false}},
-                                                                            {"d.msh", {MshVersion::v4_1, true}},
-                                                                            {"e.mesh", {}},
-                                                                            {"f.inp", {}}};
+    const auto variants = file_variants("f.inp");
     std::uint32_t state = 12345; // a fixed LCG: the same corruptions on every run
     auto next = [&] { return state = state * 1664525u + 1013904223u; };
     for (const auto& [name, options] : variants) {

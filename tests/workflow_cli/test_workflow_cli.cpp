@@ -142,13 +142,19 @@ TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
     EXPECT_NE(missing.err.find("IMAGE is not set"), std::string::npos) << missing.err;
 }
 
+/// Runs the ready-made target `preset` (make sphere-head, ...) into `out` with this build's programs.
+void make_preset(const std::string& preset, const fs::path& out)
+{
+    const auto result = run_program(
+        "make", {"-C", testing::data_path("workflows").string(), preset, "OUT=" + out.string(), "BIN=" TM_TOOLS_DIR});
+    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+}
+
 TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
 {
     // scripts/demo's target: about 7 min on 2 shared cores (smoothing 800 k triangles dominates).
     TempDir dir;
-    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "sphere-head",
-                                             "OUT=" + (dir / "head").string(), "BIN=" TM_TOOLS_DIR});
-    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    ASSERT_NO_FATAL_FAILURE(make_preset("sphere-head", dir / "head"));
     const fs::path out = dir / "head";
     EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
     EXPECT_EQ(testing::read_json(out / "solve.json")["status"], "ok");
@@ -168,9 +174,7 @@ TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
 TEST(WorkflowCliLong, Usc19HeadEndsWithAFemFitMeshAndASolvedModel)
 {
     TempDir dir;
-    const auto result = run_program("make", {"-C", testing::data_path("workflows").string(), "usc19-5-head",
-                                             "OUT=" + (dir / "head").string(), "BIN=" TM_TOOLS_DIR});
-    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+    ASSERT_NO_FATAL_FAILURE(make_preset("usc19-5-head", dir / "head"));
     const fs::path out = dir / "head";
     const auto check = testing::read_json(out / "check-mesh.json");
     EXPECT_EQ(check["ok"], true);
