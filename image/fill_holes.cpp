@@ -14,7 +14,9 @@ PrepReport fill_holes(LabelImage& image, const FillHolesOptions& options)
     const Components components = find_components(image, Connectivity::faces6);
     std::vector<std::uint32_t> holes;
     for (std::uint32_t c = 0; c < components.count(); ++c)
-        if (components.label[c] == options.background && !components.touches_border[c]) holes.push_back(c);
+        if (components.label[c] == options.background && !components.touches_border[c] &&
+            (options.under_voxels == 0 || components.size[c] < options.under_voxels))
+            holes.push_back(c);
     const auto surroundings = detail::surrounding_labels(image, components, holes);
 
     std::vector<std::uint32_t> filled;
@@ -30,8 +32,9 @@ PrepReport fill_holes(LabelImage& image, const FillHolesOptions& options)
         targets.push_back(detail::most_common(surroundings[n], options.background));
     }
     report.changed_voxels = detail::assign_components(image, components, filled, targets);
-    report.detail = concat(filled.size(), " of ", holes.size(), " enclosed background cavities filled (",
-                           report.changed_voxels, " voxels)");
+    report.detail = concat(filled.size(), " of ", holes.size(), " enclosed background cavities",
+                           options.under_voxels > 0 ? concat(" under ", options.under_voxels, " voxels") : "",
+                           " filled (", report.changed_voxels, " voxels)");
     finish_report(report, image);
     return report;
 }

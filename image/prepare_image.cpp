@@ -43,7 +43,9 @@ std::vector<PrepReport> prepare_image(LabelImage& image, const PrepOptions& opti
     if (options.remove_islands_voxels > 0)
         done(remove_islands(image, {.min_voxels = options.remove_islands_voxels, .background = options.background}));
     if (options.fill_holes)
-        done(fill_holes(image, {.background = options.background, .tissues = options.fill_holes_tissues}));
+        done(fill_holes(image, {.background = options.background,
+                                .tissues = options.fill_holes_tissues,
+                                .under_voxels = options.fill_holes_under_voxels}));
     if (options.crop_pad_voxels)
         done(crop_to_tissue(image, {.pad_voxels = *options.crop_pad_voxels, .background = options.background}));
     return reports;

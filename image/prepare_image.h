@@ -22,6 +22,7 @@ struct PrepOptions {
     std::size_t remove_islands_voxels = 0;                     ///< 5. remove islands under this many voxels (0: no)
     bool fill_holes = false;                                   ///< 6. fill background cavities inside tissue
     std::vector<Label> fill_holes_tissues;      ///< ... only those enclosed by these tissues (empty: any)
+    std::size_t fill_holes_under_voxels = 0;    ///< ... only those under this many voxels (0: any size)
     std::optional<std::size_t> crop_pad_voxels; ///< 7. crop to the tissue, pad by this many voxels
     Label background = 0;                       ///< the label outside every tissue
 };

@@ -149,7 +149,8 @@ int main(int argc, char** argv)
          "label numbers or names (from the image or --labels, in any case). Tissue names, renamed by --relabel and "
          "--merge, go to OUT.labels.json.",
          "Examples:\n  tm-prep -i head.nii.gz -o clean.nii.gz --relabel 6:0 --remove-islands 20 --crop-pad 2\n"
-         "  tm-prep -i liver.inr.gz -o liver.nii.gz --merge 127,85 --spacing-mm 1 --fill-holes\n"},
+         "  tm-prep -i liver.inr.gz -o liver.nii.gz --merge 127,85 --spacing-mm 1 --fill-holes\n"
+         "  tm-prep -i liver.inr.gz -o clean.nii.gz --fill-holes-under 8 --crop-pad 2\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input", input, "Input label image")->required()->type_name("IMAGE");
             app.add_option("-o,--output", output, "Output label image")->required()->type_name("IMAGE");
@@ -174,6 +175,11 @@ int main(int argc, char** argv)
             app.add_option("--fill-holes-in", fill_holes_in,
                            "Fill only cavities enclosed by these tissues (labels or names)")
                 ->type_name("LABELS");
+            app.add_option("--fill-holes-under", options.fill_holes_under_voxels,
+                           "Fill only cavities under N voxels (specks of segmentation noise, too small to mesh "
+                           "well; the default workflow gives 8)")
+                ->check(CLI::PositiveNumber)
+                ->type_name("N");
             crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")
                               ->check(CLI::NonNegativeNumber)
                               ->type_name("N");
@@ -185,6 +191,7 @@ int main(int argc, char** argv)
             parse_spacing(spacing, options);
             if (nearest) options.resample_method = image::ResampleMethod::nearest;
             if (crop_option->count() > 0) options.crop_pad_voxels = crop_pad;
+            if (options.fill_holes_under_voxels > 0) options.fill_holes = true;
             const bool cleans = !keep_largest.empty() || options.remove_islands_voxels > 0 || options.fill_holes ||
                                 !fill_holes_in.empty();
             LabelImage image = io::read_label_image(

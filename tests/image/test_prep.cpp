@@ -188,6 +188,19 @@ TEST(FillHoles, RestrictsToHolesInChosenTissues)
     EXPECT_EQ(image.at(3, 3, 3), 2);
 }
 
+TEST(FillHoles, FillsOnlySpecksUnderTheGivenSize)
+{
+    LabelImage image({12, 9, 9}, {1, 1, 1});
+    fill_box(image, {1, 1, 1}, {10, 7, 7}, 1);
+    fill_box(image, {2, 3, 3}, {3, 4, 4}, 0); // an 8-voxel cavity
+    image.at(7, 4, 4) = 0;                    // a one-voxel speck
+    const PrepReport report = fill_holes(image, {.under_voxels = 8});
+    EXPECT_EQ(image.at(7, 4, 4), 1);
+    EXPECT_EQ(image.at(2, 3, 3), 0);
+    EXPECT_EQ(report.changed_voxels, 1u);
+    EXPECT_NE(report.detail.find("under 8 voxels"), std::string::npos) << report.detail;
+}
+
 TEST(KeepLargestComponent, DropsSmallerPieces)
 {
     LabelImage image({8, 8, 8}, {1, 1, 1});
