@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <optional>
+#include <string>
 #include <unordered_map>
 
 #include "core/error.h"
@@ -270,13 +272,29 @@ std::string stop_reason(const Refinement& r, const RefineReport& report, double 
 /// quality figures and unused nodes (dropped at the end) do not count.
 std::size_t fem_defects(const TetMesh& mesh) { return check_mesh(mesh).tet_defects(); }
 
-enum class RoundResult { refined, no_nodes, rebuild_unfit };
+enum class RoundResult { refined, no_nodes, rebuild_unfit, rebuild_failed };
+
+/// The constrained rebuild with `nodes` added, retried twice with the first half of the nodes left when TetGen
+/// fails (it can crash on a point set: caught in its child process, volume/detail/isolated_call.h; measured on
+/// the liver sample, whose first round crashed TetGen 1.6). None, and `failure` said, when every try failed.
+std::optional<TetMesh> rebuild(const TetMesh& mesh, NewNodes& nodes, std::string& failure)
+{
+    for (int attempt = 0; attempt < 3 && !nodes.points.empty(); ++attempt) {
+        try {
+            return detail::insert_constrained(mesh, nodes.points, nodes.sources);
+        } catch (const AlgorithmError& error) {
+            failure = error.what();
+            nodes.points.resize(nodes.points.size() / 2), nodes.sources.resize(nodes.sources.size() / 2);
+        }
+    }
+    return std::nullopt;
+}
 
 /// One round: place nodes in the batch, rebuild, reassess. A constrained rebuild with more defects than the mesh
 /// before (TetGen's tets between close interfaces disagreeing on their tissue: the 1 mm usc19-5 head's third
 /// round) is undone, and refinement stops there: its output is never less fit for FEM than its input.
 RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance, InterfaceClearance* clearance,
-                         RefineIteration& it, std::size_t& defects)
+                         RefineIteration& it, std::size_t& defects, std::string& failure)
 {
     const std::vector<std::uint32_t> batch = select_batch(r, budget);
     // Tissue changes first; only when fewer than a tenth of the batch found a free one, centroids for the rest
@@ -287,7 +305,9 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
     TetMesh old = r.mesh;
     const std::vector<TetState> old_state = r.state;
     if (r.constrained) {
-        r.mesh = detail::insert_constrained(old, nodes.points, nodes.sources);
+        std::optional<TetMesh> rebuilt = rebuild(old, nodes, failure);
+        if (!rebuilt) return RoundResult::rebuild_failed;
+        r.mesh = std::move(*rebuilt);
         const std::size_t now = fem_defects(r.mesh);
         if (now > defects) {
             r.mesh = std::move(old);
@@ -345,9 +365,17 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
             rep.stop_reason = "no error left";
             break;
         }
-        const RoundResult round = refine_round(r, budget, min_distance, &clearance, it, defects);
+        std::string failure;
+        const RoundResult round = refine_round(r, budget, min_distance, &clearance, it, defects, failure);
         if (round == RoundResult::no_nodes) {
             rep.stop_reason = "no node could be placed";
+            break;
+        }
+        if (round == RoundResult::rebuild_failed) {
+            rep.stop_reason = "the next round's rebuild failed (TetGen)";
+            progress.warn("refine", concat("TetGen could not rebuild the next round, with half and a quarter of its "
+                                           "nodes too (",
+                                           failure, "); the mesh of the round before is the result"));
             break;
         }
         if (round == RoundResult::rebuild_unfit) {

@@ -62,7 +62,8 @@ struct RefineIteration {
 struct RefineReport {
     std::vector<RefineIteration> iterations;
     std::string stop_reason;     ///< "target reached", "node budget", "iteration cap", "stalled",
-                                 ///< "no error left", "no node could be placed"
+                                 ///< "no error left", "no node could be placed", or a round undone: "the
+                                 ///< next round's rebuild was not fit for FEM (undone)", "... failed (TetGen)"
     bool target_reached = false; ///< a target was given and met
     double mesh_volume_mm3 = 0;
     bool improved = false; ///< improve_mesh() ran on the result; `improvement` says what it did
