@@ -225,7 +225,7 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
     if (!(options.max_face_deviation >= 0 && options.max_face_deviation <= 1))
         throw InputError(concat("face deviation ", options.max_face_deviation,
                                 " is outside [0, 1]; it is a fraction of the "
-                                "reference surface's mean edge (0.04 is the default)"));
+                                "reference surface's mean edge (0.03 is the default)"));
     if (!(options.max_volume_change >= 0 && options.max_volume_change <= 1))
         throw InputError(concat("volume change ", options.max_volume_change,
                                 " is outside [0, 1]; it is a fraction of each "

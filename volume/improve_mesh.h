@@ -28,10 +28,12 @@ struct ImproveOptions {
                                       ///< the reference surface)
     /// An interface face a move, flip or split makes stays this close to the reference surface (centroid and
     /// edge midpoints), as a fraction of the reference's mean edge length: nodes slide freely on flat
-    /// interfaces, on curved or creased ones only as far as their faces follow. 0.04 of the 1 mm head's 2.4 mm
-    /// edges is 0.1 mm, a tenth of its voxel (measured: faces at most 0.097 mm from the surface, nodes on it);
-    /// on that head 0.01 left 280 tets under 10 degrees after tm-tetra (smallest 3.4), 0.04 left 46 (6.2).
-    double max_face_deviation = 0.04;
+    /// interfaces, on curved or creased ones only as far as their faces follow. 0.03 of the 1 mm usc19-5 head's
+    /// 2.4 mm edges is 0.07 mm, under a tenth of its voxel. Measured on that head (same surfaces), smallest
+    /// dihedral angle and tets under 10 degrees after tm-tetra, then tm-refine: 0.01: 3.37 deg, 307; 4.57, 51.
+    /// 0.02: 3.86, 95; 5.27, 20. 0.03: 3.69, 56; 6.66, 20. 0.04: 2.11, 72; 6.69, 13, but on the liver sample
+    /// TetGen then crashed rebuilding the improved mesh in tm-refine (it did not with 0.01-0.03).
+    double max_face_deviation = 0.03;
     double max_volume_change = 2e-4; ///< each tissue's volume stays within this fraction of its start (moves
                                      ///< and splits on curved interfaces that would take it further are refused)
 };

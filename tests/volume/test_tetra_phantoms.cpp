@@ -171,7 +171,7 @@ void check_phantom(const Case& c)
     }
     const volume::InterfaceDistance distance = volume::interface_distance(improved, complex);
     EXPECT_LT(distance.max_node_mm, 1e-9);
-    // The improver's tolerance is 4% of the mean input edge (about a voxel here); a tenth of a voxel is the bound.
+    // The improver's tolerance is 3% of the mean input edge (about a voxel here); a tenth of a voxel is the bound.
     EXPECT_LT(distance.max_face_mm, 0.1 * c.voxel_mm);
 }
 
