@@ -4,6 +4,7 @@
 // tm-check-surface passed it and TetGen's tets then disagreed on their tissue around it.
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -95,6 +96,24 @@ TEST(LocalEditor, AMoveThatClosesATissueSectorBelowTheLimitIsRefused)
     EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.12}));
     EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.11}));
     EXPECT_TRUE(surface::check_complex(editor.result()).ok());
+}
+
+// The same pocket holding the background inside tissue 1: tm-tetra meshes background that tissues enclose, so the
+// cavity's sectors bound its tets as a tissue's do, and they count (on the liver sample the worst tets were in such
+// cavities, 6 degrees, while every tissue sector was 15 or more).
+TEST(LocalEditor, ABackgroundCavitysSectorsCountAsATissues)
+{
+    constexpr double pi = 3.14159265358979323846;
+    std::uint32_t apex = 0;
+    InterfaceComplex cavity = pocket(apex);
+    for (LabelPair& side : cavity.sides) std::swap(side.from, side.to);
+    cavity.vertices[apex] = {0.5, 0.5, 0.2};
+    EXPECT_NEAR(surface::detail::smallest_sector_deg(cavity), std::atan(0.2 / std::sqrt(0.5)) * 180 / pi, 1e-9);
+    surface::detail::LocalLimits with{.min_angle_deg = 1, .max_tilt_deg = 45, .min_gap_mm = 0};
+    with.min_sector_deg = 15;
+    LocalEditor editor(cavity, with, 2.0);
+    EXPECT_FALSE(editor.try_move(apex, {0.5, 0.5, 0.1})); // 8.0 degrees at the third edge, in the cavity
+    EXPECT_TRUE(editor.try_move(apex, {0.5, 0.5, 0.3}));
 }
 
 } // namespace
