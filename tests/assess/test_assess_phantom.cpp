@@ -1,6 +1,7 @@
 // Assessment of a tm-tetra mesh of the junction phantom: agreement with check_mesh(), exact voxel
 // bookkeeping, and relabelling of a scrambled mesh back to the voxel majority.
 #include <algorithm>
+#include <cstdio>
 #include <gtest/gtest.h>
 #include <set>
 #include <tuple>
@@ -68,10 +69,17 @@ TEST(AssessPhantom, DiceEqualsCheckMeshAndVoxelCountsAddUp)
                                [&](std::uint32_t x, std::uint32_t y) { return a.quality_key[x] > a.quality_key[y]; }));
     EXPECT_EQ(a.sampled_tets, static_cast<std::size_t>(std::count(a.voxel_count.begin(), a.voxel_count.end(), 0u)));
     // The tets' tissues come from the surfaces tm-extract built from these voxels, and sub-voxel samples read
-    // the tissue those surfaces give a point: every tet's majority is its own tissue, sampled or not.
+    // the tissue those surfaces give a point: every tet's majority is its own tissue, sampled or not. The improver
+    // leaves interface faces up to 3% of the mean edge off those surfaces (ImproveOptions::max_face_deviation), so
+    // a few samples of tets along the interfaces read the tissue across: 1.48 of 153 320 mm^3 (0 with 1%).
     EXPECT_GT(a.sampled_tets, 0u);
     EXPECT_EQ(a.majority, m.mesh.tet_labels);
-    EXPECT_EQ(a.sampled_error_volume_mm3, 0.0);
+    double sampled_volume = 0;
+    for (std::size_t t = 0; t < m.mesh.tets.size(); ++t)
+        if (a.sampled[t]) sampled_volume += signed_volume(m.mesh, t);
+    std::printf("[ figures  ] sampled tets: %zu, %.1f mm^3, error %.3f mm^3\n", a.sampled_tets, sampled_volume,
+                a.sampled_error_volume_mm3);
+    EXPECT_LT(a.sampled_error_volume_mm3, 1e-4 * sampled_volume); // 1e-5 measured
 }
 
 TEST(AssessPhantom, MarkInterfacesRebuildsTetgensFaces)
