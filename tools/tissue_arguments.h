@@ -3,13 +3,10 @@
 // of the tool's input where the tool knows them.
 #pragma once
 
-#include <map>
 #include <set>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/interface_complex.h"
 #include "core/label_image.h"
@@ -50,16 +47,5 @@ struct TissueSetting {
 /// @throws InputError when there is no '=' (showing `example`, e.g. "csf=2,3=1"), or as parse_tissue()
 TissueSetting parse_tissue_setting(std::string_view item, const TissueTable& table, std::string_view option,
                                    std::string_view example);
-
-/// The priority rule of extraction (tm-extract --priority, tm-assess --extract-priority), one `items` entry per
-/// comma-separated item: TISSUE=N pairs (a tissue of `table` = an integer; the higher wins ambiguous cubes), or
-/// "auto" alone: every tissue of `image` but `background` ranked by its thickness, the thinnest first
-/// (surface/thin_first_priority.h). No items: no priority (the plain Kuhn rule).
-/// @throws InputError naming `option`: "auto" among other items, an item not TISSUE=INTEGER, or as parse_tissue()
-std::map<Label, int> parse_extract_priority(const std::vector<std::string>& items, const LabelImage& image,
-                                            Label background, const TissueTable& table, std::string_view option);
-
-/// A priority for a tool's JSON summary: {"3": 1, ...}, by label number.
-nlohmann::json priority_summary(const std::map<Label, int>& priority);
 
 } // namespace tissuemesh::tools

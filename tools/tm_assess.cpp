@@ -9,6 +9,7 @@
 #include "io/tet_mesh_io.h"
 #include "tools/mesh_format_options.h"
 #include "tools/run_tool.h"
+#include "tools/extract_priority.h"
 #include "tools/tissue_arguments.h"
 #include "volume/assess.h"
 #include "volume/mark_interfaces.h"

@@ -17,6 +17,7 @@
 #include "surface/summarize_interfaces.h"
 #include "surface/tissue_surface.h"
 #include "tools/run_tool.h"
+#include "tools/extract_priority.h"
 #include "tools/tissue_arguments.h"
 
 namespace fs = std::filesystem;

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "tests/support/error_message.h"
+#include "tools/extract_priority.h"
 #include "tools/tissue_arguments.h"
 
 namespace tissuemesh::tools {
