@@ -178,7 +178,7 @@ int main(int argc, char** argv)
             app.add_option("--fill-holes-under", options.fill_holes_under_voxels,
                            "Fill only cavities under N voxels (specks of segmentation noise, too small to mesh "
                            "well; the default workflow gives 8)")
-                ->check(CLI::PositiveNumber)
+                ->check(CLI::Range(1, 1000000000))
                 ->type_name("N");
             crop_option = app.add_option("--crop-pad", crop_pad, "Crop to the tissue and pad with N background voxels")
                               ->check(CLI::NonNegativeNumber)
