@@ -22,6 +22,7 @@ LocalEditor::LocalEditor(InterfaceComplex complex, const LocalLimits& limits, do
     if (!(cell_mm > 0)) cell_mm = 1;
     classify_all();
     filed_.resize(triangles_.size());
+    filed_boxes_.resize(triangles_.size());
     stamp_.assign(triangles_.size(), 0);
     rebuild_grid(cell_mm);
 }
@@ -31,6 +32,8 @@ void LocalEditor::set_limits(const LocalLimits& limits)
     limits_ = limits;
     cos_min_angle_ = std::cos(limits.min_angle_deg * pi / 180);
     cos_max_tilt_ = std::cos(limits.max_tilt_deg * pi / 180);
+    clear_sector_deg_ = limits.min_sector_deg + 1;
+    cos_clear_sector_ = std::cos(clear_sector_deg_ * pi / 180);
 }
 
 void LocalEditor::rebuild_grid(double cell_mm)
@@ -138,9 +141,20 @@ void LocalEditor::file(std::uint32_t t)
 {
     const CellRange r = cells_of(triangles_[t]);
     filed_[t] = r;
+    const Box box = filed_boxes_[t] = box_of(triangles_[t]);
+    // Single precision, rounded outwards: it holds the exact box.
+    CellEntry entry{t, {}};
+    for (int a = 0; a < 3; ++a) {
+        float low = static_cast<float>(box.low[a]), high = static_cast<float>(box.high[a]);
+        if (static_cast<double>(low) > box.low[a]) low = std::nextafter(low, -std::numeric_limits<float>::infinity());
+        if (static_cast<double>(high) < box.high[a])
+            high = std::nextafter(high, std::numeric_limits<float>::infinity());
+        entry.box[a] = low, entry.box[3 + a] = high;
+    }
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
-            for (std::size_t i = r[0]; i <= r[3]; ++i) cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)].push_back(t);
+            for (std::size_t i = r[0]; i <= r[3]; ++i)
+                cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)].push_back(entry);
 }
 
 void LocalEditor::unfile(std::uint32_t t)
@@ -150,7 +164,8 @@ void LocalEditor::unfile(std::uint32_t t)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i) {
                 auto& cell = cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)];
-                const auto it = std::find(cell.begin(), cell.end(), t);
+                const auto it =
+                    std::find_if(cell.begin(), cell.end(), [t](const CellEntry& e) { return e.triangle == t; });
                 if (it != cell.end()) {
                     *it = cell.back();
                     cell.pop_back();
@@ -189,6 +204,7 @@ std::uint32_t LocalEditor::new_triangle(const Triangle& t, const LabelPair& side
     sides_.push_back(side);
     alive_.push_back(1);
     filed_.push_back({});
+    filed_boxes_.push_back({});
     stamp_.push_back(0);
     const auto id = static_cast<std::uint32_t>(triangles_.size() - 1);
     for (const std::uint32_t v : t) stars_[v].push_back(id);
@@ -208,6 +224,7 @@ void LocalEditor::undo()
     sides_.resize(triangles_before_edit_);
     alive_.resize(triangles_before_edit_);
     filed_.resize(triangles_before_edit_);
+    filed_boxes_.resize(triangles_before_edit_);
     stamp_.resize(triangles_before_edit_);
     positions_.resize(vertices_before_edit_);
     stars_.resize(vertices_before_edit_);
@@ -263,25 +280,53 @@ bool LocalEditor::fans_ok(const std::vector<std::uint32_t>& changed)
     return true;
 }
 
-double LocalEditor::smallest_sector_deg(std::uint32_t a, std::uint32_t b) const
+double LocalEditor::smallest_sector_deg(std::uint32_t a, std::uint32_t b, std::span<const FanBlade> blades) const
 {
-    std::array<FanBlade, 16> blades{};
-    std::size_t count = 0;
-    for (const std::uint32_t t : stars_[a]) {
-        if (!has(triangles_[t], b)) continue;
-        if (count == blades.size()) return 360; // no judgement on crowded edges
-        blades[count++] = blade_on(triangles_[t], a, b, positions_, sides_[t]);
+    const Vec3 e = positions_[b] - positions_[a];
+    if (const double ee = dot(e, e); blades.size() == 2 && ee > 0) {
+        // Two triangles: the smaller sector is the angle between their apexes' offsets across the edge. Most
+        // edges are far from the limit; its cosine tells so without the two arc tangents.
+        const Vec3 r = blades[0].apex - positions_[a], s = blades[1].apex - positions_[a];
+        const Vec3 p = r - (dot(r, e) / ee) * e, q = s - (dot(s, e) / ee) * e;
+        if (dot(p, q) < cos_clear_sector_ * std::sqrt(dot(p, p) * dot(q, q))) return clear_sector_deg_;
     }
-    return detail::smallest_sector_deg(positions_[a], positions_[b], std::span(blades.data(), count));
+    return detail::smallest_sector_deg(positions_[a], positions_[b], blades);
 }
 
 double LocalEditor::smallest_sector_deg(const std::vector<std::uint32_t>& triangles) const
 {
     double smallest = 360;
     if (!(limits_.min_sector_deg > 0)) return smallest;
+    // Each edge once, in the directions the triangles run along it (bit 1: low to high vertex; bit 2: back).
+    std::vector<std::pair<std::uint64_t, int>>& edges = sector_edges_;
+    edges.clear();
     for (const std::uint32_t t : triangles)
-        for (int k = 0; k < 3; ++k)
-            smallest = std::min(smallest, smallest_sector_deg(triangles_[t][k], triangles_[t][(k + 1) % 3]));
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t a = triangles_[t][k], b = triangles_[t][(k + 1) % 3];
+            edges.emplace_back(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b), a < b ? 1 : 2);
+        }
+    std::sort(edges.begin(), edges.end());
+    std::array<FanBlade, 16> blades{};
+    for (std::size_t i = 0; i < edges.size();) {
+        int directions = 0;
+        const std::uint64_t key = edges[i].first;
+        for (; i < edges.size() && edges[i].first == key; ++i) directions |= edges[i].second;
+        const auto low = static_cast<std::uint32_t>(key >> 32), high = static_cast<std::uint32_t>(key);
+        std::size_t count = 0;
+        bool crowded = false; // more triangles than blades: no judgement
+        for (const std::uint32_t t : stars_[low]) {
+            if (!has(triangles_[t], high)) continue;
+            if (count == blades.size()) {
+                crowded = true;
+                break;
+            }
+            blades[count++] = blade_on(triangles_[t], low, high, positions_, sides_[t]);
+        }
+        if (crowded) continue;
+        const std::span<const FanBlade> fan(blades.data(), count);
+        if (directions & 1) smallest = std::min(smallest, smallest_sector_deg(low, high, fan));
+        if (directions & 2) smallest = std::min(smallest, smallest_sector_deg(high, low, fan));
+    }
     return smallest;
 }
 
@@ -294,9 +339,12 @@ bool LocalEditor::sectors_ok(const std::vector<std::uint32_t>& changed, double b
     return false;
 }
 
-void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
+bool LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, std::size_t margin,
+                               std::span<const Label> known)
 {
-    constexpr std::size_t limit = 24;
+    constexpr std::size_t small_limit = 24;
+    const std::size_t limit = small_limit + margin;
+    bool clear = true;
     out.clear();
     if (vertex_stamp_.size() < positions_.size()) vertex_stamp_.resize(positions_.size(), 0);
     std::vector<std::uint32_t>& vertices = piece_vertices_;
@@ -307,16 +355,17 @@ void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
         for (const Label tissue : {sides_[first].from, sides_[first].to}) {
             if (tissue == background_ || std::find(seen.begin(), seen.end(), tissue) != seen.end()) continue;
             seen.push_back(tissue);
+            if (std::find(known.begin(), known.end(), tissue) != known.end()) continue;
             // Breadth first through shared vertices over the triangles with `tissue` on a side, at most `limit`.
             ++query_;
             vertices.assign(1, v), triangles.clear();
             vertex_stamp_[v] = query_;
-            bool small = true;
-            for (std::size_t next = 0; next < vertices.size() && small; ++next)
+            bool complete = true; // the whole piece found within `limit` triangles
+            for (std::size_t next = 0; next < vertices.size() && complete; ++next)
                 for (const std::uint32_t t : stars_[vertices[next]]) {
                     if ((sides_[t].from != tissue && sides_[t].to != tissue) || stamp_[t] == query_) continue;
                     if (triangles.size() == limit) {
-                        small = false;
+                        complete = false;
                         break;
                     }
                     stamp_[t] = query_;
@@ -324,7 +373,9 @@ void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
                     for (const std::uint32_t x : triangles_[t])
                         if (vertex_stamp_[x] != query_) vertex_stamp_[x] = query_, vertices.push_back(x);
                 }
-            if (!small) continue;
+            if (!complete) continue; // more than limit: clear of the margin
+            clear = false;
+            if (triangles.size() > small_limit) continue; // all of it, within the margin but not small
             // Normals point from `from` into `to`: outward where the tissue is `from`.
             SmallPiece piece{tissue, 0, 0};
             const Vec3 origin = positions_[v];
@@ -336,15 +387,23 @@ void LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out)
             }
             out.push_back(piece);
         }
+    return clear;
 }
 
 template <typename Visit>
-bool LocalEditor::any_in_cells(const CellRange& r, const Visit& visit)
+bool LocalEditor::any_in_cells(const CellRange& r, const Box& box, const Visit& visit)
 {
+    // The entries' boxes first: most triangles of a cell are far from the box, and they are in the cell's own
+    // memory, where the triangles' own are scattered.
+    const std::array<double, 6> bounds{box.low[0], box.low[1], box.low[2], box.high[0], box.high[1], box.high[2]};
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i)
-                for (const std::uint32_t u : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
+                for (const CellEntry& e : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
+                    if (e.box[3] < bounds[0] || e.box[4] < bounds[1] || e.box[5] < bounds[2] || bounds[3] < e.box[0] ||
+                        bounds[4] < e.box[1] || bounds[5] < e.box[2])
+                        continue;
+                    const std::uint32_t u = e.triangle;
                     if (stamp_[u] == query_ || !alive_[u]) continue;
                     stamp_[u] = query_;
                     if (visit(u)) return true;
@@ -361,7 +420,7 @@ bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to
         r[a] = cell_at(path.low[a], a), r[3 + a] = cell_at(path.high[a], a);
     }
     ++query_;
-    return any_in_cells(r, [&](std::uint32_t u) {
+    return any_in_cells(r, path, [&](std::uint32_t u) {
         const Triangle& tri = triangles_[u];
         if (has(tri, v) || !overlap(box_of(tri), path)) return false;
         const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
@@ -394,8 +453,8 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     for (int a = 0; a < 3; ++a) r[a] = cell_at(all.low[a], a), r[3 + a] = cell_at(all.high[a], a);
     ++query_;
     for (const std::uint32_t t : changed) stamp_[t] = query_;
-    const bool offender = any_in_cells(r, [&](std::uint32_t u) {
-        const Box ub = box_of(triangles_[u]);
+    const bool offender = any_in_cells(r, all, [&](std::uint32_t u) {
+        const Box& ub = filed_boxes_[u]; // not changed by the edit: as filed
         if (!overlap(ub, all)) return false;
         for (std::size_t n = 0; n < changed.size(); ++n) {
             const std::uint32_t t = changed[n];

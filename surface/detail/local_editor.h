@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "core/interface_complex.h"
@@ -106,10 +107,13 @@ private:
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).
     bool surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before);
-    /// Calls visit(u) for every alive triangle filed in the cells of r and not yet stamped with the current
-    /// query (stamping it); true at the first visit that returns true.
+    struct Box {
+        Vec3 low, high;
+    };
+    /// Calls visit(u) for every alive triangle filed in the cells of r, whose box may overlap `box`, and not
+    /// yet stamped with the current query (stamping it); true at the first visit that returns true.
     template <typename Visit>
-    bool any_in_cells(const CellRange& r, const Visit& visit);
+    bool any_in_cells(const CellRange& r, const Box& box, const Visit& visit);
     /// Whether vertex v, moved in a straight line from `from` to `to`, passes through a triangle outside its
     /// star (exact). Each step of a smoothing or relaxation may be valid where it ends and still carry a vertex
     /// through the surface: a small closed piece (a tetrahedron of four triangles around a two-voxel pocket)
@@ -122,22 +126,24 @@ private:
     /// two others). A collapse or a move may shrink such a piece to a tetrahedron inside out, or flat, or to a
     /// sliver, each new triangle within the tilt limit of the one it replaces and nothing crossing; TetGen
     /// then has only flat tets to fill it with.
-    void small_pieces(std::uint32_t v, std::vector<SmallPiece>& out);
+    /// Returns whether each tissue it looked at has more than 24 + `margin` such triangles (an edit that
+    /// removes at most `margin` of them then leaves no small piece there). Tissues in `known` are skipped.
+    bool small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, std::size_t margin = 0,
+                      std::span<const Label> known = {});
     /// Whether t and u lie in one patch facing nearly the same way: neighbours along one sheet, which the
     /// gap rule leaves alone (a sheet folding back towards itself faces the other way where it nears).
     bool same_sheet_direction(std::uint32_t t, std::uint32_t u) const;
     /// The gap rule for changed triangle t and triangle `other` sharing no vertex with it.
     bool gap_ok(std::uint32_t t, const std::vector<Prior>& before, std::uint32_t other) const;
-    struct Box {
-        Vec3 low, high;
-    };
     Box box_of(const Triangle& t) const;
     static bool overlap(const Box& a, const Box& b);
     std::uint16_t cell_at(double x, int axis) const;
     bool fans_ok(const std::vector<std::uint32_t>& changed);
-    /// The smallest angle (degrees) between neighbouring triangles around edge ab, the background's included
-    /// (360 on an edge of one triangle).
-    double smallest_sector_deg(std::uint32_t a, std::uint32_t b) const;
+    /// The smallest angle (degrees) between neighbouring triangles `blades` around edge ab, the background's
+    /// included (360 on an edge of one triangle), or clear_sector_deg_ when two triangles meet there at a larger
+    /// angle: the rule only compares values under its limit (sectors_ok), so an edge clear of it needs no exact
+    /// value.
+    double smallest_sector_deg(std::uint32_t a, std::uint32_t b, std::span<const FanBlade> blades) const;
     /// The smallest of smallest_sector_deg() over the edges of `triangles` (alive, current positions); 360
     /// when the sector rule is off.
     double smallest_sector_deg(const std::vector<std::uint32_t>& triangles) const;
@@ -154,12 +160,20 @@ private:
 
     LocalLimits limits_;
     double cos_min_angle_ = 1, cos_max_tilt_ = 0;
+    /// A sector this much (1 degree) over the sector rule's limit is clear of it, and its cosine.
+    double clear_sector_deg_ = 1, cos_clear_sector_ = 1;
     // The neighbour grid: each alive triangle is listed in every cell its box overlaps.
     Vec3 grid_origin_{0, 0, 0};
     double cell_mm_ = 1;
     std::array<std::size_t, 3> grid_dims_{1, 1, 1};
-    std::vector<std::vector<std::uint32_t>> cells_;
+    /// A triangle in a cell, with its box when filed in single precision (rounded outwards).
+    struct CellEntry {
+        std::uint32_t triangle;
+        std::array<float, 6> box; ///< low x, y, z, high x, y, z
+    };
+    std::vector<std::vector<CellEntry>> cells_;
     std::vector<CellRange> filed_;
+    std::vector<Box> filed_boxes_; ///< per triangle: its box when filed (the edits refile what they change)
     // The edit in progress: what it changed, for undo.
     std::vector<Saved> saved_;
     /// Stars as they were before the edit: (vertex, start, size) into saved_star_items_ (flat, so that saving
@@ -188,11 +202,12 @@ private:
         std::vector<Prior> prior;
         std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
     } edit_;
-    std::vector<FanBlade> blades_;                                ///< fans_ok()
-    std::vector<std::uint32_t> piece_vertices_, piece_triangles_; ///< small_pieces()
-    std::vector<Label> piece_tissues_;                            ///< small_pieces()
-    std::vector<Box> boxes_;                                      ///< surroundings_ok()
-    std::vector<std::uint32_t> star_vertices_;                    ///< surroundings_ok()
+    std::vector<FanBlade> blades_;                                    ///< fans_ok()
+    std::vector<std::uint32_t> piece_vertices_, piece_triangles_;     ///< small_pieces()
+    std::vector<Label> piece_tissues_;                                ///< small_pieces()
+    std::vector<Box> boxes_;                                          ///< surroundings_ok()
+    mutable std::vector<std::pair<std::uint64_t, int>> sector_edges_; ///< smallest_sector_deg()
+    std::vector<std::uint32_t> star_vertices_;                        ///< surroundings_ok()
 };
 
 } // namespace tissuemesh::surface::detail

@@ -3,6 +3,7 @@
 #include "surface/detail/local_editor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -131,8 +132,20 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
     std::vector<SmallPiece>& pieces_at_w = edit_.pieces_at_w;
     std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
-    small_pieces(v, pieces_before);
-    small_pieces(w, pieces_at_w); // w's own pieces count too: the collapse may thin a piece at w alone
+    // The tissues of the dying triangles are one piece at v and at w: looked at once, from v. When every piece
+    // at v and w has more than 24 triangles beyond the dying ones, more than 24 remain joined at w.
+    std::array<Label, 8> dying_tissues{};
+    std::size_t dying_count = 0;
+    for (const std::uint32_t t : dying)
+        for (const Label tissue : {sides_[t].from, sides_[t].to})
+            if (dying_count < dying_tissues.size() &&
+                std::find(dying_tissues.begin(), dying_tissues.begin() + dying_count, tissue) ==
+                    dying_tissues.begin() + dying_count)
+                dying_tissues[dying_count++] = tissue;
+    bool pieces_clear = small_pieces(v, pieces_before, dying.size());
+    // w's own pieces count too: the collapse may thin a piece at w alone
+    pieces_clear =
+        small_pieces(w, pieces_at_w, dying.size(), std::span(dying_tissues.data(), dying_count)) && pieces_clear;
     for (const SmallPiece& p : pieces_at_w)
         if (std::none_of(pieces_before.begin(), pieces_before.end(),
                          [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
@@ -161,8 +174,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         undo();
         return false;
     }
-    small_pieces(w, pieces_after);
-    if (!pieces_ok(pieces_before, pieces_after)) {
+    if (!pieces_clear && (small_pieces(w, pieces_after), !pieces_ok(pieces_before, pieces_after))) {
         ++counters_.topology;
         undo();
         return false;
