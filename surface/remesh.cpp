@@ -41,6 +41,10 @@ void validate(const RemeshOptions& options)
         throw InputError(concat("remesh: min angle ", options.min_angle_deg, " deg is outside [0, 60)"));
     if (!(options.min_sector_deg >= 0 && options.min_sector_deg < 90))
         throw InputError(concat("remesh: min sector ", options.min_sector_deg, " deg is outside [0, 90)"));
+    if (!(options.edge_per_thickness >= 0 && options.edge_per_thickness <= 100))
+        throw InputError(concat("remesh: edge per thickness ", options.edge_per_thickness, " is outside [0, 100]"));
+    if (!(options.min_edge_mm >= 0 && options.min_edge_mm <= 1e6))
+        throw InputError(concat("remesh: min edge ", options.min_edge_mm, " mm is outside [0, 1e6]"));
 }
 
 double smallest_angle_deg(const InterfaceComplex& complex)
@@ -111,10 +115,13 @@ private:
         return middle;
     }
 
-    /// The target length of edge ab: the smallest target of the patches around it.
+    /// The target length of edge ab: the smallest target of the patches around it, and of the layer
+    /// sizing at its midpoint.
     double target(std::uint32_t a, std::uint32_t b) const
     {
         double length = options_.target_edge_mm > 0 ? options_.target_edge_mm : std::numeric_limits<double>::max();
+        if (options_.edge_per_thickness > 0)
+            length = std::min(length, reference_.size_at(0.5 * (editor_.position(a) + editor_.position(b))));
         for (const std::uint32_t t : editor_.star(a)) {
             const Triangle& tri = editor_.triangle(t);
             if (std::find(tri.begin(), tri.end(), b) == tri.end()) continue;
@@ -454,7 +461,12 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     report.min_sector_before_deg = detail::smallest_sector_deg(complex);
     const InterfaceComplex input = complex;
     const double cell_mm = 2 * std::max(detail::mean_edge_length(complex), options.target_edge_mm);
-    const Reference reference(input, cell_mm);
+    const Reference reference(
+        input, cell_mm,
+        {.target_edge_mm = largest_target(options),
+         .edges_per_mm = options.edge_per_thickness,
+         .min_edge_mm = options.min_edge_mm > 0 ? options.min_edge_mm : largest_target(options) / 3});
+    report.thin_triangles = reference.sizing().thin_triangles();
     const auto began = std::chrono::steady_clock::now();
     const auto seconds = [&] {
         return format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1);

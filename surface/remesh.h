@@ -24,6 +24,11 @@ struct RemeshOptions {
     /// Smallest angle kept between neighbouring triangles around an edge that holds a tissue (unless an edit
     /// leaves it no smaller than before): it bounds the dihedral angles of the tets there (0: no rule).
     double min_sector_deg = 15;
+    /// Edges no longer than this many times the thickness of the tissue layer they bound, measured on the
+    /// input along its normals, and growing by at most half their distance from thin places (0: no such
+    /// limit). A layer thinner than its edges is filled with flat tets (surface/detail/layer_sizing.h).
+    double edge_per_thickness = 0;
+    double min_edge_mm = 0; ///< with edge_per_thickness: no target below this (0: a third of target_edge_mm)
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
     /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
@@ -47,7 +52,8 @@ struct RemeshReport {
     double min_sector_before_deg = 0;
     double min_sector_after_deg = 0;
     double mean_edge_after_mm = 0;
-    double max_distance_mm = 0; ///< largest distance of a final vertex to the input surface
+    double max_distance_mm = 0;     ///< largest distance of a final vertex to the input surface
+    std::size_t thin_triangles = 0; ///< input triangles on layers thinner than edge_per_thickness allows
 };
 
 /// Remeshes `complex` in place towards edges of the target length (Botsch and Kobbelt 2004): split edges

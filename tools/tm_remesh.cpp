@@ -73,6 +73,16 @@ int main(int argc, char** argv)
                    "Smallest angle an edit may leave between neighbouring triangles around an edge, on the side "
                    "of a tissue (it bounds the dihedral angles of tm-tetra's tets there; 0: no rule)")
                 ->capture_default_str();
+            app.add_option("--edge-per-thickness", options.edge_per_thickness,
+                           "Edges at most this many times the thickness of the tissue layer they bound (measured "
+                           "on the input along its normals), graded away from thin places; a layer thinner than "
+                           "its edges is filled with flat tets (0: no such limit)")
+                ->check(CLI::Range(0.0, 100.0))
+                ->capture_default_str();
+            app.add_option("--min-edge-mm", options.min_edge_mm,
+                           "With --edge-per-thickness: no edge target below this (0: a third of --edge-mm)")
+                ->check(CLI::Range(0.0, 1e6))
+                ->capture_default_str();
             app.add_option(
                    "--slabs", options.slabs,
                    "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
@@ -110,6 +120,7 @@ int main(int argc, char** argv)
                            {"min_sector_after_deg", report.min_sector_after_deg},
                            {"mean_edge_after_mm", report.mean_edge_after_mm},
                            {"max_distance_to_input_mm", report.max_distance_mm},
+                           {"thin_triangles", report.thin_triangles},
                            {"seconds_remesh", seconds}};
         });
 }

@@ -13,6 +13,7 @@
 
 #include "core/interface_complex.h"
 #include "surface/detail/box_index.h"
+#include "surface/detail/layer_sizing.h"
 #include "surface/detail/triangle_distance.h"
 
 namespace tissuemesh::surface::detail {
@@ -34,7 +35,9 @@ inline double box_distance(const Vec3& p, const Box3& box)
 /// The input surface, for projecting vertices back: its triangles by tissue pair, and its junction edges.
 class Reference {
 public:
-    Reference(const InterfaceComplex& input, double cell_mm) : input_(input), cell_mm_(cell_mm)
+    /// `sizing`: the target edge lengths by layer thickness (size_at()), measured on `input`.
+    Reference(const InterfaceComplex& input, double cell_mm, const LayerSizingOptions& sizing = {})
+        : input_(input), cell_mm_(cell_mm), sizing_(input, input.background, sizing)
     {
         std::vector<CompactBox> boxes(input.triangle_count());
         std::vector<std::uint32_t> ids(input.triangle_count());
@@ -121,8 +124,15 @@ private:
         }
     }
 
+public:
+    /// The target edge length at p by the thickness of the input's layers there (LayerSizing).
+    double size_at(const Vec3& p) const { return sizing_.at(p); }
+    const LayerSizing& sizing() const { return sizing_; }
+
+private:
     const InterfaceComplex& input_;
     double cell_mm_;
+    LayerSizing sizing_;
     BoxIndex triangles_; ///< the input's triangles by their boxes
     BoxIndex segments_;  ///< its junction edges by their boxes
     std::vector<std::pair<std::uint32_t, std::uint32_t>> junction_;

@@ -11,6 +11,7 @@
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
 #include "surface/detail/edge_fan.h"
+#include "surface/detail/layer_sizing.h"
 #include "surface/extract_interfaces.h"
 #include "surface/remesh.h"
 #include "surface/smooth.h"
@@ -70,6 +71,78 @@ TEST(Remesh, TheChainKeepsEveryTissueSectorOpen)
               << with << " with it\n";
     EXPECT_GE(with, 15);
     EXPECT_LT(without, 15);
+}
+
+/// Two squares 10 mm wide, `gap` mm apart along z, tissue 1 between them and the background (0) around.
+InterfaceComplex slab_between_squares(double gap)
+{
+    InterfaceComplex complex;
+    complex.vertices = {{0, 0, 0},   {10, 0, 0},   {10, 10, 0},   {0, 10, 0},
+                        {0, 0, gap}, {10, 0, gap}, {10, 10, gap}, {0, 10, gap}};
+    // Normals point from `from` into `to`: +z on both, from the background into the layer below it, out above.
+    complex.add_triangle({0, 1, 2}, {0, 1});
+    complex.add_triangle({0, 2, 3}, {0, 1});
+    complex.add_triangle({4, 5, 6}, {1, 0});
+    complex.add_triangle({4, 6, 7}, {1, 0});
+    return complex;
+}
+
+TEST(LayerSizing, AThinLayerGetsEdgesByItsThicknessGradedAwayFromIt)
+{
+    const surface::detail::LayerSizingOptions options{
+        .target_edge_mm = 6, .edges_per_mm = 2, .min_edge_mm = 0.5, .growth = 0.5};
+    const surface::detail::LayerSizing thin(slab_between_squares(1), 0, options);
+    // Every triangle sees the other square 1 mm away across the layer (not across the background).
+    EXPECT_EQ(thin.thin_triangles(), 4u);
+    EXPECT_NEAR(thin.at({5, 5, 0.5}), 2.0, 1e-6);
+    EXPECT_NEAR(thin.smallest_mm(), 2.0, 1e-6);
+    EXPECT_EQ(thin.at({500, 5, 0.5}), 6.0); // outside the complex's box
+    // Away from the layer the target grows by about half the distance (to within a cell of 2 mm), up to the
+    // target: a triangle 30 mm away, with nothing across it, widens the field's box.
+    InterfaceComplex wider = slab_between_squares(1);
+    wider.vertices.insert(wider.vertices.end(), {{40, 0, 0}, {40, 10, 0}, {45, 5, 0}});
+    wider.add_triangle({8, 9, 10}, {0, 2});
+    const surface::detail::LayerSizing graded(wider, 0, options);
+    EXPECT_EQ(graded.thin_triangles(), 4u);
+    const double near = graded.at({14, 5, 0.5}), far = graded.at({30, 5, 0.5});
+    EXPECT_GT(near, 2.0 + 0.5 * 2);
+    EXPECT_LT(near, 2.0 + 0.5 * 6);
+    EXPECT_EQ(far, 6.0);
+    // A layer thicker than the target allows (6 / 2 = 3 mm) keeps the target; so does no sizing at all.
+    const surface::detail::LayerSizing thick(slab_between_squares(4), 0, options);
+    EXPECT_EQ(thick.thin_triangles(), 0u);
+    EXPECT_EQ(thick.at({5, 5, 2}), 6.0);
+    const surface::detail::LayerSizing none(slab_between_squares(1), 0, {.target_edge_mm = 6});
+    EXPECT_EQ(none.at({5, 5, 0.5}), 6.0);
+}
+
+/// The `thin` phantom's shell is one voxel (2 mm) thick: decimated and remeshed to 8 mm edges it is a layer four
+/// times thinner than its edges (tm-tetra fills it with flat tets); with two edges per mm of thickness its edges
+/// shrink towards 4 mm, and the complex stays valid with the same pieces.
+TEST(Remesh, EdgesFollowTheThicknessOfAThinLayer)
+{
+    const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = 2.0});
+    InterfaceComplex decimated = surface::extract_interfaces(phantom.image);
+    const surface::CheckReport before = surface::check_complex(decimated);
+    surface::decimate(decimated, {.max_distance_mm = 1, .max_edge_mm = 10, .max_normal_change_deg = 45});
+    const auto remeshed = [&](double edge_per_thickness) {
+        InterfaceComplex complex = decimated;
+        const surface::RemeshReport report =
+            surface::remesh(complex, {.target_edge_mm = 4, .edge_per_thickness = edge_per_thickness});
+        expect_same_tissues(before, surface::check_complex(complex));
+        return report;
+    };
+    const surface::RemeshReport plain = remeshed(0), sized = remeshed(1);
+    std::cout << "[ figures  ] thin 2 mm remeshed to 8 mm edges: mean edge " << plain.mean_edge_after_mm << " mm, "
+              << plain.triangles_after << " triangles; with 2 edges per mm of thickness " << sized.mean_edge_after_mm
+              << " mm, " << sized.triangles_after << " triangles (" << sized.thin_triangles << " of "
+              << decimated.triangle_count() << " input triangles on a thin layer)\n";
+    EXPECT_EQ(plain.thin_triangles, 0u);
+    EXPECT_GT(sized.thin_triangles, decimated.triangle_count() / 2);
+    EXPECT_LT(sized.mean_edge_after_mm, 0.75 * plain.mean_edge_after_mm);
+    EXPECT_GT(sized.triangles_after, 2 * plain.triangles_after);
+    InterfaceComplex complex = decimated;
+    EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 4, .edge_per_thickness = -1}), InputError);
 }
 
 TEST(Remesh, RejectsMissingTarget)

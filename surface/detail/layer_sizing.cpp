@@ -1,0 +1,152 @@
+#include "surface/detail/layer_sizing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "surface/detail/box_index.h"
+
+namespace tissuemesh::surface::detail {
+namespace {
+
+/// Where the ray from o along unit d first meets triangle c, within `reach` (Moller and Trumbore 1997).
+std::optional<double> ray_hit(const Vec3& o, const Vec3& d, const TriangleCorners& c, double reach)
+{
+    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (std::abs(det) < 1e-14 * dot(e1, e1)) return std::nullopt; // parallel to the plane
+    const Vec3 s = o - c[0];
+    const double u = dot(s, p) / det;
+    if (u < 0 || u > 1) return std::nullopt;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(d, q) / det;
+    if (v < 0 || u + v > 1) return std::nullopt;
+    const double t = dot(e2, q) / det;
+    if (!(t > 0 && t <= reach)) return std::nullopt;
+    return t;
+}
+
+} // namespace
+
+LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, const LayerSizingOptions& options)
+    : target_mm_(options.target_edge_mm)
+{
+    if (!(options.edges_per_mm > 0) || !(options.target_edge_mm > 0) || complex.triangles.empty()) return;
+    const double smallest = std::clamp(options.min_edge_mm, 1e-3, options.target_edge_mm);
+    // Thicker than this, a layer takes the target as it is.
+    const double reach = options.target_edge_mm / options.edges_per_mm;
+    const auto corners = [&](std::uint32_t t) {
+        const Triangle& tri = complex.triangles[t];
+        return TriangleCorners{complex.vertices[tri[0]], complex.vertices[tri[1]], complex.vertices[tri[2]]};
+    };
+    std::vector<CompactBox> boxes(complex.triangle_count());
+    std::vector<std::uint32_t> ids(complex.triangle_count());
+    Box3 all{complex.vertices[complex.triangles[0][0]], complex.vertices[complex.triangles[0][0]]};
+    for (std::uint32_t t = 0; t < complex.triangle_count(); ++t) {
+        const Box3 box = bounding_box(corners(t));
+        boxes[t] = compact(box), ids[t] = t;
+        all = box_union(all, box);
+    }
+    const BoxIndex index(boxes, ids);
+    // The grid: cells of a third of the target (at least the smallest edge), fewer when too many.
+    cell_mm_ = std::max(smallest, options.target_edge_mm / 3);
+    const auto count_cells = [&] {
+        for (int a = 0; a < 3; ++a) {
+            origin_[a] = all.low[a] - cell_mm_;
+            counts_[a] = static_cast<std::int64_t>((all.high[a] - all.low[a]) / cell_mm_) + 3;
+        }
+        return static_cast<double>(counts_[0]) * static_cast<double>(counts_[1]) * static_cast<double>(counts_[2]);
+    };
+    while (count_cells() > 1 << 24) cell_mm_ *= 1.25;
+    size_.assign(static_cast<std::size_t>(counts_[0] * counts_[1] * counts_[2]),
+                 static_cast<float>(options.target_edge_mm));
+    const auto cell_of = [&](const Vec3& p) {
+        std::array<std::int64_t, 3> c{};
+        for (int a = 0; a < 3; ++a)
+            c[a] = std::clamp(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_mm_)), std::int64_t{0},
+                              counts_[a] - 1);
+        return c;
+    };
+    const auto index_of = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+        return static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
+    };
+    // Each triangle: the thinnest of the layers on its sides, as a target on the cells its box overlaps.
+    for (std::uint32_t t = 0; t < complex.triangle_count(); ++t) {
+        const TriangleCorners c = corners(t);
+        const Vec3 normal = cross(c[1] - c[0], c[2] - c[0]);
+        const double area2 = norm(normal);
+        if (!(area2 > 0)) continue;
+        const Vec3 n = (1 / area2) * normal;
+        const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
+        double thickness = reach;
+        for (const int sign : {1, -1}) {
+            // Normals point from `from` into `to`.
+            const Label tissue = sign > 0 ? complex.sides[t].to : complex.sides[t].from;
+            if (tissue == background) continue;
+            const Vec3 d = static_cast<double>(sign) * n;
+            const Vec3 end = centre + reach * d;
+            Box3 ray{centre, centre};
+            for (int a = 0; a < 3; ++a)
+                ray.low[a] = std::min(centre[a], end[a]), ray.high[a] = std::max(centre[a], end[a]);
+            index.visit(ray, [&](std::uint32_t u) {
+                if (u == t) return;
+                if (const std::optional<double> hit = ray_hit(centre, d, corners(u), thickness)) thickness = *hit;
+            });
+        }
+        if (!(thickness < reach)) continue;
+        ++thin_triangles_;
+        const auto size = static_cast<float>(std::max(smallest, options.edges_per_mm * thickness));
+        const Box3 box = bounding_box(c);
+        const auto low = cell_of(box.low), high = cell_of(box.high);
+        for (std::int64_t k = low[2]; k <= high[2]; ++k)
+            for (std::int64_t j = low[1]; j <= high[1]; ++j)
+                for (std::int64_t i = low[0]; i <= high[0]; ++i) {
+                    float& s = size_[index_of(i, j, k)];
+                    s = std::min(s, size);
+                }
+    }
+    // Grading: no cell more than `growth` per mm above a neighbour (a sweep each way, each from the 13
+    // neighbours it has passed, as a chamfer distance transform).
+    const auto grade = [&](int direction) {
+        const std::int64_t nx = counts_[0], ny = counts_[1], nz = counts_[2];
+        for (std::int64_t n = 0; n < nx * ny * nz; ++n) {
+            const std::int64_t m = direction > 0 ? n : nx * ny * nz - 1 - n;
+            const std::int64_t i = m % nx, j = (m / nx) % ny, k = m / (nx * ny);
+            float& s = size_[static_cast<std::size_t>(m)];
+            for (std::int64_t dk = -1; dk <= 1; ++dk)
+                for (std::int64_t dj = -1; dj <= 1; ++dj)
+                    for (std::int64_t di = -1; di <= 1; ++di) {
+                        const std::int64_t a = i + di, b = j + dj, c = k + dk;
+                        if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
+                        // Forwards from the neighbours already swept, backwards likewise.
+                        if ((a + nx * (b + ny * c) < m) != (direction > 0)) continue;
+                        const double step =
+                            cell_mm_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk));
+                        s = std::min(s, static_cast<float>(size_[index_of(a, b, c)] + options.growth * step));
+                    }
+        }
+    };
+    grade(1);
+    grade(-1);
+}
+
+double LayerSizing::at(const Vec3& p) const
+{
+    if (size_.empty()) return target_mm_;
+    std::array<std::int64_t, 3> c{};
+    for (int a = 0; a < 3; ++a) {
+        const double x = std::floor((p[a] - origin_[a]) / cell_mm_);
+        if (x < 0 || x >= static_cast<double>(counts_[a])) return target_mm_;
+        c[a] = static_cast<std::int64_t>(x);
+    }
+    return size_[static_cast<std::size_t>(c[0] + counts_[0] * (c[1] + counts_[1] * c[2]))];
+}
+
+double LayerSizing::smallest_mm() const
+{
+    return size_.empty() ? target_mm_ : static_cast<double>(*std::min_element(size_.begin(), size_.end()));
+}
+
+} // namespace tissuemesh::surface::detail
