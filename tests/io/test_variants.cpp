@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "tests/io/expect_error.h"
+#include "tests/io/expect_read_error.h"
 #include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 
@@ -14,6 +15,7 @@ namespace tissuemesh {
 namespace {
 
 using testing::expect_error;
+using testing::expect_read_error;
 
 void write_text(const std::filesystem::path& path, const std::string& text, const std::string& data = {})
 {
@@ -35,8 +37,7 @@ TEST(Variants, BigEndianNifti)
     EXPECT_FLOAT_EQ(static_cast<float>(image.spacing_mm()[2]), 2.5f);
     spec.spacing[2] = 0;
     testing::write_nifti(dir / "bigzero.nii", spec, std::vector<unsigned char>(16, 0));
-    expect_error<InputError>([&] { io::read_label_image(dir / "bigzero.nii"); },
-                             {"bigzero.nii: spacing along axis 2 is 0 mm"});
+    expect_read_error<InputError>(dir / "bigzero.nii", {"bigzero.nii: spacing along axis 2 is 0 mm"});
 }
 
 TEST(Variants, NrrdInRasSpace)
@@ -72,8 +73,7 @@ TEST(Variants, SlicerSegmentationNames)
                std::string("\0\1\1\2\0\0\2\2", 8));
     EXPECT_EQ(io::read_label_image(dir / "old.seg.nrrd").names(), (TissueNames{{1, "scalp"}, {2, "skull"}}));
     write_text(dir / "bad.seg.nrrd", head + "Segment0_Name:=scalp\nSegment0_LabelValue:=-4\n\n", std::string(8, '\0'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "bad.seg.nrrd"); },
-                             {"bad.seg.nrrd: segment 0 (scalp) has label value '-4'"});
+    expect_read_error<InputError>(dir / "bad.seg.nrrd", {"bad.seg.nrrd: segment 0 (scalp) has label value '-4'"});
 }
 
 TEST(Variants, NamesJsonOverridesTheFilesNames)
