@@ -16,11 +16,7 @@ namespace {
 
 using testing::expect_error;
 using testing::expect_read_error;
-
-void write_text(const std::filesystem::path& path, const std::string& text, const std::string& data = {})
-{
-    std::ofstream(path, std::ios::binary) << text << data;
-}
+using testing::write_text;
 
 std::string inr_header(const std::string& fields)
 {
@@ -34,8 +30,8 @@ const std::string inr_fields = "XDIM=2\nYDIM=2\nZDIM=2\nVDIM=1\nTYPE=unsigned fi
 TEST(BadInrimage, ControlReads)
 {
     testing::TempDir dir;
-    write_text(dir / "ok.inr", inr_header(inr_fields + "VX=0.5\nVY=1\nVZ=2\nTX=1\nTY=2\nTZ=3\n"),
-               std::string("\0\1\2\3\4\5\6\7", 8));
+    write_text(dir / "ok.inr",
+               inr_header(inr_fields + "VX=0.5\nVY=1\nVZ=2\nTX=1\nTY=2\nTZ=3\n") + std::string("\0\1\2\3\4\5\6\7", 8));
     const LabelImage image = io::read_label_image(dir / "ok.inr");
     EXPECT_EQ(image.at(1, 1, 1), 7);
     EXPECT_EQ(image.spacing_mm(), (Vec3{0.5, 1, 2}));
@@ -45,19 +41,19 @@ TEST(BadInrimage, ControlReads)
 TEST(BadInrimage, TruncatedWrongMagicVectorAndSpacing)
 {
     testing::TempDir dir;
-    write_text(dir / "short.inr", inr_header(inr_fields), "\1\2\3");
+    write_text(dir / "short.inr", inr_header(inr_fields) + "\1\2\3");
     expect_read_error<IoError>(dir / "short.inr", {"short.inr: truncated", "holds 3"});
     write_text(dir / "cut.inr", "#INRIMAGE-4#{\nXDIM=2\n");
     expect_read_error<IoError>(dir / "cut.inr", {"cut.inr: truncated Inrimage header"});
     write_text(dir / "magic.inr", std::string(300, 'x'));
     expect_read_error<IoError>(dir / "magic.inr", {"magic.inr: not an Inrimage", "magic"});
-    write_text(dir / "vector.inr", inr_header("XDIM=2\nYDIM=2\nZDIM=2\nVDIM=3\n"), std::string(24, '\1'));
+    write_text(dir / "vector.inr", inr_header("XDIM=2\nYDIM=2\nZDIM=2\nVDIM=3\n") + std::string(24, '\1'));
     expect_read_error<InputError>(dir / "vector.inr", {"vector.inr: 3 values per voxel"});
-    write_text(dir / "zero.inr", inr_header(inr_fields + "VX=0\n"), std::string(8, '\1'));
+    write_text(dir / "zero.inr", inr_header(inr_fields + "VX=0\n") + std::string(8, '\1'));
     expect_read_error<InputError>(dir / "zero.inr", {"zero.inr: spacing along axis 0 is 0 mm"});
-    write_text(dir / "nan.inr", inr_header(inr_fields + "VZ=nan\n"), std::string(8, '\1'));
+    write_text(dir / "nan.inr", inr_header(inr_fields + "VZ=nan\n") + std::string(8, '\1'));
     expect_read_error<InputError>(dir / "nan.inr", {"nan.inr: spacing along axis 2 is nan mm"});
-    write_text(dir / "huge.inr", inr_header("XDIM=4000000000\nYDIM=4000000000\nZDIM=4000000000\n"), "\1");
+    write_text(dir / "huge.inr", inr_header("XDIM=4000000000\nYDIM=4000000000\nZDIM=4000000000\n") + "\1");
     expect_read_error<InputError>(dir / "huge.inr", {"huge.inr: dimensions", "overflow"});
 }
 
@@ -131,8 +127,8 @@ const std::string nrrd_head = "NRRD0004\ntype: uint8\ndimension: 3\nspace: left-
 TEST(BadNrrd, ControlReads)
 {
     testing::TempDir dir;
-    write_text(dir / "ok.nrrd", nrrd_head + "space directions: (1,0,0) (0,2,0) (0,0,3)\nspace origin: (1,2,3)\n\n",
-               std::string("\0\1\2\3\4\5\6\7", 8));
+    write_text(dir / "ok.nrrd", nrrd_head + "space directions: (1,0,0) (0,2,0) (0,0,3)\nspace origin: (1,2,3)\n\n" +
+                                    std::string("\0\1\2\3\4\5\6\7", 8));
     const LabelImage image = io::read_label_image(dir / "ok.nrrd");
     EXPECT_EQ(image.at(1, 1, 1), 7);
     EXPECT_EQ(image.spacing_mm(), (Vec3{1, 2, 3}));
@@ -144,24 +140,24 @@ TEST(BadNrrd, TruncatedZeroSpacingVectorsAndLayers)
 {
     testing::TempDir dir;
     const std::string geometry = "space directions: (1,0,0) (0,1,0) (0,0,1)\n\n";
-    write_text(dir / "short.nrrd", nrrd_head + geometry, "\1\2\3");
+    write_text(dir / "short.nrrd", nrrd_head + geometry + "\1\2\3");
     expect_read_error<IoError>(dir / "short.nrrd", {"short.nrrd: truncated", "need 8 bytes"});
     write_text(dir / "magic.nrrd", "PNG\n" + geometry);
     expect_read_error<IoError>(dir / "magic.nrrd", {"magic.nrrd: not a NRRD file", "magic"});
-    write_text(dir / "zero.nrrd", nrrd_head + "space directions: (1,0,0) (0,0,0) (0,0,1)\n\n", std::string(8, '\1'));
+    write_text(dir / "zero.nrrd", nrrd_head + "space directions: (1,0,0) (0,0,0) (0,0,1)\n\n" + std::string(8, '\1'));
     expect_read_error<InputError>(dir / "zero.nrrd", {"zero.nrrd: spacing along axis 1 is 0 mm"});
     write_text(dir / "vector.nrrd",
                "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 3 2 2 2\nkinds: vector domain domain domain\nendian: little\nencoding: raw\n"
-               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n",
-               std::string(24, '\1'));
+               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n" +
+                   std::string(24, '\1'));
     expect_read_error<InputError>(dir / "vector.nrrd", {"vector.nrrd: 3 values per voxel"});
     write_text(dir / "layers.seg.nrrd",
                "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 2 2 2 2\nkinds: list domain domain domain\nendian: little\nencoding: raw\n"
                "space directions: none (1,0,0) (0,1,0) (0,0,1)\nSegment0_Name:=a\nSegment0_Layer:=0\n"
-               "Segment1_Name:=b\nSegment1_Layer:=1\n\n",
-               std::string(16, '\1'));
+               "Segment1_Name:=b\nSegment1_Layer:=1\n\n" +
+                   std::string(16, '\1'));
     expect_read_error<InputError>(dir / "layers.seg.nrrd",
                                   {"layers.seg.nrrd: a segmentation with 2 layers", "single-layer"});
 }
@@ -193,7 +189,7 @@ TEST(BadMetaImage, TruncatedAndWrongMagic)
     testing::TempDir dir;
     const std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 1 1 1\n"
                                "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n";
-    write_text(dir / "short.mha", header, "\1\2\3");
+    write_text(dir / "short.mha", header + "\1\2\3");
     expect_read_error<IoError>(dir / "short.mha", {"short.mha: truncated", "holds 3"});
     write_text(dir / "magic.mha", "hello world\n");
     expect_read_error<IoError>(dir / "magic.mha", {"magic.mha: not a MetaImage file"});
