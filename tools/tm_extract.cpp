@@ -25,11 +25,6 @@ using namespace tissuemesh;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// DIR/<label>_<name>.<format>, the name reduced to [A-Za-z0-9_-].
 fs::path tissue_path(const fs::path& dir, const InterfaceComplex& complex, Label label, const std::string& format)
 {
@@ -183,7 +178,7 @@ int main(int argc, char** argv)
             read_options.before_voxels = tools::image_memory_check(
                 ctx.memory, input, read_bytes_per_voxel, "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
-            const double read_seconds = seconds_since(start);
+            const double read_seconds = tools::seconds_since(start);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
             // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
             const bool nets = method == "surface-nets";
@@ -217,11 +212,11 @@ int main(int argc, char** argv)
             if (streamed) {
                 io::write_surface_streamed(output, [&](InterfaceSink& ply) {
                     extract(ply);
-                    extract_seconds = seconds_since(start);
+                    extract_seconds = tools::seconds_since(start);
                 });
             } else {
                 extract(collector);
-                extract_seconds = seconds_since(start);
+                extract_seconds = tools::seconds_since(start);
                 io::write_surface(collector.complex(), output);
             }
             const surface::InterfaceSummary counts = counter.summary();
@@ -243,7 +238,7 @@ int main(int argc, char** argv)
                            {"streamed", streamed},
                            {"seconds_read", read_seconds},
                            {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start) - extract_seconds},
+                           {"seconds_write", tools::seconds_since(start) - extract_seconds},
                            {"method", method}};
             if (nets)
                 ctx.summary["surface_nets"] = {{"mixed_cubes", nets_report.mixed_cubes},

@@ -67,7 +67,7 @@ int main(int argc, char** argv)
                     const auto start = std::chrono::steady_clock::now();
                     const std::vector<double> phi =
                         fem::solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-10}, context.progress);
-                    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    seconds += tools::seconds_since(start);
                     std::vector<double> numeric;
                     std::vector<Vec3> points;
                     for (const std::uint32_t node : surface)
