@@ -161,8 +161,7 @@ int main(int argc, char** argv)
                            "surface-nets: a vertex stays within this distance of the voxels of each of its tissues")
                 ->check(CLI::Range(0.01, 1.0))
                 ->capture_default_str();
-            app.add_option("--labels", read_options.names_json,
-                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+            tools::add_labels_option(app, read_options.names_json);
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
             app.add_option("--per-tissue-format", per_tissue_format, "Format of the per-tissue surfaces")
