@@ -1,7 +1,5 @@
 #include "core/interface_complex.h"
 
-#include <cmath>
-
 #include "core/error.h"
 
 namespace tissuemesh {
@@ -12,11 +10,8 @@ void validate_indices(const InterfaceComplex& complex, const std::string& what)
         throw InputError(concat(what, ": ", complex.triangles.size(), " triangles but ", complex.sides.size(),
                                 " label pairs; every triangle needs the two tissues it separates"));
     for (std::size_t v = 0; v < complex.vertices.size(); ++v)
-        for (const double c : complex.vertices[v])
-            if (!std::isfinite(c))
-                throw InputError(concat(what, ": vertex ", v,
-                                        " has a non-finite coordinate; the surface "
-                                        "file is corrupt"));
+        if (!is_finite(complex.vertices[v]))
+            throw InputError(concat(what, ": vertex ", v, " has a non-finite coordinate; the surface file is corrupt"));
     for (std::size_t t = 0; t < complex.triangles.size(); ++t) {
         const Triangle& tri = complex.triangles[t];
         for (const std::uint32_t v : tri)

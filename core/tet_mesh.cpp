@@ -1,7 +1,5 @@
 #include "core/tet_mesh.h"
 
-#include <cmath>
-
 #include "core/error.h"
 
 namespace tissuemesh {
@@ -24,11 +22,8 @@ void validate_indices(const TetMesh& mesh, const std::string& what)
     if (mesh.face_sides.size() != mesh.faces.size())
         throw InputError(concat(what, ": ", mesh.faces.size(), " faces but ", mesh.face_sides.size(), " label pairs"));
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-        for (const double c : mesh.vertices[v])
-            if (!std::isfinite(c))
-                throw InputError(concat(what, ": node ", v,
-                                        " has a non-finite coordinate; the mesh file is "
-                                        "corrupt"));
+        if (!is_finite(mesh.vertices[v]))
+            throw InputError(concat(what, ": node ", v, " has a non-finite coordinate; the mesh file is corrupt"));
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         for (const std::uint32_t v : mesh.tets[t])
             if (v >= mesh.vertices.size())

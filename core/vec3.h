@@ -21,6 +21,8 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+/// Whether every component is finite (no NaN, no infinity).
+inline bool is_finite(const Vec3& a) { return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]); }
 inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
 
 inline Vec3 multiply(const Mat3& m, const Vec3& v)

@@ -1,7 +1,6 @@
 #include "io/write_surface_streamed.h"
 
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
@@ -111,7 +110,7 @@ public:
                                     " label pairs for ", piece.triangles.size(), " triangles; the producer is broken"));
         bytes_.clear();
         for (const Vec3& v : piece.vertices) {
-            if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
+            if (!is_finite(v))
                 throw InputError(concat(what_.string(), ": vertex ",
                                         vertex_count_ + static_cast<std::size_t>(&v - piece.vertices.data()),
                                         " has a non-finite coordinate"));

@@ -51,7 +51,7 @@ void fill_gradient(Canvas& canvas, const std::array<Point2, 3>& p, const std::ar
     const long y0 = std::max(0L, static_cast<long>(std::floor(std::min({p[0][1], p[1][1], p[2][1]}))));
     const long y1 = std::min(static_cast<long>(canvas.height()) - 1,
                              static_cast<long>(std::ceil(std::max({p[0][1], p[1][1], p[2][1]}))));
-    const bool finite = std::isfinite(value[0]) && std::isfinite(value[1]) && std::isfinite(value[2]);
+    const bool finite = is_finite(value);
     for (long y = y0; y <= y1; ++y)
         for (long x = x0; x <= x1; ++x) {
             const double px = static_cast<double>(x) + 0.5, py = static_cast<double>(y) + 0.5;

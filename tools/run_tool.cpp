@@ -188,7 +188,7 @@ int run_tool(int argc, char** argv, const ToolSpec& spec, const std::function<vo
         code = 1, message = concat("internal error: ", e.what(), "; please report it with the input");
     }
     if (code == 0) code = context.exit_code;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = seconds_since(start);
     if (!message.empty()) std::fprintf(stderr, "%s: error: %s\n", spec.name.c_str(), one_line(message).c_str());
 
     if (!json_path.empty()) {

@@ -2,6 +2,7 @@
 // errors into exit codes: 0 done, 1 the step failed on valid input, 2 bad usage or bad input.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -31,6 +32,12 @@ struct ToolContext {
     /// Prints "[tool] text" on stderr unless quiet.
     void log(std::string_view text) const;
 };
+
+/// Seconds since `start` on the steady clock, for the timings of the summaries and the log.
+inline double seconds_since(std::chrono::steady_clock::time_point start)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// Runs `step` on data read from `source` (a file name): an InputError it throws about the data gets the
 /// file's name in front, so the one error line says which file is at fault.

@@ -71,7 +71,7 @@ double run_checked_step(const InterfaceComplex& complex, const std::string& outp
 {
     const auto start = std::chrono::steady_clock::now();
     step();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = seconds_since(start);
     surface::require_fit_for_tetrahedralization(complex, concat(output, " (", what, ")"));
     return seconds;
 }

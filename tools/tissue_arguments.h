@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "core/interface_complex.h"
 #include "core/label_image.h"
 #include "core/tet_mesh.h"
@@ -20,6 +22,15 @@ struct TissueTable {
     std::set<Label> present; ///< labels the input holds; empty: unknown, any label 0..65535 is taken
     std::string source;      ///< the input's file name, for the messages ("" when none)
 };
+
+/// Adds --labels FILE, the tissue names of a tool's label image (the formats io::read_tissue_names() reads), into
+/// `names_file` (a string or a path), and returns the option for the tool's own settings.
+template <typename File>
+CLI::Option* add_labels_option(CLI::App& app, File& names_file)
+{
+    return app.add_option("--labels", names_file,
+                          "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+}
 
 /// The tissues of a label image: its names (from the file or --labels) and the labels of its voxels.
 TissueTable tissue_table(const LabelImage& image, const std::string& source);

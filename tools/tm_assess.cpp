@@ -152,7 +152,7 @@ int main(int argc, char** argv)
             }
             const auto start = std::chrono::steady_clock::now();
             volume::Assessment assessment = volume::assess_elements(mesh, image, options, context.progress);
-            const std::chrono::duration<double> assess_seconds = std::chrono::steady_clock::now() - start;
+            const double assess_seconds = tools::seconds_since(start);
             std::size_t relabelled = 0;
             if (relabel) {
                 for (std::size_t t = 0; t < mesh.tets.size(); ++t)
@@ -170,7 +170,7 @@ int main(int argc, char** argv)
                 context.progress.warn("assess",
                                       "no voxel centre lies inside the mesh; are mesh and image in the same mm frame?");
             context.summary = summarize(mesh, assessment, relabelled);
-            context.summary["assess_seconds"] = assess_seconds.count();
+            context.summary["assess_seconds"] = assess_seconds;
             context.summary["image_voxels"] = image.voxel_count();
             context.summary["extract_priority"] = tools::priority_summary(options.extract_priority);
             std::printf(

@@ -16,11 +16,6 @@ using namespace tissuemesh;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// The interface and boundary faces of a tet mesh as an interface complex (every vertex kept).
 InterfaceComplex faces_of(const TetMesh& mesh)
 {
@@ -78,7 +73,7 @@ int main(int argc, char** argv)
                 else content.mesh = io::read_tet_mesh(input);
                 const TetMesh& mesh = content.mesh;
                 const io::TetMeshWriteOptions options = flags.to_write_options(mesh);
-                const double read_seconds = seconds_since(start);
+                const double read_seconds = tools::seconds_since(start);
                 start = std::chrono::steady_clock::now();
                 if (arrays)
                     io::write_vtu(mesh, output, content.point_arrays, content.cell_arrays,
@@ -97,13 +92,13 @@ int main(int argc, char** argv)
                                    {"tissues", tissues.size()},
                                    {"arrays", content.point_arrays.size() + content.cell_arrays.size()},
                                    {"seconds_read", read_seconds},
-                                   {"seconds_write", seconds_since(start)}};
+                                   {"seconds_write", tools::seconds_since(start)}};
                 return;
             }
             if (flags.numbering != "labels")
                 throw InputError(concat(output, ": --tissue-numbering is for tet meshes; a surface keeps its labels"));
             const InterfaceComplex complex = io::read_surface(input);
-            const double read_seconds = seconds_since(start);
+            const double read_seconds = tools::seconds_since(start);
             start = std::chrono::steady_clock::now();
             io::write_surface(complex, output, io::SurfaceWriteOptions{.ascii = surface_ascii});
             std::set<std::pair<Label, Label>> pairs;
@@ -117,6 +112,6 @@ int main(int argc, char** argv)
                                {"triangles", complex.triangles.size()},
                                {"tissue_pairs", pairs.size()},
                                {"seconds_read", read_seconds},
-                               {"seconds_write", seconds_since(start)}};
+                               {"seconds_write", tools::seconds_since(start)}};
         });
 }

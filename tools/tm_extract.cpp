@@ -25,11 +25,6 @@ using namespace tissuemesh;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// DIR/<label>_<name>.<format>, the name reduced to [A-Za-z0-9_-].
 fs::path tissue_path(const fs::path& dir, const InterfaceComplex& complex, Label label, const std::string& format)
 {
@@ -166,8 +161,7 @@ int main(int argc, char** argv)
                            "surface-nets: a vertex stays within this distance of the voxels of each of its tissues")
                 ->check(CLI::Range(0.01, 1.0))
                 ->capture_default_str();
-            app.add_option("--labels", read_options.names_json,
-                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+            tools::add_labels_option(app, read_options.names_json);
             app.add_option("--per-tissue", per_tissue_dir, "Also write one closed surface per tissue into DIR")
                 ->type_name("DIR");
             app.add_option("--per-tissue-format", per_tissue_format, "Format of the per-tissue surfaces")
@@ -183,7 +177,7 @@ int main(int argc, char** argv)
             read_options.before_voxels = tools::image_memory_check(
                 ctx.memory, input, read_bytes_per_voxel, "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)");
             const LabelImage image = io::read_label_image(input, read_options);
-            const double read_seconds = seconds_since(start);
+            const double read_seconds = tools::seconds_since(start);
             // A lone .ply is written slab by slab as extraction goes, never held whole (the 1 mm head's
             // complex is ~180 MB); .vtp and --per-tissue need the whole complex in memory. Same bytes.
             const bool nets = method == "surface-nets";
@@ -217,11 +211,11 @@ int main(int argc, char** argv)
             if (streamed) {
                 io::write_surface_streamed(output, [&](InterfaceSink& ply) {
                     extract(ply);
-                    extract_seconds = seconds_since(start);
+                    extract_seconds = tools::seconds_since(start);
                 });
             } else {
                 extract(collector);
-                extract_seconds = seconds_since(start);
+                extract_seconds = tools::seconds_since(start);
                 io::write_surface(collector.complex(), output);
             }
             const surface::InterfaceSummary counts = counter.summary();
@@ -243,7 +237,7 @@ int main(int argc, char** argv)
                            {"streamed", streamed},
                            {"seconds_read", read_seconds},
                            {"seconds_extract", extract_seconds},
-                           {"seconds_write", seconds_since(start) - extract_seconds},
+                           {"seconds_write", tools::seconds_since(start) - extract_seconds},
                            {"method", method}};
             if (nets)
                 ctx.summary["surface_nets"] = {{"mixed_cubes", nets_report.mixed_cubes},

@@ -6,6 +6,7 @@
 #include "image/label_statistics.h"
 #include "io/read_label_image.h"
 #include "tools/run_tool.h"
+#include "tools/tissue_arguments.h"
 
 using namespace tissuemesh;
 
@@ -108,9 +109,7 @@ int main(int argc, char** argv)
          "  tm-info aseg.mgz --labels FreeSurferColorLUT.txt\n"},
         [&](CLI::App& app) {
             app.add_option("-i,--input,input", input, "Label image")->required()->type_name("IMAGE");
-            app.add_option("--labels", names,
-                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv")
-                ->type_name("FILE");
+            tools::add_labels_option(app, names)->type_name("FILE");
             app.add_option("--island-voxels", options.island_voxels, "Warn about components under N voxels")
                 ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();

@@ -277,7 +277,7 @@ int main(int argc, char** argv)
             }
             render::write_png(*picture, output);
             summary["width_px"] = picture->width(), summary["height_px"] = picture->height();
-            summary["render_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            summary["render_seconds"] = tools::seconds_since(start);
             context.summary = summary;
             context.log(concat(view, " view ", picture->width(), " x ", picture->height(), " px -> ", output));
         });

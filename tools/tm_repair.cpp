@@ -78,7 +78,7 @@ int main(int argc, char** argv)
             // repair() checks its own result (it throws unless the complex is fit), so no second check here.
             const auto start = std::chrono::steady_clock::now();
             report = surface::repair(complex, options, image ? &*image : nullptr, ctx.progress);
-            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double seconds = tools::seconds_since(start);
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
                            format_mm(seconds, 2), " s): ", report.merged_vertices, " vertices merged, ",
                            report.removed_duplicates + report.removed_degenerate + report.collapsed_degenerate,

@@ -76,8 +76,7 @@ int main(int argc, char** argv)
                    "Label image, or grey image (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, .inr, .inr.gz) with --grey")
                 ->required();
             app.add_option("-o,--output", output, "Interface complex (.ply or .vtp)")->required();
-            app.add_option("--labels", names_json,
-                           "Tissue names: JSON ({\"1\": \"scalp\"}), FreeSurfer LUT, ITK-SNAP labels or BIDS dseg.tsv");
+            tools::add_labels_option(app, names_json);
             app.add_option("--tissue", tissue, "One snake: this tissue (name or label) and what it encloses");
             app.add_option("--nested", nested, "Nested snakes, outermost first (names or labels)")->delimiter(',');
             app.add_flag("--grey", grey, "The input holds grey values; the snake seeks the --iso surface");

@@ -151,7 +151,7 @@ int main(int argc, char** argv)
                                                 static_cast<std::size_t>(options.threads));
                 mesh = run_mesh3<CGAL::Parallel_tag>(image, options);
             }
-            const double mesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const double mesh_seconds = tools::seconds_since(start);
             if (mesh.tets.empty())
                 throw AlgorithmError(concat(input, ": CGAL made no tet; lower --cell-size-mm or --facet-size-mm"));
             io::write_tet_mesh(mesh, output);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/measure/spheres4_head.h"
 #include "core/error.h"
 #include "fem/conductivities.h"
 #include "fem/outer_boundary.h"
@@ -18,17 +19,6 @@
 #include "tools/run_tool.h"
 
 using namespace tissuemesh;
-
-namespace {
-
-// The 4-shell head of the EEG accuracy issue: conductivities by tissue name, and the same as a layered sphere.
-const fem::ConductivityTable head_table{{"brain", fem::isotropic(0.33)},
-                                        {"csf", fem::isotropic(1.79)},
-                                        {"skull", fem::isotropic(0.01)},
-                                        {"scalp", fem::isotropic(0.43)}};
-const fem::LayeredSphere head_series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
-
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -61,14 +51,14 @@ int main(int argc, char** argv)
         [&](tools::ToolContext& context) {
             TetMesh mesh = io::read_tet_mesh(input);
             if (!labels.empty()) mesh.names = io::read_tissue_names(labels);
-            const fem::Conductivities sigma =
-                tools::with_source(input, [&] { return fem::resolve_conductivities(mesh, head_table, false); });
+            const fem::Conductivities sigma = tools::with_source(
+                input, [&] { return fem::resolve_conductivities(mesh, bench::spheres4_conductivities, false); });
             const std::vector<std::uint32_t> surface = fem::outer_boundary(mesh).nodes;
             nlohmann::json dipoles = nlohmann::json::array();
             double worst_rdm = 0, worst_mag = 0, seconds = 0;
             for (const double eccentricity : eccentricities)
                 for (const bool radial : {true, false}) {
-                    const Vec3 position{0, 0, eccentricity * head_series.radii_mm[0]};
+                    const Vec3 position{0, 0, eccentricity * bench::spheres4_series.radii_mm[0]};
                     const Vec3 moment = radial ? Vec3{0, 0, 1e-8} : Vec3{1e-8, 0, 0};
                     fem::PotentialProblem problem;
                     problem.dipoles = {{position, moment}};
@@ -77,13 +67,13 @@ int main(int argc, char** argv)
                     const auto start = std::chrono::steady_clock::now();
                     const std::vector<double> phi =
                         fem::solve_potential(mesh, sigma, problem, {.relative_tolerance = 1e-10}, context.progress);
-                    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                    seconds += tools::seconds_since(start);
                     std::vector<double> numeric;
                     std::vector<Vec3> points;
                     for (const std::uint32_t node : surface)
                         numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
                     const fem::Agreement a = fem::compare_potentials(
-                        numeric, fem::sphere_surface_potentials(head_series, position, moment, points));
+                        numeric, fem::sphere_surface_potentials(bench::spheres4_series, position, moment, points));
                     context.log(concat(radial ? "radial" : "tangential", " dipole at eccentricity ", eccentricity,
                                        ": RDM ", a.rdm, ", MAG ", a.mag));
                     dipoles.push_back(

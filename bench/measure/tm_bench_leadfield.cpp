@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/measure/spheres4_head.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "fem/sarvas_field.h"
@@ -18,8 +19,6 @@
 using namespace tissuemesh;
 
 namespace {
-
-const fem::LayeredSphere head_series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
 Vec3 vec(const nlohmann::json& values)
 {
@@ -49,7 +48,7 @@ std::vector<Column> columns_of(const nlohmann::json& sidecar)
     std::vector<Column> columns;
     for (const nlohmann::json& source : sidecar["sources"]) {
         const Vec3 position = vec(source["position_mm"]);
-        const double eccentricity = norm(position) / head_series.radii_mm[0];
+        const double eccentricity = norm(position) / bench::spheres4_series.radii_mm[0];
         if (!source["orientation"].is_null()) {
             columns.push_back({position, vec(source["orientation"]), eccentricity});
             continue;
@@ -93,7 +92,7 @@ nlohmann::json measure_eeg(const std::string& path, tools::ToolContext& context)
     std::vector<Vec3> on_sphere;
     for (const nlohmann::json& sensor : file.sidecar["sensors"]) {
         const Vec3 projected = vec(sensor["projected_mm"]);
-        on_sphere.push_back((head_series.radii_mm.back() / norm(projected)) * projected);
+        on_sphere.push_back((bench::spheres4_series.radii_mm.back() / norm(projected)) * projected);
     }
     const std::vector<Column> columns = columns_of(file.sidecar);
     if (file.matrix.rows != on_sphere.size() || file.matrix.columns != columns.size())
@@ -105,7 +104,8 @@ nlohmann::json measure_eeg(const std::string& path, tools::ToolContext& context)
         std::vector<double> numeric(on_sphere.size());
         for (std::size_t r = 0; r < on_sphere.size(); ++r) numeric[r] = file.matrix.values[r * columns.size() + c];
         const fem::Agreement a = fem::compare_potentials(
-            numeric, fem::sphere_surface_potentials(head_series, columns[c].position_mm, columns[c].moment, on_sphere));
+            numeric, fem::sphere_surface_potentials(bench::spheres4_series, columns[c].position_mm, columns[c].moment,
+                                                    on_sphere));
         rdm[c] = a.rdm;
         mag[c] = std::abs(a.mag - 1);
     }

@@ -65,28 +65,32 @@ void extraction(benchmark::State& state)
     set_rate(state, "voxels/s", image.voxel_count());
 }
 
+/// Times `edit` on a fresh copy of `input` per iteration (the copy is not timed), as triangles of the input
+/// per second.
+template <class Edit>
+void time_surface_edit(benchmark::State& state, const InterfaceComplex& input, Edit edit)
+{
+    for (auto _ : state) {
+        state.PauseTiming();
+        InterfaceComplex complex = input;
+        state.ResumeTiming();
+        benchmark::DoNotOptimize(edit(complex));
+    }
+    set_rate(state, "triangles/s", input.triangle_count());
+}
+
 void smoothing(benchmark::State& state)
 {
     const StageInputs& in = inputs();
-    for (auto _ : state) {
-        state.PauseTiming();
-        InterfaceComplex complex = in.extracted;
-        state.ResumeTiming();
-        benchmark::DoNotOptimize(surface::smooth(complex, in.phantom.image));
-    }
-    set_rate(state, "triangles/s", in.extracted.triangle_count());
+    time_surface_edit(state, in.extracted,
+                      [&](InterfaceComplex& complex) { return surface::smooth(complex, in.phantom.image); });
 }
 
 void decimation(benchmark::State& state)
 {
-    const StageInputs& in = inputs();
-    for (auto _ : state) {
-        state.PauseTiming();
-        InterfaceComplex complex = in.smoothed;
-        state.ResumeTiming();
-        benchmark::DoNotOptimize(surface::decimate(complex, {.max_distance_mm = StageInputOptions{}.max_distance_mm}));
-    }
-    set_rate(state, "triangles/s", in.smoothed.triangle_count());
+    time_surface_edit(state, inputs().smoothed, [](InterfaceComplex& complex) {
+        return surface::decimate(complex, {.max_distance_mm = StageInputOptions{}.max_distance_mm});
+    });
 }
 
 void tetrahedralization(benchmark::State& state)

@@ -33,6 +33,35 @@ T field(const unsigned char* header, std::size_t offset, bool swap)
     return value;
 }
 
+/// Byte offsets of the fields both NIfTI versions hold, which differ in where and as what they store them: `Int`
+/// is the type of dim[], `Float` of pixdim[], the scaling and the orientation, `Code` of qform_code and sform_code.
+template <typename Int, typename Float, typename Code>
+struct NiftiLayout {
+    std::size_t dim, pixdim, datatype, bitpix, scl_slope, scl_inter, qform_code, sform_code, quatern, srow;
+};
+
+// Offsets in the order of NiftiLayout's fields, from the NIfTI-1 and NIfTI-2 header definitions.
+constexpr NiftiLayout<std::int16_t, float, std::int16_t> nifti1_layout{40, 76, 70, 72, 112, 116, 252, 254, 256, 280};
+constexpr NiftiLayout<std::int64_t, double, std::int32_t> nifti2_layout{16, 104, 12, 14, 176, 184, 344, 348, 352, 400};
+
+/// Reads the fields of `at` into `f` (all but vox_offset, which NIfTI-1 stores as a float to be checked).
+template <typename Int, typename Float, typename Code>
+void read_shared_fields(NiftiHeader& f, const unsigned char* header, bool swap, const NiftiLayout<Int, Float, Code>& at)
+{
+    for (std::size_t n = 0; n < 8; ++n) {
+        f.dim[n] = field<Int>(header, at.dim + sizeof(Int) * n, swap);
+        f.pixdim[n] = field<Float>(header, at.pixdim + sizeof(Float) * n, swap);
+    }
+    f.datatype = field<std::int16_t>(header, at.datatype, swap);
+    f.bitpix = field<std::int16_t>(header, at.bitpix, swap);
+    f.scl_slope = field<Float>(header, at.scl_slope, swap);
+    f.scl_inter = field<Float>(header, at.scl_inter, swap);
+    f.qform_code = field<Code>(header, at.qform_code, swap);
+    f.sform_code = field<Code>(header, at.sform_code, swap);
+    for (std::size_t n = 0; n < 6; ++n) f.quatern[n] = field<Float>(header, at.quatern + sizeof(Float) * n, swap);
+    for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<Float>(header, at.srow + sizeof(Float) * n, swap);
+}
+
 std::size_t read_header_bytes(const fs::path& path, std::array<unsigned char, nifti2_size>& header)
 {
     gzFile file = gzopen(path.c_str(), "rb");
@@ -67,21 +96,10 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
                                  "wrong magic: expected \"n+1\" at byte 344; a "
                                  "two-file .hdr/.img pair must be converted to .nii",
                                  fix));
-        for (std::size_t n = 0; n < 8; ++n) {
-            f.dim[n] = field<std::int16_t>(header, 40 + 2 * n, swap);
-            f.pixdim[n] = field<float>(header, 76 + 4 * n, swap);
-        }
-        f.datatype = field<std::int16_t>(header, 70, swap);
-        f.bitpix = field<std::int16_t>(header, 72, swap);
+        read_shared_fields(f, header, swap, nifti1_layout);
         const float offset = field<float>(header, 108, swap);
         // NaN or absurd offsets become -1 so that the vox_offset check below rejects them.
         f.vox_offset = std::isfinite(offset) && offset >= 0 && offset < 1e15f ? static_cast<std::int64_t>(offset) : -1;
-        f.scl_slope = field<float>(header, 112, swap);
-        f.scl_inter = field<float>(header, 116, swap);
-        f.qform_code = field<std::int16_t>(header, 252, swap);
-        f.sform_code = field<std::int16_t>(header, 254, swap);
-        for (std::size_t n = 0; n < 6; ++n) f.quatern[n] = field<float>(header, 256 + 4 * n, swap);
-        for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<float>(header, 280 + 4 * n, swap);
     } else {
         f.version = 2;
         if (got < nifti2_size)
@@ -89,19 +107,8 @@ NiftiHeader parse_fields(const std::string& name, const unsigned char* header, s
                                  " of 540 bytes); the file is incomplete, copy it again"));
         if (std::memcmp(header + 4, "n+2", 4) != 0)
             throw IoError(concat(name, not_nifti, "wrong magic: expected \"n+2\" at byte 4", fix));
-        for (std::size_t n = 0; n < 8; ++n) {
-            f.dim[n] = field<std::int64_t>(header, 16 + 8 * n, swap);
-            f.pixdim[n] = field<double>(header, 104 + 8 * n, swap);
-        }
-        f.datatype = field<std::int16_t>(header, 12, swap);
-        f.bitpix = field<std::int16_t>(header, 14, swap);
+        read_shared_fields(f, header, swap, nifti2_layout);
         f.vox_offset = field<std::int64_t>(header, 168, swap);
-        f.scl_slope = field<double>(header, 176, swap);
-        f.scl_inter = field<double>(header, 184, swap);
-        f.qform_code = field<std::int32_t>(header, 344, swap);
-        f.sform_code = field<std::int32_t>(header, 348, swap);
-        for (std::size_t n = 0; n < 6; ++n) f.quatern[n] = field<double>(header, 352 + 8 * n, swap);
-        for (std::size_t n = 0; n < 12; ++n) f.srow[n] = field<double>(header, 400 + 8 * n, swap);
     }
     return f;
 }

@@ -12,6 +12,7 @@
 namespace tissuemesh {
 namespace {
 
+using testing::read_text;
 using testing::run_cli;
 using testing::TempDir;
 
@@ -44,12 +45,6 @@ nlohmann::json read_json(const std::filesystem::path& path)
 {
     std::ifstream in(path);
     return nlohmann::json::parse(in);
-}
-
-std::string read_text(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(AssessCli, WritesCellDataAndSummary)

@@ -6,21 +6,11 @@
 
 #include "io/surface_io.h"
 #include "tests/io/make_test_images.h"
+#include "tests/support/cli.h"
 #include "tests/support/complexes.h"
 
 namespace tissuemesh::testing {
 namespace {
-
-void write_text(const std::filesystem::path& path, const std::string& text)
-{
-    std::ofstream(path, std::ios::binary) << text;
-}
-
-std::string read_text(const std::filesystem::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// A Gmsh 2.2 mesh of one tet of tissue 1 with the given node lines and element lines.
 std::string msh(const std::vector<std::string>& nodes, const std::vector<std::string>& elements)

@@ -43,7 +43,7 @@ void write_ball_image(const std::filesystem::path& path, std::int16_t n)
     write_nifti(path, spec, voxels);
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) { std::ofstream(path) << text; }
+using testing::write_text;
 
 /// A Gmsh 2.2 mesh of the cube [0, n h]^3 of tissue 1: n^3 cubes of h mm, 6 tets each (Kuhn subdivision).
 std::string kuhn_box_msh(int n, double h)

@@ -13,12 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void expect_ok(const CliResult& result, const std::string& what)
 {
     if (result.exit_code != 0) throw std::runtime_error(what + " failed: " + result.err);

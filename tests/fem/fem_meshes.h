@@ -6,6 +6,7 @@
 
 #include "core/interface_complex.h"
 #include "core/tet_mesh.h"
+#include "fem/sphere_series.h"
 
 namespace tissuemesh::testing {
 
@@ -25,6 +26,10 @@ TetMesh shell_mesh(const std::vector<double>& radii_mm, int levels, double max_v
 /// The 4-shell sphere head of the spheres4 phantom built from icospheres: brain (4) inside 78 mm, csf (3)
 /// to 80 mm, skull (2) to 86 mm, scalp (1) to 92 mm, centred at the origin.
 TetMesh four_shell_head(int levels, double max_volume_mm3);
+
+/// The same head as the analytic series (fem/sphere_series.h) sees it: brain, csf, skull, scalp at 0.33, 1.79,
+/// 0.01 and 0.43 S/m (the default conductivities by name).
+inline const fem::LayeredSphere four_shell_series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
 /// A ball of tissue 1 ("brain") of radius `radius_mm` around the origin, its surface an icosphere.
 TetMesh ball_mesh(double radius_mm, int levels, double max_volume_mm3);

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "fem/assemble.h"
 #include "fem_meshes.h"
+#include "tests/io/expect_error.h"
 
 namespace tissuemesh::fem {
 namespace {
@@ -32,21 +33,18 @@ TEST(Conductivities, DefaultsByNameAndTableByLabelOrName)
 TEST(Conductivities, UnknownAndMissingTissuesAreInputErrors)
 {
     const TetMesh mesh = two_tissue_box();
-    try {
-        resolve_conductivities(mesh, {{"scalp", isotropic(0.43)}});
-        FAIL() << "a tissue the mesh does not have must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("'scalp' is no tissue of the mesh"), std::string::npos)
-            << error.what();
-        EXPECT_NE(std::string(error.what()).find("2 (csf)"), std::string::npos) << error.what();
-    }
-    try {
-        resolve_conductivities(mesh, {{"1", isotropic(0.01)}}, false);
-        FAIL() << "without defaults, csf has no conductivity";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("tissue 2 (csf) has no conductivity"), std::string::npos)
-            << error.what();
-    }
+    // A tissue the mesh does not have must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            resolve_conductivities(mesh, {{"scalp", isotropic(0.43)}});
+        },
+        {"'scalp' is no tissue of the mesh", "2 (csf)"});
+    // Without defaults, csf has no conductivity.
+    testing::expect_error<InputError>(
+        [&] {
+            resolve_conductivities(mesh, {{"1", isotropic(0.01)}}, false);
+        },
+        {"tissue 2 (csf) has no conductivity"});
     EXPECT_THROW(resolve_conductivities(mesh, {{"1", isotropic(-1)}}), InputError);
     EXPECT_THROW(resolve_conductivities(mesh, {{"1", {1, 0.5, 0, 0, 1, 0, 0, 0, 1}}}), InputError); // not symmetric
 }
@@ -68,32 +66,31 @@ TEST(Conductivities, PatternsFillWhatPlainKeysLeaveMostSpecificFirst)
     EXPECT_EQ(sigma.by_label.at(2)[0], 0.03);  // rib_right_* is more specific than rib_*
     EXPECT_EQ(sigma.by_label.at(3)[0], 0.04);  // case-insensitive
     EXPECT_EQ(sigma.by_label.at(4)[0], 0.028); // a plain key beats every pattern
-    try {
-        resolve_conductivities(mesh, {{"r*", isotropic(0.02)}, {"*7", isotropic(0.03)}, {"*", isotropic(0.2)}}, false);
-        FAIL() << "two equally specific patterns with different values must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("with different values"), std::string::npos) << error.what();
-    }
-    try {
-        resolve_conductivities(mesh, {{"heart*", isotropic(0.2)}, {"*", isotropic(0.2)}}, false);
-        FAIL() << "a pattern that matches nothing is a mistake";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("'heart*' matches no tissue"), std::string::npos) << error.what();
-    }
+    // Two equally specific patterns with different values must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            resolve_conductivities(mesh, {{"r*", isotropic(0.02)}, {"*7", isotropic(0.03)}, {"*", isotropic(0.2)}},
+                                   false);
+        },
+        {"with different values"});
+    // A pattern that matches nothing is a mistake.
+    testing::expect_error<InputError>(
+        [&] {
+            resolve_conductivities(mesh, {{"heart*", isotropic(0.2)}, {"*", isotropic(0.2)}}, false);
+        },
+        {"'heart*' matches no tissue"});
 }
 
 // A table that names one tissue twice, by number and by name, had one value win silently (the map's order).
 TEST(Conductivities, ATissueNamedTwiceIsAnInputError)
 {
     const TetMesh mesh = two_tissue_box();
-    try {
-        resolve_conductivities(mesh, {{"2", isotropic(1.79)}, {"CSF", isotropic(0.3)}});
-        FAIL() << "csf named twice must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("'2' and 'CSF' both name tissue 2 (csf); give it once"),
-                  std::string::npos)
-            << error.what();
-    }
+    // Naming csf twice must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            resolve_conductivities(mesh, {{"2", isotropic(1.79)}, {"CSF", isotropic(0.3)}});
+        },
+        {"'2' and 'CSF' both name tissue 2 (csf); give it once"});
 }
 
 TEST(Assemble, SymmetricRowsSumToZeroAndEnergyOfALinearField)
@@ -135,12 +132,12 @@ TEST(Assemble, InvertedTetIsAnInputError)
 {
     TetMesh mesh = testing::box_mesh(1, 10.0);
     std::swap(mesh.tets[2][0], mesh.tets[2][1]);
-    try {
-        assemble_stiffness(mesh, resolve_conductivities(mesh, {{"1", isotropic(1)}}));
-        FAIL() << "an inverted tet must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("tet 2 has volume -"), std::string::npos) << error.what();
-    }
+    // An inverted tet must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            assemble_stiffness(mesh, resolve_conductivities(mesh, {{"1", isotropic(1)}}));
+        },
+        {"tet 2 has volume -"});
 }
 
 } // namespace

@@ -11,6 +11,7 @@
 #include "fem/solve_potential.h"
 #include "fem/sphere_series.h"
 #include "fem_meshes.h"
+#include "tests/io/expect_error.h"
 
 namespace tissuemesh::fem {
 namespace {
@@ -81,12 +82,12 @@ TEST(Dipole, SubtractionInAnAnisotropicTissueIsAnInputError)
     problem.dipoles = {{.position_mm = {9, 10.3, 10.1}, .moment_am = {0, 0, 1e-8}}};
     problem.dipole_model = DipoleModel::subtraction;
     const Mat3 tensor{0.5, 0, 0, 0, 0.1, 0, 0, 0, 0.1};
-    try {
-        solve_potential(mesh, resolve_conductivities(mesh, {{"1", tensor}}), problem);
-        FAIL() << "subtraction in an anisotropic tissue must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("lies in an anisotropic tissue"), std::string::npos) << error.what();
-    }
+    // Subtraction in an anisotropic tissue must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            solve_potential(mesh, resolve_conductivities(mesh, {{"1", tensor}}), problem);
+        },
+        {"lies in an anisotropic tissue"});
 }
 
 TEST(Dipole, OutsideTheMeshIsAnInputError)
@@ -94,13 +95,12 @@ TEST(Dipole, OutsideTheMeshIsAnInputError)
     const TetMesh mesh = testing::box_mesh(2, 10.0);
     PotentialProblem problem;
     problem.dipoles = {{.position_mm = {5, 5, 12}, .moment_am = {0, 0, 1e-8}}};
-    try {
-        solve_potential(mesh, resolve_conductivities(mesh, {{"1", isotropic(0.33)}}), problem);
-        FAIL() << "a dipole outside the mesh must be refused";
-    } catch (const InputError& error) {
-        EXPECT_NE(std::string(error.what()).find("dipole 1 at (5, 5, 12) mm lies outside the mesh"), std::string::npos)
-            << error.what();
-    }
+    // A dipole outside the mesh must be refused.
+    testing::expect_error<InputError>(
+        [&] {
+            solve_potential(mesh, resolve_conductivities(mesh, {{"1", isotropic(0.33)}}), problem);
+        },
+        {"dipole 1 at (5, 5, 12) mm lies outside the mesh"});
 }
 
 } // namespace

@@ -14,8 +14,6 @@
 namespace tissuemesh::fem {
 namespace {
 
-const LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
-
 TEST(SphereSeries, MatchesTheClosedFormsItReducesTo)
 {
     // One homogeneous sphere, centred dipole: 3 p . r_hat / (4 pi sigma R^2) (see test_dipole.cpp).
@@ -43,7 +41,8 @@ void expect_dipole_agreement(const TetMesh& mesh, const Vec3& position, const Ve
     std::vector<Vec3> points;
     for (std::uint32_t node : outer_boundary(mesh).nodes)
         numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
-    const std::vector<double> analytic = sphere_surface_potentials(head, position, moment, points);
+    const std::vector<double> analytic =
+        sphere_surface_potentials(testing::four_shell_series, position, moment, points);
     const Agreement a = compare_potentials(numeric, analytic);
     const char* name = model == DipoleModel::subtraction ? "subtraction"
                        : model == DipoleModel::venant    ? "Venant"

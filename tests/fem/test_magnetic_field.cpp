@@ -81,7 +81,6 @@ TEST(LeadField, FourShellHeadAgreesWithTheSeriesAndSarvas)
 {
     const TetMesh mesh = testing::four_shell_head(4, 10.0);
     const Conductivities sigma = resolve_conductivities(mesh, {});
-    const LayeredSphere series{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
     std::vector<EegElectrode> electrodes;
     const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
     for (int k = 0; k < 32; ++k) { // the upper part of the head, as a cap covers it
@@ -114,8 +113,8 @@ TEST(LeadField, FourShellHeadAgreesWithTheSeriesAndSarvas)
             const auto column = static_cast<Eigen::Index>(3 * s) + axis;
             std::vector<double> eeg(32);
             for (Eigen::Index e = 0; e < 32; ++e) eeg[static_cast<std::size_t>(e)] = fields.eeg(e, column);
-            const Agreement a =
-                compare_potentials(eeg, sphere_surface_potentials(series, sources[s].position_mm, moment, on_sphere));
+            const Agreement a = compare_potentials(
+                eeg, sphere_surface_potentials(testing::four_shell_series, sources[s].position_mm, moment, on_sphere));
             eeg_rdm.push_back(a.rdm);
             eeg_mag.push_back(std::abs(a.mag - 1));
             Eigen::VectorXd fe(40), exact(40);

@@ -16,11 +16,10 @@
 #include "surface/remesh.h"
 #include "surface/smooth.h"
 #include "volume/tetrahedralize.h"
+#include "fem_meshes.h"
 
 namespace tissuemesh::fem {
 namespace {
-
-const LayeredSphere head{{78, 80, 86, 92}, {0.33, 1.79, 0.01, 0.43}};
 
 const char* model_name(DipoleModel model)
 {
@@ -69,7 +68,8 @@ std::pair<double, double> worst_agreement(const TetMesh& mesh, const char* what,
             std::vector<Vec3> points;
             for (const std::uint32_t node : outer_boundary(mesh).nodes)
                 numeric.push_back(phi[node]), points.push_back(mesh.vertices[node]);
-            const std::vector<double> analytic = sphere_surface_potentials(head, position, moment, points);
+            const std::vector<double> analytic =
+                sphere_surface_potentials(testing::four_shell_series, position, moment, points);
             const Agreement a = compare_potentials(numeric, analytic);
             std::printf("[pipeline] %s: %s %s dipole at eccentricity %.2f: RDM %.4f MAG %.4f", what, model_name(model),
                         moment[2] != 0 ? "radial" : "tangential", eccentricity, a.rdm, a.mag);

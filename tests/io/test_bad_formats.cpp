@@ -7,6 +7,7 @@
 #include "io/read_label_image.h"
 #include "io/write_label_image.h"
 #include "tests/io/expect_error.h"
+#include "tests/io/expect_read_error.h"
 #include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 
@@ -14,11 +15,8 @@ namespace tissuemesh {
 namespace {
 
 using testing::expect_error;
-
-void write_text(const std::filesystem::path& path, const std::string& text, const std::string& data = {})
-{
-    std::ofstream(path, std::ios::binary) << text << data;
-}
+using testing::expect_read_error;
+using testing::write_text;
 
 std::string inr_header(const std::string& fields)
 {
@@ -32,8 +30,8 @@ const std::string inr_fields = "XDIM=2\nYDIM=2\nZDIM=2\nVDIM=1\nTYPE=unsigned fi
 TEST(BadInrimage, ControlReads)
 {
     testing::TempDir dir;
-    write_text(dir / "ok.inr", inr_header(inr_fields + "VX=0.5\nVY=1\nVZ=2\nTX=1\nTY=2\nTZ=3\n"),
-               std::string("\0\1\2\3\4\5\6\7", 8));
+    write_text(dir / "ok.inr",
+               inr_header(inr_fields + "VX=0.5\nVY=1\nVZ=2\nTX=1\nTY=2\nTZ=3\n") + std::string("\0\1\2\3\4\5\6\7", 8));
     const LabelImage image = io::read_label_image(dir / "ok.inr");
     EXPECT_EQ(image.at(1, 1, 1), 7);
     EXPECT_EQ(image.spacing_mm(), (Vec3{0.5, 1, 2}));
@@ -43,22 +41,20 @@ TEST(BadInrimage, ControlReads)
 TEST(BadInrimage, TruncatedWrongMagicVectorAndSpacing)
 {
     testing::TempDir dir;
-    write_text(dir / "short.inr", inr_header(inr_fields), "\1\2\3");
-    expect_error<IoError>([&] { io::read_label_image(dir / "short.inr"); }, {"short.inr: truncated", "holds 3"});
+    write_text(dir / "short.inr", inr_header(inr_fields) + "\1\2\3");
+    expect_read_error<IoError>(dir / "short.inr", {"short.inr: truncated", "holds 3"});
     write_text(dir / "cut.inr", "#INRIMAGE-4#{\nXDIM=2\n");
-    expect_error<IoError>([&] { io::read_label_image(dir / "cut.inr"); }, {"cut.inr: truncated Inrimage header"});
+    expect_read_error<IoError>(dir / "cut.inr", {"cut.inr: truncated Inrimage header"});
     write_text(dir / "magic.inr", std::string(300, 'x'));
-    expect_error<IoError>([&] { io::read_label_image(dir / "magic.inr"); }, {"magic.inr: not an Inrimage", "magic"});
-    write_text(dir / "vector.inr", inr_header("XDIM=2\nYDIM=2\nZDIM=2\nVDIM=3\n"), std::string(24, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "vector.inr"); }, {"vector.inr: 3 values per voxel"});
-    write_text(dir / "zero.inr", inr_header(inr_fields + "VX=0\n"), std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "zero.inr"); },
-                             {"zero.inr: spacing along axis 0 is 0 mm"});
-    write_text(dir / "nan.inr", inr_header(inr_fields + "VZ=nan\n"), std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "nan.inr"); },
-                             {"nan.inr: spacing along axis 2 is nan mm"});
-    write_text(dir / "huge.inr", inr_header("XDIM=4000000000\nYDIM=4000000000\nZDIM=4000000000\n"), "\1");
-    expect_error<InputError>([&] { io::read_label_image(dir / "huge.inr"); }, {"huge.inr: dimensions", "overflow"});
+    expect_read_error<IoError>(dir / "magic.inr", {"magic.inr: not an Inrimage", "magic"});
+    write_text(dir / "vector.inr", inr_header("XDIM=2\nYDIM=2\nZDIM=2\nVDIM=3\n") + std::string(24, '\1'));
+    expect_read_error<InputError>(dir / "vector.inr", {"vector.inr: 3 values per voxel"});
+    write_text(dir / "zero.inr", inr_header(inr_fields + "VX=0\n") + std::string(8, '\1'));
+    expect_read_error<InputError>(dir / "zero.inr", {"zero.inr: spacing along axis 0 is 0 mm"});
+    write_text(dir / "nan.inr", inr_header(inr_fields + "VZ=nan\n") + std::string(8, '\1'));
+    expect_read_error<InputError>(dir / "nan.inr", {"nan.inr: spacing along axis 2 is nan mm"});
+    write_text(dir / "huge.inr", inr_header("XDIM=4000000000\nYDIM=4000000000\nZDIM=4000000000\n") + "\1");
+    expect_read_error<InputError>(dir / "huge.inr", {"huge.inr: dimensions", "overflow"});
 }
 
 TEST(BadInrimage, WritingARotatedImageIsRefused)
@@ -88,34 +84,30 @@ TEST(BadRawJson, TruncatedMissingAndInvalidKeys)
     testing::TempDir dir;
     write_text(dir / "v.raw", "\1\2\3");
     write_text(dir / "short.json", raw_json + "}");
-    expect_error<IoError>([&] { io::read_label_image(dir / "short.json"); }, {"v.raw: truncated", "holds 3"});
+    expect_read_error<IoError>(dir / "short.json", {"v.raw: truncated", "holds 3"});
     write_text(dir / "missing.json",
                R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "no.raw"})");
-    expect_error<IoError>([&] { io::read_label_image(dir / "missing.json"); },
-                          {"missing.json: its raw file", "no.raw"});
+    expect_read_error<IoError>(dir / "missing.json", {"missing.json: its raw file", "no.raw"});
     write_text(dir / "syntax.json", "{\"dims\": [2, 2");
-    expect_error<IoError>([&] { io::read_label_image(dir / "syntax.json"); }, {"syntax.json: not a valid JSON"});
+    expect_read_error<IoError>(dir / "syntax.json", {"syntax.json: not a valid JSON"});
     write_text(dir / "nodims.json", R"({"spacing": [1, 1, 1]})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "nodims.json"); }, {"nodims.json: the key \"dims\""});
+    expect_read_error<InputError>(dir / "nodims.json", {"nodims.json: the key \"dims\""});
     write_text(dir / "dtype.json",
                R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "complex64", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "dtype.json"); },
-                             {"dtype.json: unknown dtype \"complex64\""});
+    expect_read_error<InputError>(dir / "dtype.json", {"dtype.json: unknown dtype \"complex64\""});
     write_text(dir / "neg.json",
                R"({"dims": [2, 2, 2], "spacing": [1, -2, 1], "dtype": "uint8", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "neg.json"); },
-                             {"neg.json: spacing along axis 1 is -2 mm"});
+    expect_read_error<InputError>(dir / "neg.json", {"neg.json: spacing along axis 1 is -2 mm"});
     write_text(dir / "null.json",
                R"({"dims": [2, 2, 2], "spacing": [1, null, 1], "dtype": "uint8", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "null.json"); },
-                             {"null.json: \"spacing\" must be an array of 3 numbers"});
+    expect_read_error<InputError>(dir / "null.json", {"null.json: \"spacing\" must be an array of 3 numbers"});
     write_text(
         dir / "huge.json",
         R"({"dims": [4000000000, 4000000000, 4000000000], "spacing": [1, 1, 1], "dtype": "uint8", "raw_file": "v.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "huge.json"); }, {"huge.json: dimensions", "overflow"});
+    expect_read_error<InputError>(dir / "huge.json", {"huge.json: dimensions", "overflow"});
     write_text(dir / "big.json",
                R"({"dims": [200, 200, 200], "spacing": [1, 1, 1], "dtype": "float64", "raw_file": "v.raw"})");
-    expect_error<IoError>([&] { io::read_label_image(dir / "big.json"); }, {"v.raw: truncated", "64000000 bytes"});
+    expect_read_error<IoError>(dir / "big.json", {"v.raw: truncated", "64000000 bytes"});
 }
 
 TEST(BadRawJson, FloatAndSignedValues)
@@ -123,10 +115,10 @@ TEST(BadRawJson, FloatAndSignedValues)
     testing::TempDir dir;
     testing::write_bytes(dir / "f.raw", testing::voxel_bytes<double>({0, 1, 2, 3, 4, 5, 6, 0.25}));
     write_text(dir / "f.json", R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "float64", "raw_file": "f.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "f.json"); }, {"f.raw: voxel (1, 1, 1) holds 0.25"});
+    expect_read_error<InputError>(dir / "f.json", {"f.raw: voxel (1, 1, 1) holds 0.25"});
     testing::write_bytes(dir / "s.raw", testing::voxel_bytes<std::int16_t>({0, 1, 2, 3, -1, 5, 6, 7}));
     write_text(dir / "s.json", R"({"dims": [2, 2, 2], "spacing": [1, 1, 1], "dtype": "int16", "raw_file": "s.raw"})");
-    expect_error<InputError>([&] { io::read_label_image(dir / "s.json"); }, {"s.raw: voxel (0, 0, 1) holds -1"});
+    expect_read_error<InputError>(dir / "s.json", {"s.raw: voxel (0, 0, 1) holds -1"});
 }
 
 const std::string nrrd_head = "NRRD0004\ntype: uint8\ndimension: 3\nspace: left-posterior-superior\nsizes: 2 2 2\n"
@@ -135,8 +127,8 @@ const std::string nrrd_head = "NRRD0004\ntype: uint8\ndimension: 3\nspace: left-
 TEST(BadNrrd, ControlReads)
 {
     testing::TempDir dir;
-    write_text(dir / "ok.nrrd", nrrd_head + "space directions: (1,0,0) (0,2,0) (0,0,3)\nspace origin: (1,2,3)\n\n",
-               std::string("\0\1\2\3\4\5\6\7", 8));
+    write_text(dir / "ok.nrrd", nrrd_head + "space directions: (1,0,0) (0,2,0) (0,0,3)\nspace origin: (1,2,3)\n\n" +
+                                    std::string("\0\1\2\3\4\5\6\7", 8));
     const LabelImage image = io::read_label_image(dir / "ok.nrrd");
     EXPECT_EQ(image.at(1, 1, 1), 7);
     EXPECT_EQ(image.spacing_mm(), (Vec3{1, 2, 3}));
@@ -148,27 +140,26 @@ TEST(BadNrrd, TruncatedZeroSpacingVectorsAndLayers)
 {
     testing::TempDir dir;
     const std::string geometry = "space directions: (1,0,0) (0,1,0) (0,0,1)\n\n";
-    write_text(dir / "short.nrrd", nrrd_head + geometry, "\1\2\3");
-    expect_error<IoError>([&] { io::read_label_image(dir / "short.nrrd"); }, {"short.nrrd: truncated", "need 8 bytes"});
+    write_text(dir / "short.nrrd", nrrd_head + geometry + "\1\2\3");
+    expect_read_error<IoError>(dir / "short.nrrd", {"short.nrrd: truncated", "need 8 bytes"});
     write_text(dir / "magic.nrrd", "PNG\n" + geometry);
-    expect_error<IoError>([&] { io::read_label_image(dir / "magic.nrrd"); }, {"magic.nrrd: not a NRRD file", "magic"});
-    write_text(dir / "zero.nrrd", nrrd_head + "space directions: (1,0,0) (0,0,0) (0,0,1)\n\n", std::string(8, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "zero.nrrd"); },
-                             {"zero.nrrd: spacing along axis 1 is 0 mm"});
+    expect_read_error<IoError>(dir / "magic.nrrd", {"magic.nrrd: not a NRRD file", "magic"});
+    write_text(dir / "zero.nrrd", nrrd_head + "space directions: (1,0,0) (0,0,0) (0,0,1)\n\n" + std::string(8, '\1'));
+    expect_read_error<InputError>(dir / "zero.nrrd", {"zero.nrrd: spacing along axis 1 is 0 mm"});
     write_text(dir / "vector.nrrd",
                "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 3 2 2 2\nkinds: vector domain domain domain\nendian: little\nencoding: raw\n"
-               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n",
-               std::string(24, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "vector.nrrd"); }, {"vector.nrrd: 3 values per voxel"});
+               "space directions: none (1,0,0) (0,1,0) (0,0,1)\n\n" +
+                   std::string(24, '\1'));
+    expect_read_error<InputError>(dir / "vector.nrrd", {"vector.nrrd: 3 values per voxel"});
     write_text(dir / "layers.seg.nrrd",
                "NRRD0004\ntype: uint8\ndimension: 4\nspace: left-posterior-superior\n"
                "sizes: 2 2 2 2\nkinds: list domain domain domain\nendian: little\nencoding: raw\n"
                "space directions: none (1,0,0) (0,1,0) (0,0,1)\nSegment0_Name:=a\nSegment0_Layer:=0\n"
-               "Segment1_Name:=b\nSegment1_Layer:=1\n\n",
-               std::string(16, '\1'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "layers.seg.nrrd"); },
-                             {"layers.seg.nrrd: a segmentation with 2 layers", "single-layer"});
+               "Segment1_Name:=b\nSegment1_Layer:=1\n\n" +
+                   std::string(16, '\1'));
+    expect_read_error<InputError>(dir / "layers.seg.nrrd",
+                                  {"layers.seg.nrrd: a segmentation with 2 layers", "single-layer"});
 }
 
 TEST(BadNrrd, TruncatedCompressedDataIsAnIoErrorAndSilent)
@@ -198,14 +189,13 @@ TEST(BadMetaImage, TruncatedAndWrongMagic)
     testing::TempDir dir;
     const std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 1 1 1\n"
                                "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n";
-    write_text(dir / "short.mha", header, "\1\2\3");
-    expect_error<IoError>([&] { io::read_label_image(dir / "short.mha"); }, {"short.mha: truncated", "holds 3"});
+    write_text(dir / "short.mha", header + "\1\2\3");
+    expect_read_error<IoError>(dir / "short.mha", {"short.mha: truncated", "holds 3"});
     write_text(dir / "magic.mha", "hello world\n");
-    expect_error<IoError>([&] { io::read_label_image(dir / "magic.mha"); }, {"magic.mha: not a MetaImage file"});
+    expect_read_error<IoError>(dir / "magic.mha", {"magic.mha: not a MetaImage file"});
     write_text(dir / "detached.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
                                      "ElementDataFile = gone.raw\n");
-    expect_error<IoError>([&] { io::read_label_image(dir / "detached.mhd"); },
-                          {"detached.mhd: its data file", "gone.raw"});
+    expect_read_error<IoError>(dir / "detached.mhd", {"detached.mhd: its data file", "gone.raw"});
 }
 
 } // namespace

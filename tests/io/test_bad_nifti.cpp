@@ -7,32 +7,31 @@
 
 #include "core/error.h"
 #include "io/read_label_image.h"
-#include "tests/io/expect_error.h"
+#include "tests/io/expect_read_error.h"
 #include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 
 namespace tissuemesh {
 namespace {
 
-using testing::expect_error;
+using testing::expect_read_error;
 
 std::vector<unsigned char> eight_voxels() { return {0, 1, 2, 3, 4, 5, 6, 7}; }
 
 TEST(BadInput, MissingFileDirectoryAndEmptyFile)
 {
     testing::TempDir dir;
-    expect_error<IoError>([&] { io::read_label_image(dir / "none.nii.gz"); }, {"none.nii.gz: no such file"});
-    expect_error<IoError>([&] { io::read_label_image(dir.path()); }, {"is a directory"});
+    expect_read_error<IoError>(dir / "none.nii.gz", {"none.nii.gz: no such file"});
+    expect_read_error<IoError>(dir.path(), {"is a directory"});
     testing::write_bytes(dir / "empty.nii", {});
-    expect_error<IoError>([&] { io::read_label_image(dir / "empty.nii"); }, {"empty.nii: the file is empty"});
+    expect_read_error<IoError>(dir / "empty.nii", {"empty.nii: the file is empty"});
 }
 
 TEST(BadInput, UnknownExtension)
 {
     testing::TempDir dir;
     testing::write_bytes(dir / "head.png", {1, 2, 3});
-    expect_error<IoError>([&] { io::read_label_image(dir / "head.png"); },
-                          {"head.png: unknown image format '.png'", ".nii.gz"});
+    expect_read_error<IoError>(dir / "head.png", {"head.png: unknown image format '.png'", ".nii.gz"});
 }
 
 TEST(BadInput, ValidHandMadeNiftiReads)
@@ -62,8 +61,7 @@ TEST(BadInput, Nifti2ReadsAndIsChecked)
     const Vec3 world = rotated.index_to_world({1, 1, 1});
     EXPECT_EQ(world, (Vec3{13, 18, 34}));
     testing::write_nifti2(dir / "short2.nii", {2, 2, 3}, eight_voxels());
-    expect_error<IoError>([&] { io::read_label_image(dir / "short2.nii"); },
-                          {"short2.nii: truncated", "need 12 bytes", "holds 8"});
+    expect_read_error<IoError>(dir / "short2.nii", {"short2.nii: truncated", "need 12 bytes", "holds 8"});
 }
 
 TEST(BadInput, Nifti2QformMatchesItksNifti1Qform)
@@ -96,25 +94,21 @@ TEST(BadInput, NiftiScalingIsAppliedBeforeTheLabelChecks)
 {
     // scl_slope/scl_inter turn stored values into the image's values: labels are 2 * stored + 1.
     testing::TempDir dir;
-    testing::NiftiSpec spec;
-    spec.scale_slope = 2;
-    spec.scale_intercept = 1;
+    testing::NiftiSpec spec{.scale_slope = 2, .scale_intercept = 1};
     testing::write_nifti(dir / "scaled.nii", spec, eight_voxels());
     EXPECT_EQ(io::read_label_image(dir / "scaled.nii").at(1, 1, 1), 15);
     spec.scale_slope = 0.5f;
     testing::write_nifti(dir / "halved.nii", spec, eight_voxels());
-    expect_error<InputError>([&] { io::read_label_image(dir / "halved.nii"); },
-                             {"halved.nii: voxel (1, 0, 0) holds 1.5"});
+    expect_read_error<InputError>(dir / "halved.nii", {"halved.nii: voxel (1, 0, 0) holds 1.5"});
 }
 
 TEST(BadInput, TruncatedNifti)
 {
     testing::TempDir dir;
     testing::write_nifti(dir / "short.nii", {}, {0, 1, 2});
-    expect_error<IoError>([&] { io::read_label_image(dir / "short.nii"); },
-                          {"short.nii: truncated", "need 8 bytes", "holds 3"});
+    expect_read_error<IoError>(dir / "short.nii", {"short.nii: truncated", "need 8 bytes", "holds 3"});
     testing::write_bytes(dir / "header.nii", {0x5c, 0x01, 0, 0, 0, 0});
-    expect_error<IoError>([&] { io::read_label_image(dir / "header.nii"); }, {"header.nii: truncated NIfTI header"});
+    expect_read_error<IoError>(dir / "header.nii", {"header.nii: truncated NIfTI header"});
 }
 
 TEST(BadInput, WrongMagic)
@@ -123,21 +117,19 @@ TEST(BadInput, WrongMagic)
     testing::NiftiSpec spec;
     spec.magic[1] = 'x';
     testing::write_nifti(dir / "magic.nii", spec, eight_voxels());
-    expect_error<IoError>([&] { io::read_label_image(dir / "magic.nii"); }, {"magic.nii: not a NIfTI file", "magic"});
+    expect_read_error<IoError>(dir / "magic.nii", {"magic.nii: not a NIfTI file", "magic"});
     testing::write_bytes(dir / "text.nii.gz", std::vector<unsigned char>(400, 'a'));
-    expect_error<IoError>([&] { io::read_label_image(dir / "text.nii.gz"); }, {"text.nii.gz: not a NIfTI file"});
+    expect_read_error<IoError>(dir / "text.nii.gz", {"text.nii.gz: not a NIfTI file"});
 }
 
 TEST(BadInput, UnsupportedDatatype)
 {
     // Datatype 1 (packed bits) is not a voxel type a label map uses; the nifti library would print.
     testing::TempDir dir;
-    testing::NiftiSpec spec;
-    spec.datatype = 1;
-    spec.bitpix = 1;
+    const testing::NiftiSpec spec{.datatype = 1, .bitpix = 1};
     testing::write_nifti(dir / "bits.nii", spec, eight_voxels());
     ::testing::internal::CaptureStderr();
-    expect_error<IoError>([&] { io::read_label_image(dir / "bits.nii"); }, {"bits.nii: unsupported NIfTI datatype 1"});
+    expect_read_error<IoError>(dir / "bits.nii", {"bits.nii: unsupported NIfTI datatype 1"});
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }
 
@@ -150,8 +142,8 @@ TEST(BadInput, BadSpacing)
         testing::NiftiSpec spec;
         spec.spacing[1] = value;
         testing::write_nifti(dir / "spacing.nii", spec, eight_voxels());
-        expect_error<InputError>([&] { io::read_label_image(dir / "spacing.nii"); },
-                                 {"spacing.nii: spacing along axis 1 " + text, "positive finite"});
+        expect_read_error<InputError>(dir / "spacing.nii",
+                                      {"spacing.nii: spacing along axis 1 " + text, "positive finite"});
     }
 }
 
@@ -161,23 +153,20 @@ TEST(BadInput, DimsExceedingTheFile)
     testing::NiftiSpec spec;
     spec.dims[1] = spec.dims[2] = spec.dims[3] = 30000; // 2.7e13 voxels from a 360-byte file
     testing::write_nifti(dir / "huge.nii", spec, eight_voxels());
-    expect_error<IoError>([&] { io::read_label_image(dir / "huge.nii"); }, {"huge.nii: truncated", "27000000000000"});
+    expect_read_error<IoError>(dir / "huge.nii", {"huge.nii: truncated", "27000000000000"});
     spec.dims[1] = -4;
     testing::write_nifti(dir / "negative.nii", spec, eight_voxels());
-    expect_error<InputError>([&] { io::read_label_image(dir / "negative.nii"); }, {"negative.nii: dimension 0 is -4"});
+    expect_read_error<InputError>(dir / "negative.nii", {"negative.nii: dimension 0 is -4"});
 }
 
 TEST(BadInput, FloatLabelsMustBeWholeNumbers)
 {
     testing::TempDir dir;
-    testing::NiftiSpec spec;
-    spec.datatype = 16;
-    spec.bitpix = 32;
+    const testing::NiftiSpec spec{.datatype = 16, .bitpix = 32};
     testing::write_nifti(dir / "whole.nii", spec, testing::voxel_bytes<float>({0, 1, 2, 3, 4, 5, 6, 300}));
     EXPECT_EQ(io::read_label_image(dir / "whole.nii").at(1, 1, 1), 300);
     testing::write_nifti(dir / "prob.nii", spec, testing::voxel_bytes<float>({0, 1, 2, 3, 4, 2.5f, 6, 7}));
-    expect_error<InputError>([&] { io::read_label_image(dir / "prob.nii"); },
-                             {"prob.nii: voxel (1, 0, 1) holds 2.5", "whole numbers"});
+    expect_read_error<InputError>(dir / "prob.nii", {"prob.nii: voxel (1, 0, 1) holds 2.5", "whole numbers"});
 }
 
 /// Regression: niftilib (under ITK) reads a NaN voxel of a NIfTI-1 float image as 0, so a broken label became
@@ -186,53 +175,38 @@ TEST(BadInput, NanLabelsAreRefusedNotReadAsBackground)
 {
     testing::TempDir dir;
     for (const bool swapped : {false, true}) {
-        testing::NiftiSpec spec;
-        spec.datatype = 16;
-        spec.bitpix = 32;
-        spec.swapped = swapped;
+        const testing::NiftiSpec spec{.datatype = 16, .bitpix = 32, .swapped = swapped};
         std::vector<unsigned char> data = testing::voxel_bytes<float>({1, 1, 1, 1, 1, std::nanf(""), 2, 2});
         if (swapped)
             for (std::size_t v = 0; v < 8; ++v) std::reverse(data.begin() + 4 * v, data.begin() + 4 * v + 4);
         testing::write_nifti(dir / "nan.nii", spec, data);
-        expect_error<InputError>([&] { io::read_label_image(dir / "nan.nii"); },
-                                 {"nan.nii: voxel (1, 0, 1)", "not a finite number"});
+        expect_read_error<InputError>(dir / "nan.nii", {"nan.nii: voxel (1, 0, 1)", "not a finite number"});
     }
-    testing::NiftiSpec doubles;
-    doubles.datatype = 64;
-    doubles.bitpix = 64;
+    const testing::NiftiSpec doubles{.datatype = 64, .bitpix = 64};
     testing::write_nifti(dir / "inf.nii", doubles,
                          testing::voxel_bytes<double>({0, 1, 2, 3, 4, 5, 6, std::numeric_limits<double>::infinity()}));
-    expect_error<InputError>([&] { io::read_label_image(dir / "inf.nii"); }, {"inf.nii: voxel (1, 1, 1)"});
+    expect_read_error<InputError>(dir / "inf.nii", {"inf.nii: voxel (1, 1, 1)"});
 }
 
 TEST(BadInput, LabelsOutsideUint16)
 {
     testing::TempDir dir;
-    testing::NiftiSpec spec;
-    spec.datatype = 8; // int32
-    spec.bitpix = 32;
+    const testing::NiftiSpec spec{.datatype = 8, .bitpix = 32}; // int32
     testing::write_nifti(dir / "big.nii", spec, testing::voxel_bytes<std::int32_t>({0, 1, 2, 70000, 4, 5, 6, 7}));
-    expect_error<InputError>([&] { io::read_label_image(dir / "big.nii"); },
-                             {"big.nii: voxel (1, 1, 0) holds 70000", "0..65535"});
+    expect_read_error<InputError>(dir / "big.nii", {"big.nii: voxel (1, 1, 0) holds 70000", "0..65535"});
     testing::write_nifti(dir / "neg.nii", spec, testing::voxel_bytes<std::int32_t>({0, -3, 2, 3, 4, 5, 6, 7}));
-    expect_error<InputError>([&] { io::read_label_image(dir / "neg.nii"); },
-                             {"neg.nii: voxel (1, 0, 0) holds -3", "0..65535"});
+    expect_read_error<InputError>(dir / "neg.nii", {"neg.nii: voxel (1, 0, 0) holds -3", "0..65535"});
 }
 
 TEST(BadInput, VectorImages)
 {
     testing::TempDir dir;
-    testing::NiftiSpec spec;
-    spec.vectors = 3;
+    const testing::NiftiSpec spec{.vectors = 3};
     testing::write_nifti(dir / "vector.nii", spec, std::vector<unsigned char>(24, 1));
-    expect_error<InputError>([&] { io::read_label_image(dir / "vector.nii"); },
-                             {"vector.nii: a 5D image with 3 values", "one value per voxel"});
-    testing::NiftiSpec rgb;
-    rgb.datatype = 128;
-    rgb.bitpix = 24;
+    expect_read_error<InputError>(dir / "vector.nii", {"vector.nii: a 5D image with 3 values", "one value per voxel"});
+    const testing::NiftiSpec rgb{.datatype = 128, .bitpix = 24};
     testing::write_nifti(dir / "rgb.nii", rgb, std::vector<unsigned char>(24, 1));
-    expect_error<InputError>([&] { io::read_label_image(dir / "rgb.nii"); },
-                             {"rgb.nii: NIfTI datatype 128", "one value per voxel"});
+    expect_read_error<InputError>(dir / "rgb.nii", {"rgb.nii: NIfTI datatype 128", "one value per voxel"});
 }
 
 } // namespace

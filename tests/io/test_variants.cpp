@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "tests/io/expect_error.h"
+#include "tests/io/expect_read_error.h"
 #include "tests/io/make_test_images.h"
 #include "tests/support/cli.h"
 
@@ -14,11 +15,8 @@ namespace tissuemesh {
 namespace {
 
 using testing::expect_error;
-
-void write_text(const std::filesystem::path& path, const std::string& text, const std::string& data = {})
-{
-    std::ofstream(path, std::ios::binary) << text << data;
-}
+using testing::expect_read_error;
+using testing::write_text;
 
 TEST(Variants, BigEndianNifti)
 {
@@ -35,18 +33,16 @@ TEST(Variants, BigEndianNifti)
     EXPECT_FLOAT_EQ(static_cast<float>(image.spacing_mm()[2]), 2.5f);
     spec.spacing[2] = 0;
     testing::write_nifti(dir / "bigzero.nii", spec, std::vector<unsigned char>(16, 0));
-    expect_error<InputError>([&] { io::read_label_image(dir / "bigzero.nii"); },
-                             {"bigzero.nii: spacing along axis 2 is 0 mm"});
+    expect_read_error<InputError>(dir / "bigzero.nii", {"bigzero.nii: spacing along axis 2 is 0 mm"});
 }
 
 TEST(Variants, NrrdInRasSpace)
 {
     testing::TempDir dir;
-    write_text(dir / "ras.nrrd",
-               "NRRD0004\ntype: uint8\ndimension: 3\nspace: right-anterior-superior\nsizes: 2 2 2\n"
-               "space directions: (0,2,0) (-1,0,0) (0,0,3)\nendian: little\nencoding: raw\n"
-               "space origin: (10,20,30)\n\n",
-               std::string("\0\1\2\3\4\5\6\7", 8));
+    write_text(dir / "ras.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nspace: right-anterior-superior\nsizes: 2 2 2\n"
+                                 "space directions: (0,2,0) (-1,0,0) (0,0,3)\nendian: little\nencoding: raw\n"
+                                 "space origin: (10,20,30)\n\n" +
+                                     std::string("\0\1\2\3\4\5\6\7", 8));
     const LabelImage image = io::read_label_image(dir / "ras.nrrd");
     // Our world is RAS: the header's RAS numbers come back unchanged.
     EXPECT_EQ(image.origin_mm(), (Vec3{10, 20, 30}));
@@ -62,18 +58,18 @@ TEST(Variants, SlicerSegmentationNames)
                              "space directions: (1,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\n";
     // Label values given explicitly, segments listed out of order.
     write_text(dir / "seg.seg.nrrd",
-               head + "Segment0_ID:=Segment_7\nSegment0_Name:=skull\nSegment0_LabelValue:=7\nSegment0_Layer:=0\n"
-                      "Segment1_ID:=Segment_3\nSegment1_Name:=scalp\nSegment1_LabelValue:=3\nSegment1_Layer:=0\n\n",
-               std::string("\0\3\3\7\0\0\7\7", 8));
+               head +
+                   "Segment0_ID:=Segment_7\nSegment0_Name:=skull\nSegment0_LabelValue:=7\nSegment0_Layer:=0\n"
+                   "Segment1_ID:=Segment_3\nSegment1_Name:=scalp\nSegment1_LabelValue:=3\nSegment1_Layer:=0\n\n" +
+                   std::string("\0\3\3\7\0\0\7\7", 8));
     const LabelImage image = io::read_label_image(dir / "seg.seg.nrrd");
     EXPECT_EQ(image.names(), (TissueNames{{3, "scalp"}, {7, "skull"}}));
     // Without LabelValue (older files) segment N holds label N + 1.
-    write_text(dir / "old.seg.nrrd", head + "Segment0_Name:=scalp\nSegment1_Name:=skull\n\n",
-               std::string("\0\1\1\2\0\0\2\2", 8));
+    write_text(dir / "old.seg.nrrd",
+               head + "Segment0_Name:=scalp\nSegment1_Name:=skull\n\n" + std::string("\0\1\1\2\0\0\2\2", 8));
     EXPECT_EQ(io::read_label_image(dir / "old.seg.nrrd").names(), (TissueNames{{1, "scalp"}, {2, "skull"}}));
-    write_text(dir / "bad.seg.nrrd", head + "Segment0_Name:=scalp\nSegment0_LabelValue:=-4\n\n", std::string(8, '\0'));
-    expect_error<InputError>([&] { io::read_label_image(dir / "bad.seg.nrrd"); },
-                             {"bad.seg.nrrd: segment 0 (scalp) has label value '-4'"});
+    write_text(dir / "bad.seg.nrrd", head + "Segment0_Name:=scalp\nSegment0_LabelValue:=-4\n\n" + std::string(8, '\0'));
+    expect_read_error<InputError>(dir / "bad.seg.nrrd", {"bad.seg.nrrd: segment 0 (scalp) has label value '-4'"});
 }
 
 TEST(Variants, NamesJsonOverridesTheFilesNames)

@@ -37,10 +37,7 @@ void expect_rejected(const testing::TempDir& dir, const BadFile& file)
     for (const std::string& part : file.message) EXPECT_NE(error_line.find(part), std::string::npos) << error_line;
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text)
-{
-    std::ofstream(path, std::ios::binary) << text;
-}
+using testing::write_text;
 
 testing::NiftiSpec with_spacing(float value)
 {

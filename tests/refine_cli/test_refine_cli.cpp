@@ -15,16 +15,9 @@ namespace tissuemesh {
 namespace {
 
 using testing::read_json;
+using testing::read_text;
 using testing::run_cli;
 using testing::TempDir;
-
-std::string read_text(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 /// spheres4 with 8 mm voxels (27^3) as NIfTI in `dir`.
 void write_head(const TempDir& dir)

@@ -10,14 +10,9 @@
 namespace tissuemesh {
 namespace {
 
+using testing::read_text;
 using testing::run_cli;
 using testing::TempDir;
-
-std::string read_text(const std::filesystem::path& path)
-{
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// Runs `tool` with `args` and the folder's paths; fails the test on a non-zero exit.
 void run_ok(const std::string& tool, const std::vector<std::string>& args)

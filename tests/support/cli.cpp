@@ -4,6 +4,7 @@
 #include <atomic>
 #include <fcntl.h>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <stdexcept>
 #include <sstream>
@@ -90,6 +91,14 @@ nlohmann::json read_json(const fs::path& path)
     if (!in) throw std::runtime_error("cannot open " + path.string());
     return nlohmann::json::parse(in);
 }
+
+std::string read_text(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 fs::path data_path(const std::string& relative) { return fs::path(TM_DATA_DIR) / relative; }
 

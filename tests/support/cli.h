@@ -42,6 +42,12 @@ CliResult run_program(const std::string& program, const std::vector<std::string>
 /// Parses a JSON file (a --json summary); throws when it is missing or malformed.
 nlohmann::json read_json(const std::filesystem::path& path);
 
+/// The bytes of the file at `path` ("" when it cannot be read).
+std::string read_text(const std::filesystem::path& path);
+
+/// Writes `text` to `path` byte for byte (replacing the file).
+void write_text(const std::filesystem::path& path, const std::string& text);
+
 /// Path of a file under the repository's data/ folder.
 std::filesystem::path data_path(const std::string& relative);
 

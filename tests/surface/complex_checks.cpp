@@ -21,6 +21,13 @@ LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)
                 image.at(i, j, k) = label_of(static_cast<int>(i), static_cast<int>(j), static_cast<int>(k));
     return image;
 }
+
+LabelImage random_image(const Dims& dims, std::mt19937& random, Label max_label)
+{
+    std::uniform_int_distribution<int> pick(0, max_label);
+    return make_image(dims, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+}
+
 namespace {
 
 using Edge = std::pair<std::uint32_t, std::uint32_t>;

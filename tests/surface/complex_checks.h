@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,10 @@ namespace tissuemesh::testing {
 
 /// An image on the unit grid (1 mm voxels, origin 0) whose label at voxel (i, j, k) is `label_of(i, j, k)`.
 LabelImage make_image(const Dims& dims, const std::function<Label(int, int, int)>& label_of);
+
+/// An image on the unit grid whose labels are drawn uniformly from 0..`max_label` by `random`, voxel by voxel
+/// in storage order (i fastest).
+LabelImage random_image(const Dims& dims, std::mt19937& random, Label max_label);
 
 /// The closed surface of one tissue as the tests see it.
 struct TissueSurfaceFacts {

@@ -12,6 +12,7 @@ namespace tissuemesh {
 namespace {
 
 using testing::make_image;
+using testing::random_image;
 
 using surface::extract_interfaces;
 using testing::invariant_failures;
@@ -130,10 +131,9 @@ TEST(ExtractInterfaces, RandomTwoByTwoByTwoConfigurationsWithThreeOrMoreLabels)
     // Fixed seed: 1000 random 2x2x2 label cubes over labels 0..4 with at least 3 distinct labels
     // (padding adds the background around them, so all cube configurations of the padded grid occur).
     std::mt19937 random(20261122);
-    std::uniform_int_distribution<int> pick(0, 4);
     int tested = 0;
     while (tested < 1000) {
-        const LabelImage image = make_image({2, 2, 2}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({2, 2, 2}, random, 4);
         if (count_labels(image).size() < 3) continue;
         ++tested;
         const InterfaceComplex complex = extract_interfaces(image);
@@ -146,9 +146,8 @@ TEST(ExtractInterfaces, RandomTwoByTwoByTwoConfigurationsWithThreeOrMoreLabels)
 TEST(ExtractInterfaces, RandomLabelFieldsKeepEveryInvariant)
 {
     std::mt19937 random(7);
-    std::uniform_int_distribution<int> pick(0, 3);
     for (int trial = 0; trial < 60; ++trial) {
-        const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 4}, random, 3);
         const InterfaceComplex complex = extract_interfaces(image);
         ASSERT_EQ(invariant_failures(image, complex, 0, true), "") << "trial " << trial;
         const surface::CheckReport report = surface::check_complex(complex);

@@ -15,6 +15,7 @@ namespace tissuemesh {
 namespace {
 
 using testing::make_image;
+using testing::random_image;
 
 using surface::extract_interfaces;
 
@@ -41,10 +42,10 @@ TEST(ExtractPriority, CsfOf2mmSpheresSeparatesSkullFromBrainEverywhere)
 TEST(ExtractPriority, RandomImagesWithRandomPrioritiesKeepEveryInvariant)
 {
     std::mt19937 random(20261122);
-    std::uniform_int_distribution<int> pick(0, 3), value(-2, 3), coin(0, 1);
+    std::uniform_int_distribution<int> value(-2, 3), coin(0, 1);
     int split_seen = 0;
     for (int trial = 0; trial < 80; ++trial) {
-        const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 4}, random, 3);
         std::map<Label, int> priority;
         for (Label label = 0; label <= 3; ++label)
             if (coin(random) && count_labels(image).contains(label)) priority[label] = value(random);
@@ -62,9 +63,8 @@ TEST(ExtractPriority, RandomImagesWithRandomPrioritiesKeepEveryInvariant)
 TEST(ExtractPriority, CounterWithoutPriorityIsTheFourteenNeighbourhood)
 {
     std::mt19937 random(5);
-    std::uniform_int_distribution<int> pick(0, 2);
     for (int trial = 0; trial < 30; ++trial) {
-        const LabelImage image = make_image({5, 4, 3}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({5, 4, 3}, random, 2);
         for (const bool complement : {false, true})
             for (Label label = 0; label <= 2; ++label)
                 ASSERT_EQ(testing::priority_components(image, label, 0, complement, {}),

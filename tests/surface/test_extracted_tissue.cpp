@@ -15,6 +15,7 @@ namespace {
 using surface::ExtractedTissue;
 using surface::ExtractOptions;
 using testing::make_image;
+using testing::random_image;
 
 /// Triangles whose two sides ExtractedTissue gets wrong (make_image: index space is world space). The
 /// points are 1e-6 voxel off the triangle's centroid: dual points lie on the 1/24-voxel lattice, so every
@@ -38,9 +39,8 @@ std::size_t wrong_sides(const LabelImage& image, const ExtractOptions& options)
 TEST(ExtractedTissue, BothSidesOfEveryTriangleOfRandomImages)
 {
     std::mt19937 random(20261205);
-    std::uniform_int_distribution<int> pick(0, 3);
     for (int trial = 0; trial < 40; ++trial) {
-        const LabelImage image = make_image({4, 4, 3}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 3}, random, 3);
         ASSERT_EQ(wrong_sides(image, {}), 0u) << "trial " << trial;
     }
 }
@@ -48,9 +48,9 @@ TEST(ExtractedTissue, BothSidesOfEveryTriangleOfRandomImages)
 TEST(ExtractedTissue, BothSidesOfEveryTriangleOfRandomImagesWithPriority)
 {
     std::mt19937 random(20261206);
-    std::uniform_int_distribution<int> pick(0, 3), value(-2, 3);
+    std::uniform_int_distribution<int> value(-2, 3);
     for (int trial = 0; trial < 40; ++trial) {
-        const LabelImage image = make_image({4, 4, 3}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 3}, random, 3);
         std::map<Label, int> priority;
         for (const auto& [label, count] : count_labels(image)) priority[label] = value(random);
         ASSERT_EQ(wrong_sides(image, {.priority = priority}), 0u) << "trial " << trial;

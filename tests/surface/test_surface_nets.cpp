@@ -19,7 +19,7 @@ namespace tissuemesh {
 namespace {
 
 using surface::extract_surface_nets;
-using testing::make_image;
+using testing::random_image;
 
 std::string first_error(const surface::CheckReport& report)
 {
@@ -29,9 +29,8 @@ std::string first_error(const surface::CheckReport& report)
 TEST(SurfaceNets, RandomImagesKeepEveryInvariantOfTheFourteenNeighbourhood)
 {
     std::mt19937 random(20261204);
-    std::uniform_int_distribution<int> pick(0, 3);
     for (int trial = 0; trial < 150; ++trial) {
-        const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 4}, random, 3);
         const InterfaceComplex complex = extract_surface_nets(image, {}, {.iterations = 0});
         ASSERT_EQ(testing::invariant_failures(image, complex, 0, true), "") << "trial " << trial;
         const surface::CheckReport report = surface::check_complex(complex);
@@ -42,9 +41,9 @@ TEST(SurfaceNets, RandomImagesKeepEveryInvariantOfTheFourteenNeighbourhood)
 TEST(SurfaceNets, RandomImagesWithRandomPrioritiesKeepEveryInvariant)
 {
     std::mt19937 random(41);
-    std::uniform_int_distribution<int> pick(0, 3), value(-2, 3), coin(0, 1);
+    std::uniform_int_distribution<int> value(-2, 3), coin(0, 1);
     for (int trial = 0; trial < 150; ++trial) {
-        const LabelImage image = make_image({4, 4, 4}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({4, 4, 4}, random, 3);
         std::map<Label, int> priority;
         for (Label label = 0; label <= 3; ++label)
             if (coin(random) && count_labels(image).contains(label)) priority[label] = value(random);
@@ -59,9 +58,8 @@ TEST(SurfaceNets, RandomImagesWithRandomPrioritiesKeepEveryInvariant)
 TEST(SurfaceNets, SmoothedRandomImagesStayFitAndKeepTheirTopology)
 {
     std::mt19937 random(7);
-    std::uniform_int_distribution<int> pick(0, 2);
     for (int trial = 0; trial < 60; ++trial) {
-        const LabelImage image = make_image({6, 5, 5}, [&](int, int, int) { return static_cast<Label>(pick(random)); });
+        const LabelImage image = random_image({6, 5, 5}, random, 2);
         const InterfaceComplex raw = extract_surface_nets(image, {}, {.iterations = 0});
         const InterfaceComplex smooth = extract_surface_nets(image);
         const surface::CheckReport before = surface::check_complex(raw), after = surface::check_complex(smooth);

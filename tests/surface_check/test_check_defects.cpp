@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "surface/check_complex.h"
 #include "tests/support/complexes.h"
+#include "tests/surface_check/defects_of_kind.h"
 
 namespace tissuemesh {
 namespace {
@@ -12,6 +13,7 @@ using surface::check_complex;
 using surface::CheckReport;
 using surface::Defect;
 using surface::DefectKind;
+using testing::of_kind;
 
 /// A named unit cube of skull (1) in air (0), 12 triangles, vertices on the lattice {0, 1}^3.
 InterfaceComplex skull_cube()
@@ -19,14 +21,6 @@ InterfaceComplex skull_cube()
     InterfaceComplex complex = testing::voxel_faces({.labels = {1}});
     complex.names = {{0, "air"}, {1, "skull"}};
     return complex;
-}
-
-std::vector<const Defect*> of_kind(const CheckReport& report, DefectKind kind)
-{
-    std::vector<const Defect*> found;
-    for (const Defect& defect : report.defects)
-        if (defect.kind == kind) found.push_back(&defect);
-    return found;
 }
 
 bool mentions(const Defect& defect, const std::string& text)

@@ -4,6 +4,7 @@
 
 #include "surface/check_complex.h"
 #include "tests/support/complexes.h"
+#include "tests/surface_check/defects_of_kind.h"
 
 namespace tissuemesh {
 namespace {
@@ -12,18 +13,11 @@ using surface::check_complex;
 using surface::CheckReport;
 using surface::Defect;
 using surface::DefectKind;
+using testing::of_kind;
 
 std::size_t intersections(const CheckReport& report)
 {
     return report.count(DefectKind::self_intersection) + report.count(DefectKind::patch_intersection);
-}
-
-std::vector<const Defect*> of_kind(const CheckReport& report, DefectKind kind)
-{
-    std::vector<const Defect*> found;
-    for (const Defect& defect : report.defects)
-        if (defect.kind == kind) found.push_back(&defect);
-    return found;
 }
 
 /// Two triangles (pairs 1|0 and 2|0) built from `points` by index, nothing else.

@@ -186,30 +186,38 @@ double largest_tet_in(const TetMesh& mesh, Label tissue, const Vec3& low, const 
     return largest;
 }
 
+/// Meshes `complex` with at most 0.5 mm^3 per tet of `tissue`, as TetGen bounds them: without -Y (with it, the
+/// triangles of small boxes would refuse the refinement, as above) and without the improver (its moves may enlarge
+/// tets past the bound: in the hollow box below, 7 tets grew to 0.58 mm^3). Expects the tets of `tissue` in each of
+/// its `pieces` (regions [low, high]) to hold the bound, none over it, and the tissue's exact `volume_mm3`.
+TetMesh expect_bound_in_every_piece(const InterfaceComplex& complex, Label tissue,
+                                    const std::vector<std::pair<Vec3, Vec3>>& pieces, double volume_mm3)
+{
+    const double bound_mm3 = 0.5;
+    TetrahedralizeReport report;
+    const TetMesh mesh = tetrahedralize(
+        complex, {.preserve_interfaces = false, .max_volume_per_tissue_mm3 = {{tissue, bound_mm3}}, .improve = false},
+        {}, &report);
+    for (const auto& [low, high] : pieces) {
+        const double largest = largest_tet_in(mesh, tissue, low, high);
+        EXPECT_GT(largest, 0.0) << "no tet of tissue " << tissue << " in the piece from " << low[0] << " mm";
+        EXPECT_LE(largest, bound_mm3 * (1 + 1e-9)) << "the piece from " << low[0] << " mm lacks the bound";
+    }
+    EXPECT_EQ(report.tets_over_volume_bound, 0u);
+    EXPECT_NEAR(volumes_by_tissue(mesh).at(tissue), volume_mm3, 1e-9);
+    return mesh;
+}
+
 // Issue 32: region_seeds made one seed per tissue, so a tissue in two pieces had its volume bound (TetGen -a per
 // region) in one piece only, and the warning then blamed the interface triangles.
 TEST(Tetrahedralize, TissueInTwoPiecesHasItsVolumeBoundInBothPieces)
 {
-    // Two 4 mm boxes of tissue 2, apart, in a box of tissue 1. Without -Y as above: with it the 4 mm boxes'
-    // triangles would refuse the refinement.
+    // Two 4 mm boxes of tissue 2, apart, in a box of tissue 1.
     BoxComplex boxes;
     boxes.add_box({0, 0, 0}, {20, 10, 10}, 1, {0, 0, 0, 0, 0, 0});
     boxes.add_box({3, 3, 3}, {7, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
     boxes.add_box({13, 3, 3}, {17, 7, 7}, 2, {1, 1, 1, 1, 1, 1});
-    TetrahedralizeOptions options;
-    options.preserve_interfaces = false;
-    options.improve = false; // TetGen's tets as bounded: the improver's moves may enlarge tets past the bound
-    options.max_volume_per_tissue_mm3 = {{2, 0.5}};
-    TetrahedralizeReport report;
-    const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
-    const double left = largest_tet_in(mesh, 2, {3, 3, 3}, {7, 7, 7}),
-                 right = largest_tet_in(mesh, 2, {13, 3, 3}, {17, 7, 7});
-    EXPECT_GT(left, 0.0);
-    EXPECT_GT(right, 0.0);
-    EXPECT_LE(left, 0.5 * (1 + 1e-9));
-    EXPECT_LE(right, 0.5 * (1 + 1e-9));
-    EXPECT_EQ(report.tets_over_volume_bound, 0u);
-    EXPECT_NEAR(volumes_by_tissue(mesh).at(2), 128.0, 1e-9);
+    expect_bound_in_every_piece(boxes.complex, 2, {{{3, 3, 3}, {7, 7, 7}}, {{13, 3, 3}, {17, 7, 7}}}, 128.0);
 }
 
 // The nested case of the same finding: tissue 1 as a hollow box (two shells: its outside and its cavity wall)
@@ -220,20 +228,10 @@ TEST(Tetrahedralize, TissueInAHollowPieceAndAnIslandInItsCavityHasItsBoundInBoth
     boxes.add_box({0, 0, 0}, {12, 12, 12}, 1, {0, 0, 0, 0, 0, 0});
     boxes.add_box({3, 3, 3}, {9, 9, 9}, 2, {1, 1, 1, 1, 1, 1});
     boxes.add_box({5, 5, 5}, {7, 7, 7}, 1, {2, 2, 2, 2, 2, 2});
-    TetrahedralizeOptions options;
-    options.preserve_interfaces = false;
-    options.improve = false; // as above (with it, 7 tets here grew to 0.58 mm^3)
-    options.max_volume_per_tissue_mm3 = {{1, 0.5}};
-    TetrahedralizeReport report;
-    const TetMesh mesh = tetrahedralize(boxes.complex, options, {}, &report);
-    const double island = largest_tet_in(mesh, 1, {5, 5, 5}, {7, 7, 7}),
-                 hollow = largest_tet_in(mesh, 1, {-1, -1, -1}, {13, 13, 13});
-    EXPECT_GT(island, 0.0);
-    EXPECT_LE(island, 0.5 * (1 + 1e-9)) << "the island in the cavity lacks the bound";
-    EXPECT_LE(hollow, 0.5 * (1 + 1e-9));
+    // The island in the cavity, and the hollow piece around it.
+    const TetMesh mesh = expect_bound_in_every_piece(
+        boxes.complex, 1, {{{5, 5, 5}, {7, 7, 7}}, {{-1, -1, -1}, {13, 13, 13}}}, 1728.0 - 216.0 + 8.0);
     EXPECT_GT(largest_tet_in(mesh, 2, {3, 3, 3}, {9, 9, 9}), 0.5) << "the bound must not spread to tissue 2";
-    EXPECT_EQ(report.tets_over_volume_bound, 0u);
-    EXPECT_NEAR(volumes_by_tissue(mesh).at(1), 1728.0 - 216.0 + 8.0, 1e-9);
 }
 
 TEST(Tetrahedralize, QualityBoundsHoldWhereInterfacesMaySplit)

@@ -11,15 +11,10 @@ namespace tissuemesh {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::read_text;
 using testing::run_cli;
 using testing::run_program;
 using testing::TempDir;
-
-std::string read_text(const fs::path& path)
-{
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// Modification times of the step summaries (each step's make target) in `out`.
 std::map<std::string, fs::file_time_type> summary_times(const fs::path& out)
