@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <map>
 #include <queue>
 
@@ -91,7 +92,7 @@ private:
             const bool local_failed = unchanged_since_failure(w.tet, 1);
             const std::size_t nodes = work_.node_count();
             const Change change = improve(w.tet, insert, local_failed);
-            if (change == Change::none || !volumes_kept()) {
+            if (change == Change::none || !volumes_kept() || !tets_within_bounds()) {
                 work_.rollback(0);
                 if (failed_.size() < work_.tet_slots()) failed_.resize(work_.tet_slots());
                 failed_[w.tet] = {work_.birth(w.tet), clock_, insert ? 2 : 1};
@@ -155,6 +156,18 @@ private:
             break;
         case Change::none: break;
         }
+    }
+
+    /// Whether the tets the edit made or reshaped keep the volume bounds (ImproveOptions::max_tet_volume_mm3).
+    bool tets_within_bounds() const
+    {
+        if (!(options_.max_tet_volume_mm3 > 0) && options_.max_tet_volume_per_tissue_mm3.empty()) return true;
+        const double none = std::numeric_limits<double>::infinity();
+        return work_.changed_tets_within(0, [&](Label label) {
+            const auto it = options_.max_tet_volume_per_tissue_mm3.find(label);
+            if (it != options_.max_tet_volume_per_tissue_mm3.end()) return it->second;
+            return options_.max_tet_volume_mm3 > 0 ? options_.max_tet_volume_mm3 : none;
+        });
     }
 
     /// Whether every tissue's volume is within the allowed change of its start, or no further from it than at the
@@ -221,7 +234,7 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
     if (!(options.target_dihedral_deg > 0 && options.target_dihedral_deg <= 70))
         throw InputError(concat("target dihedral angle ", options.target_dihedral_deg,
                                 " deg is outside (0, 70]; a regular "
-                                "tetrahedron has 70.5 deg; the default is 18"));
+                                "tetrahedron has 70.5 deg; the default is 22"));
     if (!(options.max_face_deviation >= 0 && options.max_face_deviation <= 1))
         throw InputError(concat("face deviation ", options.max_face_deviation,
                                 " is outside [0, 1]; it is a fraction of the "
@@ -230,6 +243,14 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
         throw InputError(concat("volume change ", options.max_volume_change,
                                 " is outside [0, 1]; it is a fraction of each "
                                 "tissue's volume (2e-4 is the default)"));
+    if (!(options.max_tet_volume_mm3 >= 0 && std::isfinite(options.max_tet_volume_mm3)))
+        throw InputError(
+            concat("tet volume bound ", options.max_tet_volume_mm3, " mm^3 is not a finite number >= 0 (0: no bound)"));
+    for (const auto& [tissue, bound] : options.max_tet_volume_per_tissue_mm3)
+        if (!(bound > 0 && std::isfinite(bound)))
+            throw InputError(concat("tet volume bound ", bound, " mm^3 for tissue ", tissue,
+                                    " is not a finite "
+                                    "positive number"));
 }
 
 /// Builds the reference with `make_reference` and improves `mesh` against it, timing both.

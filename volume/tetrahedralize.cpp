@@ -262,7 +262,13 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     const std::vector<Label> labels = label_tets(complex, out);
     TetMesh mesh = assemble(complex, out, labels, options.mesh_background_cavities);
     ImproveReport improvement;
-    if (options.improve) improvement = improve_mesh(mesh, complex, options.improvement, progress);
+    if (options.improve) {
+        // The improver keeps the volume bounds TetGen was given.
+        ImproveOptions improve_options = options.improvement;
+        improve_options.max_tet_volume_mm3 = options.max_volume_mm3;
+        improve_options.max_tet_volume_per_tissue_mm3 = options.max_volume_per_tissue_mm3;
+        improvement = improve_mesh(mesh, complex, improve_options, progress);
+    }
     require_fit_for_fem(mesh);
     progress.update("tetra", 1.0);
 

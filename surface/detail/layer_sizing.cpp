@@ -122,8 +122,7 @@ LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, cons
                         if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
                         // Forwards from the neighbours already swept, backwards likewise.
                         if ((a + nx * (b + ny * c) < m) != (direction > 0)) continue;
-                        const double step =
-                            cell_mm_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk));
+                        const double step = cell_mm_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk));
                         s = std::min(s, static_cast<float>(size_[index_of(a, b, c)] + options.growth * step));
                     }
         }

@@ -21,10 +21,10 @@
 namespace tissuemesh::surface::detail {
 
 struct LayerSizingOptions {
-    double target_edge_mm = 0;   ///< the edge length away from thin layers (the field's largest value)
-    double edges_per_mm = 0;     ///< edge length per mm of layer thickness (0: no sizing field)
-    double min_edge_mm = 0;      ///< the field's smallest value
-    double growth = 0.5;         ///< how much the field may grow per mm away from a thin place
+    double target_edge_mm = 0; ///< the edge length away from thin layers (the field's largest value)
+    double edges_per_mm = 0;   ///< edge length per mm of layer thickness (0: no sizing field)
+    double min_edge_mm = 0;    ///< the field's smallest value
+    double growth = 0.5;       ///< how much the field may grow per mm away from a thin place
 };
 
 class LayerSizing {

@@ -83,7 +83,7 @@ TEST(RefineConstrainedClearance, NewNodesKeepHalfAVoxelFromEveryInterface)
     const TetMesh refined = refine(m.image, &m.mesh, {.max_iterations = 1, .improve = false}, {}, &report);
     // One round: our nodes follow the old ones; TetGen's own Steiner points (if any) come after them.
     const std::size_t added = report.iterations.back().added_nodes;
-    ASSERT_GT(added, 100u);
+    ASSERT_GT(added, 50u); // enough to test (94 since the improver's 22-degree target shaped the start mesh)
     ASSERT_GE(refined.vertices.size(), m.mesh.vertices.size() + added);
     double closest = 1e300;
     for (std::size_t v = m.mesh.vertices.size(); v < m.mesh.vertices.size() + added; ++v)

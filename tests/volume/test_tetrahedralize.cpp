@@ -187,8 +187,9 @@ double largest_tet_in(const TetMesh& mesh, Label tissue, const Vec3& low, const 
 }
 
 /// Meshes `complex` with at most 0.5 mm^3 per tet of `tissue`, as TetGen bounds them: without -Y (with it, the
-/// triangles of small boxes would refuse the refinement, as above) and without the improver (its moves may enlarge
-/// tets past the bound: in the hollow box below, 7 tets grew to 0.58 mm^3). Expects the tets of `tissue` in each of
+/// triangles of small boxes would refuse the refinement, as above) and without the improver (its moves enlarged
+/// tets past the bound, 7 tets to 0.58 mm^3 in the hollow box below, until it was given the bounds too; the test is
+/// of TetGen's regions). Expects the tets of `tissue` in each of
 /// its `pieces` (regions [low, high]) to hold the bound, none over it, and the tissue's exact `volume_mm3`.
 TetMesh expect_bound_in_every_piece(const InterfaceComplex& complex, Label tissue,
                                     const std::vector<std::pair<Vec3, Vec3>>& pieces, double volume_mm3)

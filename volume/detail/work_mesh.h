@@ -103,6 +103,20 @@ public:
     void commit();
     /// Tets added or reshaped since the last call (alive or not; some repeated).
     std::vector<std::uint32_t> take_touched();
+    /// Whether every alive tet the edits since `mark` added or reshaped has a volume within bound(its label).
+    template <class Bound>
+    bool changed_tets_within(std::size_t mark, const Bound& bound) const
+    {
+        const auto within = [&](std::uint32_t t) { return !alive_[t] || volume_[t] <= bound(labels_[t]); };
+        for (std::size_t i = mark; i < journal_.size(); ++i) {
+            const Entry& e = journal_[i];
+            if (e.change == Change::tet_added && !within(e.index)) return false;
+            if (e.change == Change::node_moved)
+                for (const std::uint32_t t : tets_of_[e.index])
+                    if (!within(t)) return false;
+        }
+        return true;
+    }
 
     /// What the edits since `mark` did to the quality: the worst min_sine() of the tets they removed that were
     /// there at `mark` (before), and of the alive tets they added or reshaped (after). Node moves are taken as
