@@ -142,15 +142,7 @@ void LocalEditor::file(std::uint32_t t)
     const CellRange r = cells_of(triangles_[t]);
     filed_[t] = r;
     const Box box = filed_boxes_[t] = box_of(triangles_[t]);
-    // Single precision, rounded outwards: it holds the exact box.
-    CellEntry entry{t, {}};
-    for (int a = 0; a < 3; ++a) {
-        float low = static_cast<float>(box.low[a]), high = static_cast<float>(box.high[a]);
-        if (static_cast<double>(low) > box.low[a]) low = std::nextafter(low, -std::numeric_limits<float>::infinity());
-        if (static_cast<double>(high) < box.high[a])
-            high = std::nextafter(high, std::numeric_limits<float>::infinity());
-        entry.box[a] = low, entry.box[3 + a] = high;
-    }
+    const CellEntry entry{t, compact(Box3{box.low, box.high})};
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i)
@@ -395,14 +387,12 @@ bool LocalEditor::any_in_cells(const CellRange& r, const Box& box, const Visit& 
 {
     // The entries' boxes first: most triangles of a cell are far from the box, and they are in the cell's own
     // memory, where the triangles' own are scattered.
-    const std::array<double, 6> bounds{box.low[0], box.low[1], box.low[2], box.high[0], box.high[1], box.high[2]};
+    const Box3 bounds{box.low, box.high};
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i)
                 for (const CellEntry& e : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
-                    if (e.box[3] < bounds[0] || e.box[4] < bounds[1] || e.box[5] < bounds[2] || bounds[3] < e.box[0] ||
-                        bounds[4] < e.box[1] || bounds[5] < e.box[2])
-                        continue;
+                    if (!boxes_overlap(bounds, e.box)) continue;
                     const std::uint32_t u = e.triangle;
                     if (stamp_[u] == query_ || !alive_[u]) continue;
                     stamp_[u] = query_;

@@ -29,6 +29,7 @@
 #include "surface/detail/edit_types.h"
 #include "surface/detail/editable_complex.h"
 #include "surface/detail/slabs.h"
+#include "surface/detail/triangle_grid.h"
 
 namespace tissuemesh::surface::detail {
 
@@ -169,7 +170,7 @@ private:
     /// A triangle in a cell, with its box when filed in single precision (rounded outwards).
     struct CellEntry {
         std::uint32_t triangle;
-        std::array<float, 6> box; ///< low x, y, z, high x, y, z
+        CompactBox box;
     };
     std::vector<std::vector<CellEntry>> cells_;
     std::vector<CellRange> filed_;
