@@ -72,15 +72,20 @@ LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, cons
     const auto index_of = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
         return static_cast<std::size_t>(i + counts_[0] * (j + counts_[1] * k));
     };
-    // Each triangle: the thinnest of the layers on its sides, as a target on the cells its box overlaps.
-    for (std::uint32_t t = 0; t < complex.triangle_count(); ++t) {
+    // Each triangle: the thinnest of the layers on its sides (rays cast side by side, each on its own, so the
+    // result does not depend on the threads), as a target on the cells its box overlaps.
+    const auto triangles = static_cast<std::int64_t>(complex.triangle_count());
+    std::vector<double> thickness(complex.triangle_count(), reach);
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < triangles; ++i) {
+        const auto t = static_cast<std::uint32_t>(i);
         const TriangleCorners c = corners(t);
         const Vec3 normal = cross(c[1] - c[0], c[2] - c[0]);
         const double area2 = norm(normal);
         if (!(area2 > 0)) continue;
         const Vec3 n = (1 / area2) * normal;
         const Vec3 centre = (1.0 / 3.0) * (c[0] + c[1] + c[2]);
-        double thickness = reach;
+        double& thinnest = thickness[t];
         for (const int sign : {1, -1}) {
             // Normals point from `from` into `to`.
             const Label tissue = sign > 0 ? complex.sides[t].to : complex.sides[t].from;
@@ -92,13 +97,15 @@ LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, cons
                 ray.low[a] = std::min(centre[a], end[a]), ray.high[a] = std::max(centre[a], end[a]);
             index.visit(ray, [&](std::uint32_t u) {
                 if (u == t) return;
-                if (const std::optional<double> hit = ray_hit(centre, d, corners(u), thickness)) thickness = *hit;
+                if (const std::optional<double> hit = ray_hit(centre, d, corners(u), thinnest)) thinnest = *hit;
             });
         }
-        if (!(thickness < reach)) continue;
+    }
+    for (std::uint32_t t = 0; t < complex.triangle_count(); ++t) {
+        if (!(thickness[t] < reach)) continue;
         ++thin_triangles_;
-        const auto size = static_cast<float>(std::max(smallest, options.edges_per_mm * thickness));
-        const Box3 box = bounding_box(c);
+        const auto size = static_cast<float>(std::max(smallest, options.edges_per_mm * thickness[t]));
+        const Box3 box = bounding_box(corners(t));
         const auto low = cell_of(box.low), high = cell_of(box.high);
         for (std::int64_t k = low[2]; k <= high[2]; ++k)
             for (std::int64_t j = low[1]; j <= high[1]; ++j)
