@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "surface/detail/decimator.h"
+#include "surface/detail/layer_sizing.h"
 #include "surface/detail/mesh_measures.h"
 
 namespace tissuemesh::surface {
@@ -38,6 +39,11 @@ void validate(const DecimateOptions& options)
                                 " mm) bounds curvature mode only; size "
                                 "mode splits every edge longer than 4/3 of its target edge length anyway: drop the "
                                 "max edge, or lower the target"));
+    if (!(options.edge_per_thickness >= 0 && options.edge_per_thickness <= 100))
+        throw InputError(concat("decimate: edge per thickness ", options.edge_per_thickness, " is outside [0, 100]"));
+    if (options.edge_per_thickness > 0 && !(options.mode == DecimateMode::curvature && options.max_edge_mm > 0))
+        throw InputError("decimate: an edge per thickness bounds the edges of curvature mode under a max edge; give "
+                         "a max edge as well (tm-decimate --max-edge-mm)");
     if (options.slabs > options.max_slabs)
         throw InputError(concat("decimate: ", options.slabs, " slabs is more than the ", options.max_slabs,
                                 " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));
@@ -85,7 +91,8 @@ Carried slab_carried(const InterfaceComplex& complex, const Carried& carried, de
 /// starts from those only. The result does not depend on the thread count.
 InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried, const std::vector<Slab>& slabs,
                                    const std::vector<std::uint32_t>* seeds, const DecimateOptions& options,
-                                   DecimateReport& report, const Progress& progress, std::vector<std::uint32_t>& seams)
+                                   const detail::LayerSizing& sizing, DecimateReport& report, const Progress& progress,
+                                   std::vector<std::uint32_t>& seams)
 {
     const auto began = std::chrono::steady_clock::now();
     std::vector<Piece> pieces(slabs.size());
@@ -96,7 +103,7 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
         [&](std::size_t k, detail::SlabPiece& slab) {
             Carried local = slab_carried(complex, carried, slab);
             const double cell_mm = 2 * detail::mean_edge_length(slab.complex);
-            Decimator decimator(std::move(slab.complex), std::move(local), cell_mm, options, pieces[k].report,
+            Decimator decimator(std::move(slab.complex), std::move(local), cell_mm, options, sizing, pieces[k].report,
                                 slabs[k]);
             std::vector<std::uint32_t> own_seeds;
             if (seeds)
@@ -165,19 +172,25 @@ DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& option
     // pass over the whole from what those held back (measured on the 1 mm head in 8 slabs: the seams took a
     // serial pass of 14 s, a seventh of the whole).
     const std::size_t pieces = piece_count(complex, options);
+    const detail::LayerSizing sizing(complex, complex.background,
+                                     {.target_edge_mm = 0.75 * options.max_edge_mm,
+                                      .edges_per_mm = options.edge_per_thickness,
+                                      .min_edge_mm = 0.25 * options.max_edge_mm});
     std::vector<std::uint32_t> seams;
     if (pieces > 1) {
         const std::vector<Slab> slabs = detail::cut_into_slabs(complex, pieces);
         report.slabs = slabs.size();
-        complex = decimate_in_slabs(std::move(complex), carried, slabs, nullptr, options, report, progress, seams);
+        complex =
+            decimate_in_slabs(std::move(complex), carried, slabs, nullptr, options, sizing, report, progress, seams);
         if (const std::vector<Slab> between = detail::slabs_between(slabs); !between.empty()) {
             std::vector<std::uint32_t> left;
-            complex = decimate_in_slabs(std::move(complex), carried, between, &seams, options, report, progress, left);
+            complex = decimate_in_slabs(std::move(complex), carried, between, &seams, options, sizing, report, progress,
+                                        left);
             seams = std::move(left);
         }
     }
     const double cell_mm = 2 * detail::mean_edge_length(complex);
-    Decimator decimator(std::move(complex), std::move(carried), cell_mm, options, report);
+    Decimator decimator(std::move(complex), std::move(carried), cell_mm, options, sizing, report);
     decimator.collapse_all(progress, pieces > 1 ? &seams : nullptr);
     if (options.mode == DecimateMode::size) decimator.split_long_edges();
     complex = decimator.result();

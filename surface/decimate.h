@@ -29,6 +29,11 @@ struct DecimateOptions {
     /// edges of flat places (which it would then collapse again) and the decimation from the collapses
     /// that make them.
     double max_edge_mm = 0;
+    /// Curvature mode with max_edge_mm: nor longer than 4/3 of this many times the thickness of the tissue layer
+    /// the edge bounds, measured on the input along its normals (tm-remesh's sizing with a target of 3/4
+    /// max_edge_mm: surface/detail/layer_sizing.h). Collapses over a thin layer otherwise leave triangles as
+    /// long as max_edge_mm there, which the remeshing splits back only where its checks allow (0: no such bound).
+    double edge_per_thickness = 0;
     double max_normal_change_deg = 20; ///< a collapse may tilt a triangle at most this much
     double min_angle_deg = 5;          ///< no collapse may create an angle below this (unless not worse)
     double min_gap_mm = 0.1;           ///< triangles sharing no vertex keep this distance (unless closer before)

@@ -40,6 +40,13 @@ int main(int argc, char** argv)
                            "Curvature mode only: no collapse may leave an edge longer than this (0: no bound); before "
                            "tm-remesh --edge-mm L, 4/3 L saves both steps work")
                 ->capture_default_str();
+            app.add_option("--edge-per-thickness", options.edge_per_thickness,
+                           "With --max-edge-mm: no collapse may leave an edge longer than 4/3 of this many times the "
+                           "thickness of the tissue layer it bounds (tm-remesh --edge-per-thickness's sizing, with a "
+                           "target of 3/4 of the max edge), so that thin layers keep edges the remeshing can work with "
+                           "(0: no such bound)")
+                ->check(CLI::Range(0.0, 100.0))
+                ->capture_default_str();
             app.add_option("--max-normal-change-deg", options.max_normal_change_deg, "Tilt allowed per collapse")
                 ->capture_default_str();
             app.add_option("--min-angle-deg", options.min_angle_deg, "Smallest angle a collapse may create")
@@ -78,6 +85,7 @@ int main(int argc, char** argv)
                            {"mode", mode},
                            {"max_distance_bound_mm", options.max_distance_mm},
                            {"max_edge_mm", options.max_edge_mm},
+                           {"edge_per_thickness", options.edge_per_thickness},
                            {"max_normal_change_deg", options.max_normal_change_deg},
                            {"triangles_before", report.triangles_before},
                            {"triangles_after", report.triangles_after},

@@ -41,8 +41,8 @@ void add_counters(DecimateReport& report, const EditCounters& counters)
 }
 
 Decimator::Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
-                     DecimateReport& report, std::optional<Slab> slab)
-    : options_(options), report_(report), editor_(std::move(complex), limits_of(options), cell_mm),
+                     const LayerSizing& sizing, DecimateReport& report, std::optional<Slab> slab)
+    : options_(options), sizing_(sizing), report_(report), editor_(std::move(complex), limits_of(options), cell_mm),
       quadrics_(std::move(carried.quadrics)), samples_(std::move(carried.samples)), slab_(slab)
 {
     if (slab) editor_.set_fence(slab->fence(options.min_gap_mm));
@@ -303,9 +303,10 @@ bool Decimator::short_enough(std::uint32_t v, std::uint32_t w) const
     for (const LocalEditor::RingEntry& e : ring_) {
         const Vec3& q = editor_.position(e.vertex);
         const double length = distance(p, q);
-        if (e.vertex != w && length > options_.max_edge_mm && length > distance(editor_.position(v), q) &&
-            editor_.edge_multiplicity(w, e.vertex) == 0)
-            return false;
+        if (e.vertex == w || length <= distance(editor_.position(v), q) || editor_.edge_multiplicity(w, e.vertex) != 0)
+            continue;
+        if (length > options_.max_edge_mm) return false;
+        if (options_.edge_per_thickness > 0 && length > 4.0 / 3.0 * sizing_.at(0.5 * (p + q))) return false;
     }
     return true;
 }

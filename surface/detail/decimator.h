@@ -12,6 +12,7 @@
 
 #include "core/progress.h"
 #include "surface/decimate.h"
+#include "surface/detail/layer_sizing.h"
 #include "surface/detail/local_editor.h"
 #include "surface/detail/triangle_distance.h"
 #include "surface/detail/slabs.h"
@@ -50,8 +51,10 @@ public:
     /// `cell_mm`: the editor's grid cell, computed before `complex` is moved in. `carried` is indexed like
     /// `complex`. With `slab`, the editor is fenced in (Slab::fence()) and a collapse is tried only when the
     /// triangles around both its ends lie inside the fence (those around the kept end take samples over).
+    /// `sizing`: the bound on edge lengths by layer thickness (DecimateOptions::edge_per_thickness; an empty field
+    /// gives max_edge_mm everywhere).
     Decimator(InterfaceComplex&& complex, Carried&& carried, double cell_mm, const DecimateOptions& options,
-              DecimateReport& report, std::optional<Slab> slab = std::nullopt);
+              const LayerSizing& sizing, DecimateReport& report, std::optional<Slab> slab = std::nullopt);
 
     /// Collapses cheapest first, starting from every vertex or, when given, from `seeds` only (the others
     /// are tried when a collapse changes their neighbourhood).
@@ -106,7 +109,8 @@ private:
     bool collapse(std::uint32_t v, std::uint32_t w);
 
     /// Whether the collapse of v into w leaves every new edge at w (from a neighbour of v that is none of w)
-    /// no longer than max_edge_mm, or no longer than the edge to v it replaces.
+    /// no longer than max_edge_mm and 4/3 of the layer sizing at its midpoint, or no longer than the edge to v
+    /// it replaces.
     bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const;
 
     /// keeps_edges_short() with the ring of v already in ring_.
@@ -116,6 +120,7 @@ private:
     void redistribute_samples(std::uint32_t m);
 
     const DecimateOptions& options_;
+    const LayerSizing& sizing_;
     DecimateReport& report_;
     LocalEditor editor_;
     std::vector<Quadric> quadrics_;

@@ -8,6 +8,7 @@
 #include "image/phantom.h"
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
+#include "surface/detail/layer_sizing.h"
 #include "surface/extract_interfaces.h"
 #include "tests/support/phantom_distance.h"
 
@@ -119,6 +120,46 @@ TEST(Decimate, MaxEdgeBoundsTheEdgesCollapsesLeave)
     EXPECT_TRUE(surface::check_complex(bounded).ok());
 }
 
+/// The `thin` phantom's shell is one voxel (2 mm) thick. Decimated under a 10 mm edge bound it gets edges far
+/// longer than that; with one edge length per mm of thickness (a bound of 4/3 of 2.5 mm there: the sizing's
+/// smallest edge is a quarter of the max edge), no collapse leaves an edge longer than 4/3 of the sizing at its
+/// midpoint (the extracted edges, all shorter, are kept), and the complex stays valid with the same pieces.
+TEST(Decimate, EdgesFollowTheThicknessOfAThinLayer)
+{
+    const image::Phantom phantom = image::make_phantom("thin", {.voxel_mm = 2.0});
+    const InterfaceComplex raw = surface::extract_interfaces(phantom.image);
+    const surface::CheckReport before = surface::check_complex(raw);
+    const surface::DecimateOptions plain_options{.max_distance_mm = 1, .max_edge_mm = 10, .max_normal_change_deg = 45};
+    surface::DecimateOptions sized_options = plain_options;
+    sized_options.edge_per_thickness = 1;
+    InterfaceComplex plain = raw, sized = raw;
+    surface::decimate(plain, plain_options);
+    const surface::DecimateReport report = surface::decimate(sized, sized_options);
+    const surface::detail::LayerSizing sizing(raw, raw.background,
+                                              {.target_edge_mm = 7.5, .edges_per_mm = 1, .min_edge_mm = 2.5});
+    double worst = 0; // the longest edge over its bound
+    for (const Triangle& t : sized.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 &a = sized.vertices[t[k]], &b = sized.vertices[t[(k + 1) % 3]];
+            worst = std::max(worst, distance(a, b) / (4.0 / 3.0 * sizing.at(0.5 * (a + b))));
+        }
+    std::cout << "[ figures  ] thin 2 mm decimated under a 10 mm edge bound: longest edge " << longest_edge_mm(plain)
+              << " mm, " << plain.triangle_count() << " triangles; with one edge per mm of thickness "
+              << longest_edge_mm(sized) << " mm, " << sized.triangle_count() << " triangles ("
+              << report.refused_by_length << " collapses refused by length), longest edge / its bound " << worst
+              << "\n";
+    EXPECT_GT(longest_edge_mm(plain), 5.0);
+    EXPECT_LE(worst, 1 + 1e-9);
+    EXPECT_LT(longest_edge_mm(sized), 0.5 * longest_edge_mm(plain));
+    EXPECT_GT(static_cast<double>(sized.triangle_count()), 1.3 * static_cast<double>(plain.triangle_count()));
+    EXPECT_LT(sized.triangle_count(), raw.triangle_count() / 2);
+    const surface::CheckReport after = surface::check_complex(sized);
+    EXPECT_TRUE(after.ok()) << (after.first_error() ? after.first_error()->description : "");
+    ASSERT_EQ(after.tissues.size(), before.tissues.size());
+    for (const auto& [tissue, facts] : before.tissues)
+        EXPECT_EQ(after.tissues.at(tissue).components, facts.components) << "tissue " << tissue;
+}
+
 TEST(Decimate, RejectsBadOptions)
 {
     InterfaceComplex complex;
@@ -130,6 +171,9 @@ TEST(Decimate, RejectsBadOptions)
         surface::decimate(complex, {.mode = surface::DecimateMode::size, .max_edge_mm = 3, .target_edge_mm = 2}),
         InputError);
     EXPECT_THROW(surface::decimate(complex, {.slabs = surface::DecimateOptions::max_slabs + 1}), InputError);
+    // The thickness bound narrows the max edge: without one it would be silently ignored.
+    EXPECT_THROW(surface::decimate(complex, {.edge_per_thickness = 4}), InputError);
+    EXPECT_THROW(surface::decimate(complex, {.max_edge_mm = 4, .edge_per_thickness = -1}), InputError);
 }
 
 } // namespace
