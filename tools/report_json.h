@@ -6,7 +6,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "volume/assess.h"
+#include "volume/check_mesh.h"
 #include "volume/improve_mesh.h"
+#include "volume/interface_distance.h"
 #include "volume/refine.h"
 #include "volume/tetrahedralize.h"
 
@@ -22,6 +25,16 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ImproveReport, before, after, smoothed_nodes,
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TetrahedralizeReport, input_triangles, nodes, tets, steiner_points, interface_faces,
                                    split_interface_triangles, min_dihedral_deg, max_radius_edge_ratio,
                                    tets_over_volume_bound)
+// Not agreeing_voxels (the Dice says it).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueAssessment, image_voxels, mesh_voxels, dice, mesh_volume_mm3, voxel_volume_mm3,
+                                   volume_error_mm3, error_volume_mm3)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueMeshStats, tets, volume_mm3, components, voxel_volume_mm3, dice)
+// Not tissues, quality, problems: tm-check-mesh writes the tissues with their names and some quality figures.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MeshCheckReport, nodes, tets, faces, inverted_tets, flat_tets, nonconforming_faces,
+                                   open_boundary_edges, unused_nodes, missing_interface_faces,
+                                   mislabelled_interface_faces, unmarked_interfaces)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(InterfaceDistance, nodes, max_node_mm, mean_node_mm, faces, max_face_mm,
+                                   mean_face_mm, unmatched_faces)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RefineIteration, iteration, nodes, tets, added_nodes, reassessed_tets,
                                    total_error_volume_mm3, worst_quality_key, seconds)
 
