@@ -6,12 +6,39 @@
 
 #include <nlohmann/json.hpp>
 
+#include "surface/decimate.h"
+#include "surface/remesh.h"
+#include "surface/repair.h"
+#include "surface/smooth.h"
+#include "surface/snake.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
 #include "volume/improve_mesh.h"
 #include "volume/interface_distance.h"
 #include "volume/refine.h"
 #include "volume/tetrahedralize.h"
+
+namespace tissuemesh::surface {
+
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SmoothReport, iterations, moves, refused_by_image, refused_by_checks, fit_moves,
+                                   fixed_vertices, mean_displacement_mm, max_displacement_mm)
+// Not refused_by_checks (the sum of the five refusals after it).
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DecimateReport, triangles_before, triangles_after, collapses, splits, slabs,
+                                   refused_by_distance, refused_by_length, refused_topology, refused_shape,
+                                   refused_fold, refused_intersection, refused_gap, refused_wedge, max_distance_mm)
+// Not max_distance_mm: tm-remesh writes it as max_distance_to_input_mm.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RemeshReport, triangles_before, triangles_after, splits, collapses, flips, moves,
+                                   refused, slabs, min_angle_before_deg, min_angle_after_deg, min_sector_before_deg,
+                                   min_sector_after_deg, mean_edge_after_mm, thin_triangles)
+// Not actions: tm-repair writes them with their kinds' names.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RepairReport, triangles_before, triangles_after, merged_vertices, removed_duplicates,
+                                   removed_degenerate, collapsed_degenerate, flipped_triangles,
+                                   self_intersections_before, patch_intersections_before, near_contacts_before,
+                                   near_contacts_after, rounds, moved_vertices, max_move_mm)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SnakeReport, iterations, converged, last_max_motion_mm, moves, shortened_moves,
+                                   refused_moves, splits, collapses, flips, triangles, mean_abs_field_distance_mm)
+
+} // namespace tissuemesh::surface
 
 namespace tissuemesh::volume {
 
