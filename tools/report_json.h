@@ -6,7 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "surface/check_complex.h"
 #include "surface/decimate.h"
+#include "surface/extract_surface_nets.h"
 #include "surface/remesh.h"
 #include "surface/repair.h"
 #include "surface/smooth.h"
@@ -20,6 +22,11 @@
 
 namespace tissuemesh::surface {
 
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueCheck, triangles, closed, oriented, open_edges, orientation_conflicts,
+                                   non_manifold_edges, components, volume_mm3)
+// Not iterations: tm-extract writes it as smooth_iterations.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceNetsReport, mixed_cubes, fallback_cubes, moves, refused_by_image,
+                                   refused_by_checks, mean_displacement_mm, max_displacement_mm)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SmoothReport, iterations, moves, refused_by_image, refused_by_checks, fit_moves,
                                    fixed_vertices, mean_displacement_mm, max_displacement_mm)
 // Not refused_by_checks (the sum of the five refusals after it).
