@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "image/label_statistics.h"
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
 #include "surface/extract_surface_nets.h"
@@ -19,6 +20,17 @@
 #include "volume/interface_distance.h"
 #include "volume/refine.h"
 #include "volume/tetrahedralize.h"
+
+namespace tissuemesh::image {
+
+// Not index_min, index_max, bounds_mm: tm-info writes them as bbox_index_min, ..., bbox_mm_max.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LabelSummary, label, name, voxels, volume_mm3, components6, components26, touches,
+                                   border_voxels, thin_voxels, islands, island_voxels, warnings)
+// Not labels: tm-info writes them with the bounding boxes above.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LabelStatistics, dims, spacing_mm, origin_mm, direction, orientation, bounds_mm,
+                                   voxel_count)
+
+} // namespace tissuemesh::image
 
 namespace tissuemesh::surface {
 
