@@ -2,6 +2,7 @@
 // `nlohmann::json j = report;`. Keys are the field names. A field left out of a list here is one no summary
 // has carried under its own name: a tool adds it under the name its summary has (tm-tetra's tetgen_switches)
 // or leaves it out, so that no key of a summary changed when the tools took their forms from here.
+// The render reports are tm-render's own (tools/tm_render.cpp): the other tools do not compile against render/.
 #pragma once
 
 #include <nlohmann/json.hpp>
