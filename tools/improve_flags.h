@@ -1,10 +1,9 @@
-// The mesh improver's flags and summary, shared by tm-tetra, tm-refine and tm-improve.
+// The mesh improver's flags and log line, shared by tm-tetra, tm-refine and tm-improve.
 #pragma once
 
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "volume/improve_mesh.h"
@@ -66,28 +65,6 @@ struct ImproveFlags {
         return o;
     }
 };
-
-inline nlohmann::json shape_json(const volume::ShapeFigures& f)
-{
-    return {{"min_dihedral_deg", f.min_dihedral_deg},       {"max_dihedral_deg", f.max_dihedral_deg},
-            {"p1_min_dihedral_deg", f.p1_min_dihedral_deg}, {"tets_under_10_deg", f.tets_under_10_deg},
-            {"tets_under_20_deg", f.tets_under_20_deg},     {"tets", f.tets}};
-}
-
-inline nlohmann::json improve_json(const volume::ImproveReport& r)
-{
-    return {{"before", shape_json(r.before)},
-            {"after", shape_json(r.after)},
-            {"smoothed_nodes", r.smoothed_nodes},
-            {"edges_removed", r.edges_removed},
-            {"faces_removed", r.faces_removed},
-            {"interface_edges_flipped", r.interface_edges_flipped},
-            {"nodes_inserted", r.nodes_inserted},
-            {"nodes_inserted_on_interfaces", r.nodes_inserted_on_interfaces},
-            {"passes", r.passes},
-            {"seconds", r.seconds},
-            {"cpu_seconds", r.cpu_seconds}};
-}
 
 /// "smallest dihedral 0.21 -> 18.3 deg, 1st percentile 9.1 -> 24.0 deg, ... in 1.2 s"
 inline std::string improve_line(const volume::ImproveReport& r)

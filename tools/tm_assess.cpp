@@ -8,6 +8,7 @@
 #include "io/read_label_image.h"
 #include "io/tet_mesh_io.h"
 #include "tools/mesh_format_options.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/extract_priority.h"
 #include "tools/tissue_arguments.h"
@@ -50,16 +51,10 @@ tools::TissueTable mesh_and_image_tissues(const TetMesh& mesh, const LabelImage&
 nlohmann::json summarize(const TetMesh& mesh, const volume::Assessment& a, std::size_t relabelled)
 {
     nlohmann::json tissues = nlohmann::json::object(), worst = nlohmann::json::array();
-    for (const auto& [label, t] : a.tissues)
-        tissues[std::to_string(label)] = {
-            {"name", mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label)},
-            {"dice", t.dice},
-            {"image_voxels", t.image_voxels},
-            {"mesh_voxels", t.mesh_voxels},
-            {"mesh_volume_mm3", t.mesh_volume_mm3},
-            {"voxel_volume_mm3", t.voxel_volume_mm3},
-            {"volume_error_mm3", t.volume_error_mm3},
-            {"error_volume_mm3", t.error_volume_mm3}};
+    for (const auto& [label, t] : a.tissues) {
+        nlohmann::json& tissue = tissues[std::to_string(label)] = t;
+        tissue["name"] = mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label);
+    }
     for (std::size_t r = 0; r < std::min<std::size_t>(10, a.worst_first.size()); ++r) {
         const std::uint32_t t = a.worst_first[r];
         worst.push_back({{"tet", t},

@@ -6,6 +6,7 @@
 #include "io/read_label_image.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "volume/check_mesh.h"
 #include "volume/interface_distance.h"
@@ -58,12 +59,8 @@ int main(int argc, char** argv)
                 const std::string name = mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label);
                 std::printf("%-20s %10zu %14.1f %10zu %14.1f %8.4f\n", name.c_str(), stats.tets, stats.volume_mm3,
                             stats.components, stats.voxel_volume_mm3, stats.dice);
-                tissues[std::to_string(label)] = {{"name", name},
-                                                  {"tets", stats.tets},
-                                                  {"volume_mm3", stats.volume_mm3},
-                                                  {"components", stats.components},
-                                                  {"voxel_volume_mm3", stats.voxel_volume_mm3},
-                                                  {"dice", stats.dice}};
+                nlohmann::json& tissue = tissues[std::to_string(label)] = stats;
+                tissue["name"] = name;
             }
             nlohmann::json distance_json;
             if (!surface_path.empty()) {
@@ -83,13 +80,7 @@ int main(int argc, char** argv)
                             d.unmatched_faces > 0
                                 ? concat("; ", d.unmatched_faces, " faces of tissue pairs the surface lacks").c_str()
                                 : "");
-                distance_json = {{"nodes", d.nodes},
-                                 {"max_node_mm", d.max_node_mm},
-                                 {"mean_node_mm", d.mean_node_mm},
-                                 {"faces", d.faces},
-                                 {"max_face_mm", d.max_face_mm},
-                                 {"mean_face_mm", d.mean_face_mm},
-                                 {"unmatched_faces", d.unmatched_faces}};
+                distance_json = d;
                 if (voxel_mm > 0) {
                     distance_json["voxel_mm"] = voxel_mm;
                     distance_json["max_node_voxels"] = d.max_node_mm / voxel_mm,
@@ -100,24 +91,14 @@ int main(int argc, char** argv)
             }
             for (const std::string& problem : report.problems) std::printf("defect: %s\n", problem.c_str());
             std::printf("%s\n", report.ok() ? "fit for FEM" : "NOT fit for FEM: see the defects above");
-            context.summary = {{"ok", report.ok()},
-                               {"nodes", report.nodes},
-                               {"tets", report.tets},
-                               {"faces", report.faces},
-                               {"inverted_tets", report.inverted_tets},
-                               {"flat_tets", report.flat_tets},
-                               {"nonconforming_faces", report.nonconforming_faces},
-                               {"open_boundary_edges", report.open_boundary_edges},
-                               {"unused_nodes", report.unused_nodes},
-                               {"missing_interface_faces", report.missing_interface_faces},
-                               {"mislabelled_interface_faces", report.mislabelled_interface_faces},
-                               {"unmarked_interfaces", report.unmarked_interfaces},
-                               {"min_dihedral_deg", report.quality.min_dihedral_deg},
-                               {"max_radius_edge_ratio", report.quality.max_radius_edge_ratio},
-                               {"min_dihedral_histogram_10deg", report.quality.min_dihedral_histogram},
-                               {"tissues", tissues},
-                               {"p1_min_dihedral_deg", report.quality.p1_min_dihedral_deg},
-                               {"max_dihedral_deg", report.quality.max_dihedral_deg}};
+            context.summary = report;
+            context.summary.update({{"ok", report.ok()},
+                                    {"min_dihedral_deg", report.quality.min_dihedral_deg},
+                                    {"max_radius_edge_ratio", report.quality.max_radius_edge_ratio},
+                                    {"min_dihedral_histogram_10deg", report.quality.min_dihedral_histogram},
+                                    {"tissues", tissues},
+                                    {"p1_min_dihedral_deg", report.quality.p1_min_dihedral_deg},
+                                    {"max_dihedral_deg", report.quality.max_dihedral_deg}});
             if (!distance_json.is_null()) context.summary["interface_distance"] = distance_json;
             context.exit_code = report.ok() ? 0 : 1;
         });

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/surface_io.h"
 #include "surface/check_complex.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 
 using namespace tissuemesh;
@@ -70,17 +71,11 @@ void print_report(const std::string& path, const InterfaceComplex& complex, cons
 nlohmann::json to_json(const InterfaceComplex& complex, const CheckReport& report, std::size_t max_report)
 {
     nlohmann::json tissues = nlohmann::json::array();
-    for (const auto& [label, t] : report.tissues)
-        tissues.push_back({{"label", label},
-                           {"name", tissue_name(complex, label)},
-                           {"triangles", t.triangles},
-                           {"closed", t.closed},
-                           {"oriented", t.oriented},
-                           {"open_edges", t.open_edges},
-                           {"orientation_conflicts", t.orientation_conflicts},
-                           {"non_manifold_edges", t.non_manifold_edges},
-                           {"components", t.components},
-                           {"volume_mm3", t.volume_mm3}});
+    for (const auto& [label, t] : report.tissues) {
+        nlohmann::json tissue = t;
+        tissue.update({{"label", label}, {"name", tissue_name(complex, label)}});
+        tissues.push_back(tissue);
+    }
     nlohmann::json counts = nlohmann::json::object();
     for (std::size_t k = 0; k < surface::defect_kind_count; ++k)
         counts[std::string(surface::to_string(DefectKind(k)))] = report.counts[k];

@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "surface/decimate.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
 
@@ -79,28 +80,15 @@ int main(int argc, char** argv)
             ctx.log(concat(report.triangles_before, " -> ", report.triangles_after, " triangles (",
                            format_mm(seconds, 2), " s)"));
             tools::write_checked(complex, output);
-            ctx.summary = {{"input", input},
-                           {"input_checked", in.checked},
-                           {"output", output},
-                           {"mode", mode},
-                           {"max_distance_bound_mm", options.max_distance_mm},
-                           {"max_edge_mm", options.max_edge_mm},
-                           {"edge_per_thickness", options.edge_per_thickness},
-                           {"max_normal_change_deg", options.max_normal_change_deg},
-                           {"triangles_before", report.triangles_before},
-                           {"triangles_after", report.triangles_after},
-                           {"collapses", report.collapses},
-                           {"splits", report.splits},
-                           {"slabs", report.slabs},
-                           {"refused_by_distance", report.refused_by_distance},
-                           {"refused_by_length", report.refused_by_length},
-                           {"refused_topology", report.refused_topology},
-                           {"refused_shape", report.refused_shape},
-                           {"refused_fold", report.refused_fold},
-                           {"refused_intersection", report.refused_intersection},
-                           {"refused_gap", report.refused_gap},
-                           {"refused_wedge", report.refused_wedge},
-                           {"max_distance_mm", report.max_distance_mm},
-                           {"seconds_decimate", seconds}};
+            ctx.summary = report;
+            ctx.summary.update({{"input", input},
+                                {"input_checked", in.checked},
+                                {"output", output},
+                                {"mode", mode},
+                                {"max_distance_bound_mm", options.max_distance_mm},
+                                {"max_edge_mm", options.max_edge_mm},
+                                {"edge_per_thickness", options.edge_per_thickness},
+                                {"max_normal_change_deg", options.max_normal_change_deg},
+                                {"seconds_decimate", seconds}});
         });
 }

@@ -16,6 +16,7 @@
 #include "surface/extract_surface_nets.h"
 #include "surface/summarize_interfaces.h"
 #include "surface/tissue_surface.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/extract_priority.h"
 #include "tools/tissue_arguments.h"
@@ -239,14 +240,9 @@ int main(int argc, char** argv)
                            {"seconds_extract", extract_seconds},
                            {"seconds_write", tools::seconds_since(start) - extract_seconds},
                            {"method", method}};
-            if (nets)
-                ctx.summary["surface_nets"] = {{"mixed_cubes", nets_report.mixed_cubes},
-                                               {"fallback_cubes", nets_report.fallback_cubes},
-                                               {"smooth_iterations", nets_report.iterations},
-                                               {"moves", nets_report.moves},
-                                               {"refused_by_image", nets_report.refused_by_image},
-                                               {"refused_by_checks", nets_report.refused_by_checks},
-                                               {"mean_displacement_mm", nets_report.mean_displacement_mm},
-                                               {"max_displacement_mm", nets_report.max_displacement_mm}};
+            if (nets) {
+                nlohmann::json& nets_summary = ctx.summary["surface_nets"] = nets_report;
+                nets_summary["smooth_iterations"] = nets_report.iterations;
+            }
         });
 }

@@ -4,6 +4,7 @@
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "volume/improve_mesh.h"
 #include "volume/mark_interfaces.h"
@@ -51,7 +52,7 @@ int main(int argc, char** argv)
             });
             io::write_tet_mesh(mesh, output, format_flags.to_write_options());
             context.log(tools::improve_line(report));
-            context.summary = tools::improve_json(report);
+            context.summary = report;
             context.summary["nodes"] = mesh.vertices.size();
             context.summary["tets"] = mesh.tets.size();
         });

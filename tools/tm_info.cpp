@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "image/label_statistics.h"
 #include "io/read_label_image.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/tissue_arguments.h"
 
@@ -56,37 +57,21 @@ void print_report(const std::string& path, const image::LabelStatistics& stats)
         for (const std::string& warning : s.warnings) std::printf("  %s\n", warning.c_str());
 }
 
-nlohmann::json to_json(const image::LabelStatistics& stats)
+nlohmann::json summarize(const image::LabelStatistics& stats)
 {
-    nlohmann::json labels = nlohmann::json::array();
-    for (const auto& s : stats.labels)
-        labels.push_back({{"label", s.label},
-                          {"name", s.name},
-                          {"voxels", s.voxels},
-                          {"volume_mm3", s.volume_mm3},
-                          {"bbox_index_min", s.index_min},
-                          {"bbox_index_max", s.index_max},
-                          {"bbox_mm_min", s.bounds_mm[0]},
-                          {"bbox_mm_max", s.bounds_mm[1]},
-                          {"components6", s.components6},
-                          {"components26", s.components26},
-                          {"touches", s.touches},
-                          {"border_voxels", s.border_voxels},
-                          {"thin_voxels", s.thin_voxels},
-                          {"islands", s.islands},
-                          {"island_voxels", s.island_voxels},
-                          {"warnings", s.warnings}});
-    nlohmann::json counts = nlohmann::json::object();
-    for (const auto& s : stats.labels) counts[std::to_string(s.label)] = s.voxels;
-    return {{"dims", stats.dims},
-            {"spacing_mm", stats.spacing_mm},
-            {"origin_mm", stats.origin_mm},
-            {"direction", stats.direction},
-            {"orientation", stats.orientation},
-            {"bounds_mm", {stats.bounds_mm[0], stats.bounds_mm[1]}},
-            {"voxel_count", stats.voxel_count},
-            {"voxel_counts", counts},
-            {"labels", labels}};
+    nlohmann::json labels = nlohmann::json::array(), counts = nlohmann::json::object();
+    for (const auto& s : stats.labels) {
+        nlohmann::json label = s;
+        label.update({{"bbox_index_min", s.index_min},
+                      {"bbox_index_max", s.index_max},
+                      {"bbox_mm_min", s.bounds_mm[0]},
+                      {"bbox_mm_max", s.bounds_mm[1]}});
+        labels.push_back(label);
+        counts[std::to_string(s.label)] = s.voxels;
+    }
+    nlohmann::json summary = stats;
+    summary.update({{"voxel_counts", counts}, {"labels", labels}});
+    return summary;
 }
 
 // Bytes per voxel besides the file's own, measured on spheres4 at 1 and 2 mm and the 1 mm usc19-5 head
@@ -122,7 +107,7 @@ int main(int argc, char** argv)
                                                  "crop or resample it (tm-prep --crop-pad 2, --spacing-mm 2)")});
             const image::LabelStatistics stats = image::analyze_labels(image, options, ctx.progress);
             print_report(input, stats);
-            ctx.summary = to_json(stats);
+            ctx.summary = summarize(stats);
             ctx.summary["input"] = input;
             ctx.log(concat(stats.labels.size(), " labels in ", stats.voxel_count, " voxels"));
         });

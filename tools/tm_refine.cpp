@@ -7,6 +7,7 @@
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "volume/refine.h"
 #include "volume/refine_log.h"
@@ -17,16 +18,6 @@ namespace {
 
 nlohmann::json summarize(const volume::RefineReport& report, const volume::RefineOptions& options, bool constrained)
 {
-    nlohmann::json rounds = nlohmann::json::array();
-    for (const volume::RefineIteration& it : report.iterations)
-        rounds.push_back({{"iteration", it.iteration},
-                          {"nodes", it.nodes},
-                          {"tets", it.tets},
-                          {"added_nodes", it.added_nodes},
-                          {"reassessed_tets", it.reassessed_tets},
-                          {"total_error_volume_mm3", it.total_error_volume_mm3},
-                          {"worst_quality_key", it.worst_quality_key},
-                          {"seconds", it.seconds}});
     const volume::RefineIteration& first = report.iterations.front();
     const volume::RefineIteration& last = report.iterations.back();
     return {{"mode", constrained ? "constrained" : "delaunay"},
@@ -44,7 +35,7 @@ nlohmann::json summarize(const volume::RefineReport& report, const volume::Refin
                                               ? nlohmann::json(report.improved_error_volume_mm3)
                                               : nlohmann::json(nullptr)},
             {"refine_seconds", last.seconds},
-            {"iterations", rounds}};
+            {"iterations", report.iterations}};
 }
 
 } // namespace
@@ -133,7 +124,7 @@ int main(int argc, char** argv)
             // The written mesh: the last round's, improved (moves, flips and new nodes).
             context.summary["nodes"] = mesh.vertices.size(), context.summary["tets"] = mesh.tets.size();
             if (report.improved) {
-                context.summary["improvement"] = tools::improve_json(report.improvement);
+                context.summary["improvement"] = report.improvement;
                 context.log(tools::improve_line(report.improvement));
             }
             const volume::RefineIteration& last = report.iterations.back();

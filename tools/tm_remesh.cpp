@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "surface/remesh.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
 #include "tools/tissue_arguments.h"
@@ -103,24 +104,11 @@ int main(int argc, char** argv)
                            " deg, smallest tissue sector ", format_mm(report.min_sector_before_deg, 3), " -> ",
                            format_mm(report.min_sector_after_deg, 3), " deg (", format_mm(seconds, 2), " s)"));
             tools::write_checked(complex, output);
-            ctx.summary = {{"input", input},
-                           {"input_checked", in.checked},
-                           {"output", output},
-                           {"triangles_before", report.triangles_before},
-                           {"triangles_after", report.triangles_after},
-                           {"splits", report.splits},
-                           {"collapses", report.collapses},
-                           {"flips", report.flips},
-                           {"moves", report.moves},
-                           {"refused", report.refused},
-                           {"slabs", report.slabs},
-                           {"min_angle_before_deg", report.min_angle_before_deg},
-                           {"min_angle_after_deg", report.min_angle_after_deg},
-                           {"min_sector_before_deg", report.min_sector_before_deg},
-                           {"min_sector_after_deg", report.min_sector_after_deg},
-                           {"mean_edge_after_mm", report.mean_edge_after_mm},
-                           {"max_distance_to_input_mm", report.max_distance_mm},
-                           {"thin_triangles", report.thin_triangles},
-                           {"seconds_remesh", seconds}};
+            ctx.summary = report;
+            ctx.summary.update({{"input", input},
+                                {"input_checked", in.checked},
+                                {"output", output},
+                                {"max_distance_to_input_mm", report.max_distance_mm},
+                                {"seconds_remesh", seconds}});
         });
 }

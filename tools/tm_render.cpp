@@ -23,6 +23,15 @@
 
 using namespace tissuemesh;
 
+// The JSON form of the render reports, keys the field names (tools/report_json.h has the other libraries'; only
+// tm-render compiles against render/).
+namespace tissuemesh::render {
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SurfaceViewReport, triangles_drawn, triangles_cut, pixels_covered)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SectionViewReport, position_mm, tets_cut, tets_highlighted)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(FieldSectionReport, position_mm, tets_cut, outline_segments, field_min, field_max,
+                                   colour_min, colour_max)
+} // namespace tissuemesh::render
+
 namespace {
 
 Vec3 parse_point(const std::string& text)
@@ -59,10 +68,8 @@ render::Canvas surface_view(const std::string& input, const render::SurfaceViewO
     for (const LabelPair& pair : complex.sides)
         for (const Label label : {pair.from, pair.to})
             if (label != complex.background) tissues.insert(label);
-    summary.update({{"tissues_shown", labels_json(tissues)},
-                    {"triangles_drawn", report.triangles_drawn},
-                    {"triangles_cut", report.triangles_cut},
-                    {"pixels_covered", report.pixels_covered}});
+    summary.update(nlohmann::json(report));
+    summary["tissues_shown"] = labels_json(tissues);
     return picture;
 }
 
@@ -82,9 +89,7 @@ render::Canvas section_view(const std::string& input, const std::string& image_p
     render::SectionViewReport report;
     render::Canvas picture = render::render_section(
         mesh, image ? &*image : nullptr, assessment ? &assessment->error_volume_mm3 : nullptr, options, &report);
-    summary.update({{"position_mm", report.position_mm},
-                    {"tets_cut", report.tets_cut},
-                    {"tets_highlighted", report.tets_highlighted}});
+    summary.update(nlohmann::json(report));
     return picture;
 }
 
@@ -164,14 +169,8 @@ render::Canvas field_view(const std::string& input, const std::string& wanted, r
     summary.update({{"field", field.name},
                     {"quantity", field.quantity},
                     {"unit", field.unit},
-                    {"per", field.values.size() == content.mesh.vertices.size() ? "node" : "tet"},
-                    {"position_mm", report.position_mm},
-                    {"tets_cut", report.tets_cut},
-                    {"outline_segments", report.outline_segments},
-                    {"field_min", report.field_min},
-                    {"field_max", report.field_max},
-                    {"colour_min", report.colour_min},
-                    {"colour_max", report.colour_max}});
+                    {"per", field.values.size() == content.mesh.vertices.size() ? "node" : "tet"}});
+    summary.update(nlohmann::json(report));
     return picture;
 }
 

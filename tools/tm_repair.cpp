@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "surface/repair.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
 
@@ -15,7 +16,7 @@ using namespace tissuemesh;
 
 namespace {
 
-nlohmann::json to_json(const surface::RepairReport& report)
+nlohmann::json summarize(const surface::RepairReport& report)
 {
     nlohmann::json actions = nlohmann::json::array();
     for (const surface::RepairAction& action : report.actions)
@@ -23,22 +24,9 @@ nlohmann::json to_json(const surface::RepairReport& report)
                            {"location_mm", action.location_mm},
                            {"tissues", action.tissues},
                            {"description", action.description}});
-    return {{"triangles_before", report.triangles_before},
-            {"triangles_after", report.triangles_after},
-            {"merged_vertices", report.merged_vertices},
-            {"removed_duplicates", report.removed_duplicates},
-            {"removed_degenerate", report.removed_degenerate},
-            {"collapsed_degenerate", report.collapsed_degenerate},
-            {"flipped_triangles", report.flipped_triangles},
-            {"self_intersections_before", report.self_intersections_before},
-            {"patch_intersections_before", report.patch_intersections_before},
-            {"near_contacts_before", report.near_contacts_before},
-            {"near_contacts_after", report.near_contacts_after},
-            {"rounds", report.rounds},
-            {"moved_vertices", report.moved_vertices},
-            {"max_move_mm", report.max_move_mm},
-            {"changed", report.changed()},
-            {"actions", actions}};
+    nlohmann::json summary = report;
+    summary.update({{"changed", report.changed()}, {"actions", actions}});
+    return summary;
 }
 
 } // namespace
@@ -87,7 +75,7 @@ int main(int argc, char** argv)
                            " intersecting pairs and ", report.near_contacts_before - report.near_contacts_after,
                            " near-contacts removed by moving ", report.moved_vertices, " vertices"));
             io::write_surface(complex, output);
-            ctx.summary = to_json(report);
+            ctx.summary = summarize(report);
             ctx.summary["input"] = input;
             ctx.summary["output"] = output;
             if (!image_path.empty()) ctx.summary["image"] = image_path;

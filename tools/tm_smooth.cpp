@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "io/read_label_image.h"
 #include "surface/smooth.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
 
@@ -64,19 +65,12 @@ int main(int argc, char** argv)
             ctx.log(concat(report.moves, " moves in ", report.iterations, " iterations (", format_mm(seconds, 2),
                            " s); mean displacement ", format_mm(report.mean_displacement_mm, 3), " mm"));
             tools::write_checked(complex, output);
-            ctx.summary = {{"input", input},
-                           {"input_checked", in.checked},
-                           {"image", image_path},
-                           {"output", output},
-                           {"triangles", complex.triangle_count()},
-                           {"iterations", report.iterations},
-                           {"moves", report.moves},
-                           {"fit_moves", report.fit_moves},
-                           {"refused_by_image", report.refused_by_image},
-                           {"refused_by_checks", report.refused_by_checks},
-                           {"fixed_vertices", report.fixed_vertices},
-                           {"mean_displacement_mm", report.mean_displacement_mm},
-                           {"max_displacement_mm", report.max_displacement_mm},
-                           {"seconds_smooth", seconds}};
+            ctx.summary = report;
+            ctx.summary.update({{"input", input},
+                                {"input_checked", in.checked},
+                                {"image", image_path},
+                                {"output", output},
+                                {"triangles", complex.triangle_count()},
+                                {"seconds_smooth", seconds}});
         });
 }

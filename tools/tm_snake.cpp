@@ -10,6 +10,7 @@
 #include "io/surface_io.h"
 #include "surface/check_complex.h"
 #include "surface/snake.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
 #include "tools/tissue_arguments.h"
@@ -152,22 +153,12 @@ int main(int argc, char** argv)
                            report.converged ? "converged" : "stopped at the cap", ", ", report.triangles,
                            " triangles (", format_mm(seconds, 2), " s)"));
             tools::write_checked(complex, output);
-            ctx.summary = {{"input", input},
-                           {"output", output},
-                           {"snakes", targets.size()},
-                           {"iterations", report.iterations},
-                           {"converged", report.converged},
-                           {"max_iterations", options.max_iterations},
-                           {"tolerance_mm", options.tolerance_voxels * voxel},
-                           {"last_max_motion_mm", report.last_max_motion_mm},
-                           {"moves", report.moves},
-                           {"shortened_moves", report.shortened_moves},
-                           {"refused_moves", report.refused_moves},
-                           {"splits", report.splits},
-                           {"collapses", report.collapses},
-                           {"flips", report.flips},
-                           {"triangles", report.triangles},
-                           {"mean_abs_field_distance_mm", report.mean_abs_field_distance_mm},
-                           {"seconds_snake", seconds}};
+            ctx.summary = report;
+            ctx.summary.update({{"input", input},
+                                {"output", output},
+                                {"snakes", targets.size()},
+                                {"max_iterations", options.max_iterations},
+                                {"tolerance_mm", options.tolerance_voxels * voxel},
+                                {"seconds_snake", seconds}});
         });
 }

@@ -10,6 +10,7 @@
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/tissue_arguments.h"
 #include "volume/tetrahedralize.h"
@@ -183,17 +184,8 @@ int main(int argc, char** argv)
                                       concat(report.tets_over_volume_bound,
                                              " tets exceed their volume bound (interface "
                                              "triangles too large for it: remesh finer, or --allow-steiner)"));
-            context.summary = {{"input_triangles", report.input_triangles},
-                               {"tets", report.tets},
-                               {"nodes", report.nodes},
-                               {"steiner_points", report.steiner_points},
-                               {"interface_faces", report.interface_faces},
-                               {"split_interface_triangles", report.split_interface_triangles},
-                               {"min_dihedral_deg", report.min_dihedral_deg},
-                               {"max_radius_edge_ratio", report.max_radius_edge_ratio},
-                               {"tets_over_volume_bound", report.tets_over_volume_bound},
-                               {"tetgen_switches", report.switches},
-                               {"tetrahedralize_seconds", report.seconds}};
-            if (report.improved) context.summary["improvement"] = tools::improve_json(report.improvement);
+            context.summary = report;
+            context.summary.update({{"tetgen_switches", report.switches}, {"tetrahedralize_seconds", report.seconds}});
+            if (report.improved) context.summary["improvement"] = report.improvement;
         });
 }
