@@ -1,12 +1,15 @@
 // The mesh improver's parts: the shape measure and its gradient, the smallest vector of a hull, the journal
 // of WorkMesh, and the flips on small meshes built in code.
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/flips.h"
+#include "volume/detail/interface_flip.h"
 #include "volume/detail/smooth_node.h"
+#include "volume/detail/surface_reference.h"
 #include "volume/detail/tet_quality.h"
 #include "volume/detail/work_mesh.h"
 #include "volume/tetrahedralize.h"
@@ -188,6 +191,67 @@ TEST(ImproveFlips, NoFlipRemovesAConstraintFace)
     WorkMesh work(mesh);
     EXPECT_FALSE(remove_faces(work, 0, 0));
     EXPECT_FALSE(remove_faces(work, 1, 0));
+}
+
+/// A flat tet of tissue 1 filling a shallow crease of the interface with tissue 2 (a valley along ab, 2 atan(h)
+/// deep: 13.7 degrees for h = 0.12), tissue 1 above it up to e and tissue 2 below down to f: what the 1 mm head's thin
+/// grey matter and CSF left as their worst tets (all four nodes on the interface).
+TetMesh crease(double h)
+{
+    TetMesh mesh;
+    mesh.vertices = {{-1, 0, 0}, {1, 0, 0}, {0, -1, h}, {0, 1, h}, {0, 0, 2}, {0, 0, -2}};
+    mesh.tets = {{0, 1, 2, 3}, {0, 2, 3, 4}, {1, 2, 3, 4}, {0, 1, 2, 5}, {0, 1, 3, 5}};
+    mesh.tet_labels = {1, 1, 1, 2, 2};
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (signed_volume(mesh, t) < 0) std::swap(mesh.tets[t][2], mesh.tets[t][3]);
+    // The interface (a, b, c) and (a, d, b), normals from tissue 1 (above) into 2.
+    mesh.faces = {{0, 1, 2}, {0, 3, 1}};
+    mesh.face_sides = {{1, 2}, {1, 2}};
+    return mesh;
+}
+
+TEST(ImproveFlips, AFlatTetOnACreasedInterfaceGoesToTheOtherSide)
+{
+    const double h = 0.12;
+    const TetMesh mesh = crease(h);
+    const SurfaceReference reference(mesh.vertices, mesh.faces, mesh.face_sides);
+    WorkMesh work(mesh);
+    ASSERT_NEAR(min_dihedral_deg(work.corners(0)), 9.67, 0.01); // and 166.3 degrees at ab
+    // The new faces (a, c, d) and (b, d, c) lie up to h off the old ones: refused within a tighter tolerance.
+    EXPECT_FALSE(flip_interface_edge(work, 0, 1, reference, 0.5 * h));
+    ASSERT_TRUE(flip_interface_edge(work, 0, 1, reference, 1.5 * h));
+    const TetMesh flipped = work.result();
+    const MeshCheckReport check = check_mesh(flipped);
+    EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
+    // The flat tet went: tissue 1 keeps its two tets above, tissue 2 has two new ones on edge cd.
+    ASSERT_EQ(flipped.tets.size(), 4u);
+    std::size_t in_two = 0;
+    for (std::size_t t = 0; t < flipped.tets.size(); ++t) {
+        EXPECT_GT(signed_volume(flipped, t), 0);
+        in_two += flipped.tet_labels[t] == 2;
+    }
+    EXPECT_EQ(in_two, 2u);
+    EXPECT_GT(worst(flipped), std::sin(30 * 3.14159265358979 / 180));
+    // The interface is now (a, c, d) and (b, d, c), turned from tissue 1 into 2 (downwards).
+    ASSERT_EQ(flipped.faces.size(), 2u);
+    for (std::size_t f = 0; f < 2; ++f) {
+        const Triangle& t = flipped.faces[f];
+        const Vec3 n =
+            cross(flipped.vertices[t[1]] - flipped.vertices[t[0]], flipped.vertices[t[2]] - flipped.vertices[t[0]]);
+        EXPECT_TRUE(std::find(t.begin(), t.end(), 2u) != t.end() && std::find(t.begin(), t.end(), 3u) != t.end());
+        EXPECT_LT(flipped.face_sides[f].from == 1 ? n[2] : -n[2], 0);
+    }
+}
+
+TEST(ImproveFlips, AFlatTetWhoseOtherFacesAreInterfacesStays)
+{
+    // Tissue 3 above the flat tet: (a, c, d) and (b, c, d) are interfaces already, so the flip would leave tissue 2
+    // on both sides of them.
+    TetMesh mesh = crease(0.12);
+    mesh.tet_labels = {1, 3, 3, 2, 2};
+    const SurfaceReference reference(mesh.vertices, mesh.faces, mesh.face_sides);
+    WorkMesh work(mesh);
+    EXPECT_FALSE(flip_interface_edge(work, 0, 1, reference, 1));
 }
 
 } // namespace

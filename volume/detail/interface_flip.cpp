@@ -69,10 +69,15 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     const ConstraintFace first = mesh.face(on_edge[0]), second = mesh.face(on_edge[1]);
     if (std::minmax(first.sides.from, first.sides.to) != std::minmax(second.sides.from, second.sides.to)) return false;
     const std::uint32_t c = third(first.corners, a, b), d = third(second.corners, a, b);
-    if (c == d || mesh.has_edge(c, d)) return false;
+    if (c == d) return false;
     std::vector<std::uint32_t> ring, tets;
     bool open = false;
     if (!mesh.edge_ring(a, b, ring, tets, &open) || ring.size() > max_ring) return false;
+    // cd may be an edge already only of the flat tet (a, b, c, d), one side's only tet: the flip removes it, and
+    // its faces (a, c, d) and (b, c, d) become the interface, so they must not be constraint faces already (the
+    // tets beyond them, around cd, are then of its tissue and stay).
+    if (mesh.has_edge(c, d) && (!mesh.tet_with(a, b, c, d) || mesh.face_with(a, c, d) || mesh.face_with(b, c, d)))
+        return false;
     const auto at = [&](std::uint32_t v) {
         return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
     };
