@@ -14,12 +14,12 @@ namespace tissuemesh::volume {
 
 /// Options for improve_mesh(). Angles in degrees.
 struct ImproveOptions {
-    double target_dihedral_deg = 22;  ///< tets whose smallest dihedral angle (or 180 minus the largest) is below
-                                      ///< this are worked on, worst first
-    std::size_t max_passes = 3;       ///< rounds over the tets below the target
-    bool smooth = true;               ///< move nodes (interior nodes anywhere; see move_interface_nodes)
-    bool flip = true;                 ///< edge removal (3-2, 4-4, ... flips) and multi-face removal (2-3 flips)
-    bool insert = true;               ///< new nodes inside tissues (splits and Delaunay cavities)
+    double target_dihedral_deg = 22; ///< tets whose smallest dihedral angle (or 180 minus the largest) is below
+                                     ///< this are worked on, worst first
+    std::size_t max_passes = 3;      ///< rounds over the tets below the target
+    bool smooth = true;              ///< move nodes (interior nodes anywhere; see move_interface_nodes)
+    bool flip = true;                ///< edge removal (3-2, 4-4, ... flips) and multi-face removal (2-3 flips)
+    bool insert = true;              ///< new nodes inside tissues (splits and Delaunay cavities)
     /// Insertion only for tets whose smallest dihedral angle is below this: it costs a dozen trials a tet, and
     /// smoothing and flips mend most tets. 20 rather than 15 (measured after tm-tetra, 1st percentile, tets under
     /// 20 degrees, improver seconds): sphere head at 2 mm 19.86 -> 20.83, 3 742 -> 217, 11.2 -> 9.6 s; usc19-5

@@ -243,6 +243,26 @@ TEST(ImproveFlips, AFlatTetOnACreasedInterfaceGoesToTheOtherSide)
     }
 }
 
+TEST(ImproveFlips, AFlatTetThatLinksTwoPartsOfItsTissueStays)
+{
+    // Tissue 1 above the flat tet in two tets, (a, c, d, e1) and (b, c, d, e2), with a tet of tissue 3 between them:
+    // the flat tet is all that joins them, so the flip would break tissue 1 in two.
+    TetMesh mesh = crease(0.12);
+    mesh.vertices[4] = {-0.5, 0, 2};
+    mesh.vertices.push_back({0.5, 0, 2});
+    mesh.tets[2] = {1, 2, 3, 6};
+    mesh.tets.push_back({2, 3, 4, 6});
+    mesh.tet_labels.push_back(3);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (signed_volume(mesh, t) < 0) std::swap(mesh.tets[t][2], mesh.tets[t][3]);
+    const MeshCheckReport check = check_mesh(mesh); // a triangulation (its 1|3 faces are not listed)
+    ASSERT_EQ(check.inverted_tets + check.flat_tets + check.nonconforming_faces, 0u);
+    const SurfaceReference reference(mesh.vertices, mesh.faces, mesh.face_sides);
+    WorkMesh work(mesh);
+    EXPECT_FALSE(flip_interface_edge(work, 0, 1, reference, 1));
+    EXPECT_EQ(work.result().tets.size(), mesh.tets.size());
+}
+
 TEST(ImproveFlips, AFlatTetWhoseOtherFacesAreInterfacesStays)
 {
     // Tissue 3 above the flat tet: (a, c, d) and (b, c, d) are interfaces already, so the flip would leave tissue 2

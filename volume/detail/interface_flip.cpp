@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
+#include <unordered_set>
 #include <vector>
 
 #include "volume/detail/ring_triangulation.h"
@@ -59,6 +61,31 @@ Triangle oriented(const WorkMesh& mesh, Triangle face, const LabelPair& sides, c
     return face;
 }
 
+/// Whether the tets beyond the faces of `flat` opposite its nodes a and b (both of its tissue) are linked through
+/// tets of that tissue without `flat`: a search across shared faces, over at most `budget` tets (not found within
+/// it counts as not linked).
+bool linked_without(const WorkMesh& mesh, std::uint32_t flat, std::uint32_t a, std::uint32_t b,
+                    std::size_t budget = 20000)
+{
+    const Tet& tet = mesh.tet(flat);
+    const auto corner = [&](std::uint32_t v) {
+        return static_cast<int>(std::find(tet.begin(), tet.end(), v) - tet.begin());
+    };
+    const std::optional<std::uint32_t> from = mesh.tet_across(flat, corner(b)), to = mesh.tet_across(flat, corner(a));
+    const Label label = mesh.label(flat);
+    if (!from || !to || mesh.label(*from) != label || mesh.label(*to) != label) return false;
+    std::unordered_set<std::uint32_t> seen{flat, *from};
+    std::vector<std::uint32_t> queue{*from};
+    for (std::size_t next = 0; next < queue.size() && queue.size() < budget; ++next)
+        for (int i = 0; i < 4; ++i) {
+            const std::optional<std::uint32_t> across = mesh.tet_across(queue[next], i);
+            if (!across || mesh.label(*across) != label) continue;
+            if (*across == *to) return true;
+            if (seen.insert(*across).second) queue.push_back(*across);
+        }
+    return false;
+}
+
 } // namespace
 
 bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const SurfaceReference& reference,
@@ -74,10 +101,11 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     bool open = false;
     if (!mesh.edge_ring(a, b, ring, tets, &open) || ring.size() > max_ring) return false;
     // cd may be an edge already only of the flat tet (a, b, c, d), one side's only tet: the flip removes it, and
-    // its faces (a, c, d) and (b, c, d) become the interface, so they must not be constraint faces already (the
-    // tets beyond them, around cd, are then of its tissue and stay).
-    if (mesh.has_edge(c, d) && (!mesh.tet_with(a, b, c, d) || mesh.face_with(a, c, d) || mesh.face_with(b, c, d)))
-        return false;
+    // its faces (a, c, d) and (b, c, d) become the interface, so they must not be constraint faces already.
+    if (mesh.has_edge(c, d)) {
+        const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d);
+        if (!flat || mesh.face_with(a, c, d) || mesh.face_with(b, c, d)) return false;
+    }
     const auto at = [&](std::uint32_t v) {
         return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
     };
@@ -132,6 +160,10 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
                                       first.sides.to, tolerance_mm))
             return false;
     }
+    // A flat tet that goes may be its tissue's only link between the tets beyond its faces (a, c, d) and (b, c, d):
+    // else the tissue would fall into pieces.
+    if (const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d); flat && !linked_without(mesh, *flat, a, b))
+        return false;
     for (const std::uint32_t t : tets) mesh.remove_tet(t);
     for (const Side& side : parts)
         for (const Tet& tet : side.made) mesh.add_tet(tet, side.label);
