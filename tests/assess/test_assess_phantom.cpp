@@ -69,11 +69,20 @@ TEST(AssessPhantom, DiceEqualsCheckMeshAndVoxelCountsAddUp)
                                [&](std::uint32_t x, std::uint32_t y) { return a.quality_key[x] > a.quality_key[y]; }));
     EXPECT_EQ(a.sampled_tets, static_cast<std::size_t>(std::count(a.voxel_count.begin(), a.voxel_count.end(), 0u)));
     // The tets' tissues come from the surfaces tm-extract built from these voxels, and sub-voxel samples read
-    // the tissue those surfaces give a point: every tet's majority is its own tissue, sampled or not. The improver
-    // leaves interface faces up to 3% of the mean edge off those surfaces (ImproveOptions::max_face_deviation), so
-    // a few samples of tets along the interfaces read the tissue across: 1.48 of 153 320 mm^3 (0 with 1%).
+    // the tissue those surfaces give a point: every tet's majority is its own tissue, sampled or not, but for the
+    // improver's changes. It leaves interface faces up to 3% of the mean edge off those surfaces
+    // (ImproveOptions::max_face_deviation), so a few samples of tets along the interfaces read the tissue across
+    // (1.48 of 153 320 mm^3; 0 with 1%), and where a flat tet went to the other side of a crease, a small tet
+    // between the old and the new interface may read it all (measured: one tet, 0.0095 of 268 250 mm^3).
     EXPECT_GT(a.sampled_tets, 0u);
-    EXPECT_EQ(a.majority, m.mesh.tet_labels);
+    std::size_t differing = 0;
+    double differing_volume = 0, total_volume = 0;
+    for (std::size_t t = 0; t < m.mesh.tets.size(); ++t) {
+        total_volume += signed_volume(m.mesh, t);
+        if (a.majority[t] != m.mesh.tet_labels[t]) ++differing, differing_volume += signed_volume(m.mesh, t);
+    }
+    EXPECT_LE(differing, 10u);
+    EXPECT_LT(differing_volume, 1e-6 * total_volume);
     double sampled_volume = 0;
     for (std::size_t t = 0; t < m.mesh.tets.size(); ++t)
         if (a.sampled[t]) sampled_volume += signed_volume(m.mesh, t);
@@ -106,8 +115,8 @@ TEST(AssessPhantom, RelabelRestoresTheMajorityOfAScrambledMesh)
     mark_interfaces(scrambled);
     const MeshCheckReport check = check_mesh(scrambled, &m.image);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
-    // Where the (unit-weight) majority is unique it is the original tissue (which is the original majority, see
-    // above); ties may go either way.
+    // Where the (unit-weight) majority is unique it is the original majority (the original tissue but for the few
+    // tets above); ties may go either way.
     std::size_t ties = 0;
     for (std::size_t t = 0; t < scrambled.tets.size(); ++t) {
         std::uint32_t best = 0, holders = 0;
@@ -116,7 +125,7 @@ TEST(AssessPhantom, RelabelRestoresTheMajorityOfAScrambledMesh)
         for (std::size_t b = before.histogram_offsets[t]; b < before.histogram_offsets[t + 1]; ++b)
             holders += before.histogram[b].count == best;
         if (holders > 1) ++ties;
-        else EXPECT_EQ(scrambled.tet_labels[t], m.mesh.tet_labels[t]) << "tet " << t;
+        else EXPECT_EQ(scrambled.tet_labels[t], original.majority[t]) << "tet " << t;
     }
     EXPECT_LT(ties, scrambled.tets.size() / 100) << "ties are rare";
     const Assessment after = assess_elements(scrambled, m.image);

@@ -17,7 +17,8 @@ namespace tissuemesh::volume::detail {
 /// flat tet lying on an interface goes. Done only when the smallest dihedral sine rises, every new tet is
 /// positive (exact), the new faces lie within `tolerance_mm` of the reference patch
 /// (SurfaceReference::holds_triangle) and turn the way the old ones did, and cd was no edge (or only one of the flat
-/// tet (a, b, c, d), when it is its side's only tet and its faces (a, c, d) and (b, c, d) are no constraint faces).
+/// tet (a, b, c, d), when it is its side's only tet, its faces (a, c, d) and (b, c, d) are no constraint faces, and
+/// the tets beyond those faces stay linked in its tissue without it: no tissue falls into pieces).
 /// @returns whether the edge was flipped (edits of `mesh`, journaled)
 bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const SurfaceReference& reference,
                          double tolerance_mm, std::size_t max_ring = 10);
