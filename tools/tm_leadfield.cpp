@@ -12,6 +12,7 @@
 #include "io/read_sensors.h"
 #include "io/read_sources.h"
 #include "io/tet_mesh_io.h"
+#include "tools/dipole_model.h"
 #include "tools/lead_field_files.h"
 #include "tools/run_tool.h"
 #include "tools/tissue_arguments.h"
@@ -156,7 +157,7 @@ int main(int argc, char** argv)
             app.add_option("--dipole-model", dipole_model,
                            "venant (default: the most accurate on our meshes), subtraction "
                            "(a pass over the mesh per column) or partial-integration")
-                ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
+                ->check(CLI::IsMember(tools::dipole_model_names));
             app.add_option("--reference", reference, "EEG reference: average, or an electrode's name")
                 ->capture_default_str();
             app.add_option("--max-electrode-distance-mm", options.max_electrode_distance_mm,
@@ -215,9 +216,7 @@ int main(int argc, char** argv)
                                   solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,
                               .relative_tolerance = tolerance,
                               .processes = processes};
-            options.dipole_model = dipole_model == "subtraction"           ? fem::DipoleModel::subtraction
-                                   : dipole_model == "partial-integration" ? fem::DipoleModel::partial_integration
-                                                                           : fem::DipoleModel::venant;
+            options.dipole_model = tools::dipole_model_named(dipole_model);
             if (!source_tissues.empty())
                 options.source_tissues =
                     tools::parse_tissue_list(source_tissues, tools::tissue_table(mesh, input), "--source-tissues");

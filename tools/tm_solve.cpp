@@ -16,6 +16,7 @@
 #include "io/read_sensors.h"
 #include "io/tet_mesh_io.h"
 #include "io/write_vtu.h"
+#include "tools/dipole_model.h"
 #include "tools/lead_field_files.h"
 #include "tools/run_tool.h"
 
@@ -237,7 +238,7 @@ struct SolveFlags {
                "an isotropic tissue at the source and a dipole off the nodes), or partial-integration (the "
                "load of the one tet that holds the dipole: several times less accurate, its error depends on "
                "that tet)")
-            ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}));
+            ->check(CLI::IsMember(tools::dipole_model_names));
         app.add_option("--solver", solver, "Preconditioner of CG: amg or jacobi")
             ->check(CLI::IsMember({"amg", "jacobi"}));
         app.add_option("--processes", processes,
@@ -267,9 +268,7 @@ std::vector<double> potential(const SolveFlags& flags, const TetMesh& mesh, cons
         return phi;
     }
     fem::PotentialProblem problem = parse_problem(flags.dipoles, flags.electrodes, flags.montage, montage_rows);
-    problem.dipole_model = flags.dipole_model == "subtraction" ? fem::DipoleModel::subtraction
-                           : flags.dipole_model == "venant"    ? fem::DipoleModel::venant
-                                                               : fem::DipoleModel::partial_integration;
+    problem.dipole_model = tools::dipole_model_named(flags.dipole_model);
     std::vector<double> phi = fem::solve_potential(
         mesh, sigma, problem,
         {.preconditioner = flags.solver == "amg" ? fem::Preconditioner::amg : fem::Preconditioner::jacobi,

@@ -20,6 +20,7 @@
 #include "fem/sphere_series.h"
 #include "io/read_label_image.h"
 #include "io/tet_mesh_io.h"
+#include "tools/dipole_model.h"
 #include "tools/run_tool.h"
 
 using namespace tissuemesh;
@@ -71,7 +72,7 @@ int main(int argc, char** argv)
                 ->check(CLI::Range(0.0, 0.99))
                 ->capture_default_str();
             app.add_option("--dipole-model", model_name, "Source model: venant, subtraction or partial-integration")
-                ->check(CLI::IsMember({"venant", "subtraction", "partial-integration"}))
+                ->check(CLI::IsMember(tools::dipole_model_names))
                 ->capture_default_str();
             app.add_flag("--partial-integration", partial_integration, "Same as --dipole-model partial-integration");
             app.add_option("--directions", directions,
@@ -86,9 +87,7 @@ int main(int argc, char** argv)
                 input, [&] { return fem::resolve_conductivities(mesh, bench::spheres4_conductivities, false); });
             const std::vector<std::uint32_t> surface = fem::outer_boundary(mesh).nodes;
             if (partial_integration) model_name = "partial-integration";
-            const fem::DipoleModel model = model_name == "venant"        ? fem::DipoleModel::venant
-                                           : model_name == "subtraction" ? fem::DipoleModel::subtraction
-                                                                         : fem::DipoleModel::partial_integration;
+            const fem::DipoleModel model = tools::dipole_model_named(model_name);
             const std::vector<Vec3> axes = spread_axes(directions);
             nlohmann::json dipoles = nlohmann::json::array();
             std::map<double, std::array<double, 3>> per_eccentricity; // smallest RDM, largest RDM, worst |MAG - 1|
@@ -125,10 +124,10 @@ int main(int argc, char** argv)
                                            {"mag", a.mag}});
                         worst_rdm = std::max(worst_rdm, a.rdm);
                         worst_mag = std::max(worst_mag, std::abs(a.mag - 1));
-                        auto [cell, fresh] =
-                            per_eccentricity.try_emplace(eccentricity, std::array<double, 3>{a.rdm, a.rdm, 0});
-                        cell->second = {std::min(cell->second[0], a.rdm), std::max(cell->second[1], a.rdm),
-                                        std::max(cell->second[2], std::abs(a.mag - 1))};
+                        auto& cell = per_eccentricity.try_emplace(eccentricity, std::array<double, 3>{a.rdm, a.rdm, 0})
+                                         .first->second;
+                        cell = {std::min(cell[0], a.rdm), std::max(cell[1], a.rdm),
+                                std::max(cell[2], std::abs(a.mag - 1))};
                     }
             nlohmann::json by_eccentricity = nlohmann::json::array();
             for (const auto& [eccentricity, cell] : per_eccentricity) {

@@ -231,7 +231,7 @@ TEST(ImproveFlips, AFlatTetOnACreasedInterfaceGoesToTheOtherSide)
         in_two += flipped.tet_labels[t] == 2;
     }
     EXPECT_EQ(in_two, 2u);
-    EXPECT_GT(worst(flipped), std::sin(30 * 3.14159265358979 / 180));
+    EXPECT_GT(worst(flipped), sine_of_deg(30));
     // The interface is now (a, c, d) and (b, d, c), turned from tissue 1 into 2 (downwards).
     ASSERT_EQ(flipped.faces.size(), 2u);
     for (std::size_t f = 0; f < 2; ++f) {

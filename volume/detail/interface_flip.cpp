@@ -102,10 +102,8 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     if (!mesh.edge_ring(a, b, ring, tets, &open) || ring.size() > max_ring) return false;
     // cd may be an edge already only of the flat tet (a, b, c, d), one side's only tet: the flip removes it, and
     // its faces (a, c, d) and (b, c, d) become the interface, so they must not be constraint faces already.
-    if (mesh.has_edge(c, d)) {
-        const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d);
-        if (!flat || mesh.face_with(a, c, d) || mesh.face_with(b, c, d)) return false;
-    }
+    const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d);
+    if (mesh.has_edge(c, d) && (!flat || mesh.face_with(a, c, d) || mesh.face_with(b, c, d))) return false;
     const auto at = [&](std::uint32_t v) {
         return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
     };
@@ -162,8 +160,7 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     }
     // A flat tet that goes may be its tissue's only link between the tets beyond its faces (a, c, d) and (b, c, d):
     // else the tissue would fall into pieces.
-    if (const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d); flat && !linked_without(mesh, *flat, a, b))
-        return false;
+    if (flat && !linked_without(mesh, *flat, a, b)) return false;
     for (const std::uint32_t t : tets) mesh.remove_tet(t);
     for (const Side& side : parts)
         for (const Tet& tet : side.made) mesh.add_tet(tet, side.label);
