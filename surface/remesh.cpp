@@ -343,6 +343,10 @@ private:
                 target_point =
                     reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
             }
+            // A vertex within 2% of its edges' target of where relaxation would put it stays: so short a move barely
+            // changes its triangles, and judging it costs as much as any other (1 mm usc19-5 head: 950 k -> 730 k
+            // moves, remeshing 27.7 -> 25.2 s, the same smallest angle, sector and distance to the input).
+            if (distance(p, target_point) < 0.02 * target(v, ring.front())) continue;
             if (editor_.try_move(v, target_point)) ++report_.moves;
             else ++report_.refused;
         }
