@@ -334,7 +334,8 @@ private:
             mean = (1.0 / static_cast<double>(ring.size())) * mean;
             const Vec3& p = editor_.position(v);
             Vec3 target_point = mean;
-            const double reach = 2 * target(v, ring.front()) + distance(p, mean);
+            const double edge = target(v, ring.front());
+            const double reach = 2 * edge + distance(p, mean);
             if (curve) {
                 target_point = reference_.onto_curve(mean, reach);
             } else {
@@ -346,7 +347,7 @@ private:
             // A vertex within 2% of its edges' target of where relaxation would put it stays: so short a move barely
             // changes its triangles, and judging it costs as much as any other (1 mm usc19-5 head: 950 k -> 730 k
             // moves, remeshing 27.7 -> 25.2 s, the same smallest angle, sector and distance to the input).
-            if (distance(p, target_point) < 0.02 * target(v, ring.front())) continue;
+            if (distance(p, target_point) < 0.02 * edge) continue;
             if (editor_.try_move(v, target_point)) ++report_.moves;
             else ++report_.refused;
         }

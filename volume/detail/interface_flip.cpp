@@ -102,8 +102,10 @@ bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const
     if (!mesh.edge_ring(a, b, ring, tets, &open) || ring.size() > max_ring) return false;
     // cd may be an edge already only of the flat tet (a, b, c, d), one side's only tet: the flip removes it, and
     // its faces (a, c, d) and (b, c, d) become the interface, so they must not be constraint faces already.
-    const std::optional<std::uint32_t> flat = mesh.tet_with(a, b, c, d);
-    if (mesh.has_edge(c, d) && (!flat || mesh.face_with(a, c, d) || mesh.face_with(b, c, d))) return false;
+    // (A tet with these four nodes has cd as an edge, so it is looked for only where cd is one.)
+    const bool cd_exists = mesh.has_edge(c, d);
+    const std::optional<std::uint32_t> flat = cd_exists ? mesh.tet_with(a, b, c, d) : std::nullopt;
+    if (cd_exists && (!flat || mesh.face_with(a, c, d) || mesh.face_with(b, c, d))) return false;
     const auto at = [&](std::uint32_t v) {
         return static_cast<std::size_t>(std::find(ring.begin(), ring.end(), v) - ring.begin());
     };
