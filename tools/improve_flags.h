@@ -41,6 +41,12 @@ struct ImproveFlags {
                        "surface's mean edge (0.03 of 2.4 mm edges is 0.07 mm)")
             ->check(CLI::Range(0.0, 1.0))
             ->capture_default_str();
+        app.add_option("--improve-parts", options.parts,
+                       "Improver: cut the mesh into this many parts, improved side by side, then bands around the "
+                       "faces between them (0: one per 200 000 tets, at most 8; 1: the whole mesh at once). The "
+                       "result depends on this, not on the thread count")
+            ->check(CLI::Range(0, 64))
+            ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
                      "Improver: interface nodes stay where they are and none is added on interfaces");
     }
@@ -76,8 +82,8 @@ inline std::string improve_line(const volume::ImproveReport& r)
                   r.smoothed_nodes, " moves, ", r.edges_removed + r.faces_removed + r.interface_edges_flipped,
                   " flips (", r.interface_edges_flipped, " on interfaces), ",
                   r.nodes_inserted + r.nodes_inserted_on_interfaces, " new nodes, ", r.nodes_inserted_on_interfaces,
-                  " of them on interfaces) in ", format_mm(r.seconds, 2), " s (", format_mm(r.cpu_seconds, 2),
-                  " s CPU)");
+                  " of them on interfaces) in ", format_mm(r.seconds, 2), " s (", format_mm(r.cpu_seconds, 2), " s CPU",
+                  r.parts > 1 ? concat("; ", r.parts, " parts, ", r.bands, " bands") : std::string(), ")");
 }
 
 } // namespace tissuemesh::tools

@@ -4,229 +4,20 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <limits>
+#include <exception>
+#include <functional>
 #include <map>
-#include <queue>
 
 #include "core/error.h"
 #include "core/tet_shape.h"
 #include "volume/check_mesh.h"
-#include "volume/detail/flips.h"
-#include "volume/detail/insert_node.h"
-#include "volume/detail/interface_flip.h"
-#include "volume/detail/smooth_node.h"
+#include "volume/detail/improver.h"
+#include "volume/detail/mesh_parts.h"
+#include "volume/detail/tet_quality.h"
 #include "volume/detail/surface_reference.h"
-#include "volume/detail/work_mesh.h"
 
 namespace tissuemesh::volume {
 namespace {
-
-using detail::WorkMesh;
-
-/// A tet waiting to be improved: worst quality first, then lowest slot; `stamp` tells whether it is current.
-struct Waiting {
-    double quality;
-    std::uint32_t tet, stamp;
-    bool operator>(const Waiting& other) const
-    {
-        return quality > other.quality || (quality == other.quality && tet > other.tet);
-    }
-};
-using Queue = std::priority_queue<Waiting, std::vector<Waiting>, std::greater<>>;
-constexpr std::uint32_t never = ~0u;
-
-/// What improved a tet.
-enum class Change { none, edge_removal, face_removal, interface_flip, move, insertion };
-
-/// The schedule: passes over the tets below the target, worst first, each tet trying flips, then smoothing of
-/// its nodes, then (from the second pass on, for the tets below the insertion bar) node insertion. The first
-/// change that raises the local minimum is kept; tets it makes or reshapes below the target join the queue.
-class Improver {
-public:
-    Improver(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
-             ImproveReport& report)
-        : mesh_(mesh), work_(mesh), reference_(reference), options_(options), report_(report),
-          target_(detail::sine_of_deg(options.target_dihedral_deg)),
-          insert_bar_(detail::sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
-          // Never quite zero: a node moving in a flat patch leaves its faces there up to rounding.
-          face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
-          start_volumes_(work_.tissue_volumes())
-    {
-    }
-
-    void run(const Progress& progress)
-    {
-        for (std::size_t pass = 0; pass < options_.max_passes; ++pass) {
-            const bool insert = pass > 0 && options_.insert;
-            const std::size_t changes = run_pass(insert);
-            ++report_.passes;
-            progress.update("improve", static_cast<double>(pass + 1) / static_cast<double>(options_.max_passes));
-            std::size_t below = 0;
-            for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) below += work_.alive(t) && work_.quality(t) < target_;
-            progress.debug("improve",
-                           concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target"));
-            if (changes == 0 && (insert || !options_.insert)) break;
-        }
-        mesh_ = work_.result();
-    }
-
-private:
-    std::size_t run_pass(bool insert)
-    {
-        Queue queue;
-        for (std::uint32_t t = 0; t < work_.tet_slots(); ++t)
-            if (work_.alive(t) && work_.quality(t) < target_) queue.push({work_.quality(t), t, work_.stamp(t)});
-        // Each tet is tried once a pass (a reshaped tet is the same tet; a new one in a reused slot is not).
-        std::vector<std::uint32_t> tried(work_.tet_slots(), never);
-        std::size_t changes = 0;
-        while (!queue.empty()) {
-            const Waiting w = queue.top();
-            queue.pop();
-            if (!work_.alive(w.tet) || work_.stamp(w.tet) != w.stamp) continue;
-            if (w.tet >= tried.size()) tried.resize(work_.tet_slots(), never);
-            if (tried[w.tet] == work_.birth(w.tet)) continue;
-            tried[w.tet] = work_.birth(w.tet);
-            if (unchanged_since_failure(w.tet, insert ? 2 : 1)) continue;
-            // Flips and smoothing that failed on this tet with nothing changed around it since fail again: only
-            // insertion is new to it.
-            const bool local_failed = unchanged_since_failure(w.tet, 1);
-            const std::size_t nodes = work_.node_count();
-            const Change change = improve(w.tet, insert, local_failed);
-            if (change == Change::none || !volumes_kept() || !tets_within_bounds()) {
-                work_.rollback(0);
-                if (failed_.size() < work_.tet_slots()) failed_.resize(work_.tet_slots());
-                failed_[w.tet] = {work_.birth(w.tet), clock_, insert ? 2 : 1};
-                continue;
-            }
-            count(change, nodes);
-            ++changes;
-            work_.commit();
-            ++clock_;
-            node_changed_.resize(work_.node_count(), 0), node_tried_.resize(work_.node_count(), -1);
-            for (const std::uint32_t t : work_.take_touched()) {
-                if (!work_.alive(t)) continue;
-                for (const std::uint32_t v : work_.tet(t)) node_changed_[v] = clock_;
-                if (work_.quality(t) < target_) queue.push({work_.quality(t), t, work_.stamp(t)});
-            }
-        }
-        work_.take_touched();
-        return changes;
-    }
-
-    Change improve(std::uint32_t t, bool insert, bool only_insert)
-    {
-        const Tet tet = work_.tet(t);
-        if (options_.flip && !only_insert) {
-            for (const auto& e : detail::edge_corners)
-                if (detail::remove_edge(work_, tet[e[0]], tet[e[1]])) return Change::edge_removal;
-            if (options_.move_interface_nodes)
-                for (const auto& e : detail::edge_corners)
-                    if (detail::flip_interface_edge(work_, tet[e[0]], tet[e[1]], reference_, face_tolerance_mm_))
-                        return Change::interface_flip;
-            for (int i = 0; i < 4; ++i)
-                if (detail::remove_faces(work_, t, i)) return Change::face_removal;
-        }
-        if (options_.smooth && !only_insert) {
-            node_changed_.resize(work_.node_count(), 0), node_tried_.resize(work_.node_count(), -1);
-            for (const std::uint32_t v : tet) {
-                if (!options_.move_interface_nodes && work_.kind(v) != detail::NodeKind::interior) continue;
-                // A node that could not be moved stays so until something around it changes.
-                if (node_tried_[v] >= node_changed_[v]) continue;
-                if (detail::smooth_node(work_, v, reference_, face_tolerance_mm_)) return Change::move;
-                node_tried_[v] = clock_;
-            }
-        }
-        if (insert && work_.quality(t) < insert_bar_ && !insertion_tried(t) &&
-            detail::insert_for_tet(work_, t, reference_, options_.insert_on_interfaces, face_tolerance_mm_))
-            return Change::insertion;
-        return Change::none;
-    }
-
-    void count(Change change, std::size_t nodes_before)
-    {
-        switch (change) {
-        case Change::edge_removal: ++report_.edges_removed; break;
-        case Change::face_removal: ++report_.faces_removed; break;
-        case Change::interface_flip: ++report_.interface_edges_flipped; break;
-        case Change::move: ++report_.smoothed_nodes; break;
-        case Change::insertion:
-            for (auto v = static_cast<std::uint32_t>(nodes_before); v < work_.node_count(); ++v)
-                ++(work_.kind(v) == detail::NodeKind::interior ? report_.nodes_inserted
-                                                               : report_.nodes_inserted_on_interfaces);
-            break;
-        case Change::none: break;
-        }
-    }
-
-    /// Whether the tets the edit made or reshaped keep the volume bounds (ImproveOptions::max_tet_volume_mm3).
-    bool tets_within_bounds() const
-    {
-        if (!(options_.max_tet_volume_mm3 > 0) && options_.max_tet_volume_per_tissue_mm3.empty()) return true;
-        const double none = std::numeric_limits<double>::infinity();
-        return work_.changed_tets_within(0, [&](Label label) {
-            const auto it = options_.max_tet_volume_per_tissue_mm3.find(label);
-            if (it != options_.max_tet_volume_per_tissue_mm3.end()) return it->second;
-            return options_.max_tet_volume_mm3 > 0 ? options_.max_tet_volume_mm3 : none;
-        });
-    }
-
-    /// Whether every tissue's volume is within the allowed change of its start, or no further from it than at the
-    /// last commit (interface moves and splits on curved patches change volumes a little; flips never do).
-    bool volumes_kept()
-    {
-        bool kept = true;
-        for (const auto& [label, volume] : work_.tissue_volumes()) {
-            const double from = start_volumes_.count(label) ? start_volumes_.at(label) : 0;
-            const double drift = std::abs(volume - from), allowed = options_.max_volume_change * std::abs(from);
-            if (drift > allowed && drift > committed_drift_[label] + 1e-12 * std::abs(from)) kept = false;
-        }
-        if (kept)
-            for (const auto& [label, volume] : work_.tissue_volumes())
-                committed_drift_[label] =
-                    std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
-        return kept;
-    }
-
-    /// Whether insertion was tried for this tet (slot and birth) before; marks it tried. Insertion costs a
-    /// dozen trials, so each tet gets one, however its neighbours change.
-    bool insertion_tried(std::uint32_t t)
-    {
-        if (insertion_tried_.size() < work_.tet_slots()) insertion_tried_.resize(work_.tet_slots(), never);
-        if (insertion_tried_[t] == work_.birth(t)) return true;
-        insertion_tried_[t] = work_.birth(t);
-        return false;
-    }
-
-    /// Whether every operation of `level` failed on t before and nothing around it changed since.
-    bool unchanged_since_failure(std::uint32_t t, int level) const
-    {
-        if (t >= failed_.size() || failed_[t].birth != work_.birth(t) || failed_[t].level < level) return false;
-        const Tet& tet = work_.tet(t);
-        return std::all_of(tet.begin(), tet.end(), [&](std::uint32_t v) {
-            return v >= node_changed_.size() || node_changed_[v] <= failed_[t].clock;
-        });
-    }
-
-    TetMesh& mesh_;
-    WorkMesh work_;
-    const detail::SurfaceReference& reference_;
-    const ImproveOptions& options_;
-    ImproveReport& report_;
-    double target_, insert_bar_, face_tolerance_mm_;
-    std::map<Label, double> start_volumes_, committed_drift_;
-    std::int64_t clock_ = 0;                 ///< commits so far
-    std::vector<std::int64_t> node_changed_; ///< per node: the commit that last changed a tet around it
-    std::vector<std::int64_t> node_tried_;   ///< per node: the clock of its last failed smoothing (-1: none)
-    /// Per tet slot: the tet (birth) on which every operation of a level (1: flips and smoothing, 2: also
-    /// insertion) failed, and when.
-    struct Failure {
-        std::uint32_t birth = never;
-        std::int64_t clock = 0;
-        int level = 0;
-    };
-    std::vector<Failure> failed_;
-    std::vector<std::uint32_t> insertion_tried_; ///< per tet slot: the birth insertion was tried for
-};
 
 void validate(const TetMesh& mesh, const ImproveOptions& options)
 {
@@ -243,6 +34,9 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
         throw InputError(concat("volume change ", options.max_volume_change,
                                 " is outside [0, 1]; it is a fraction of each "
                                 "tissue's volume (2e-4 is the default)"));
+    if (options.parts > 64)
+        throw InputError(
+            concat(options.parts, " mesh parts is more than the 64 allowed; give 0 (chosen by size) .. 64"));
     if (!(options.max_tet_volume_mm3 >= 0 && std::isfinite(options.max_tet_volume_mm3)))
         throw InputError(
             concat("tet volume bound ", options.max_tet_volume_mm3, " mm^3 is not a finite number >= 0 (0: no bound)"));
@@ -251,6 +45,105 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
             throw InputError(concat("tet volume bound ", bound, " mm^3 for tissue ", tissue,
                                     " is not a finite "
                                     "positive number"));
+}
+
+/// Adds what one part's improvement did to the report of the whole.
+void add_counts(ImproveReport& whole, const ImproveReport& part)
+{
+    whole.smoothed_nodes += part.smoothed_nodes;
+    whole.edges_removed += part.edges_removed;
+    whole.faces_removed += part.faces_removed;
+    whole.interface_edges_flipped += part.interface_edges_flipped;
+    whole.nodes_inserted += part.nodes_inserted;
+    whole.nodes_inserted_on_interfaces += part.nodes_inserted_on_interfaces;
+    whole.passes = std::max(whole.passes, part.passes);
+}
+
+/// Improves the parts of `mesh` (part_of per tet, `count` parts) side by side, each with the nodes on the faces
+/// it shares with the rest frozen, and puts them back; flags those nodes in `seam` (per node). With `seeds`
+/// (per node), a part works only from the tets at a flagged node.
+void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std::size_t count,
+                   const detail::SurfaceReference& reference, const ImproveOptions& options,
+                   const std::vector<char>& seeds, std::vector<char>& seam, ImproveReport& report,
+                   const std::function<void()>& part_done)
+{
+    const detail::PartCutter cutter(mesh);
+    std::vector<std::vector<std::uint32_t>> tets(count);
+    for (std::uint32_t t = 0; t < part_of.size(); ++t)
+        if (part_of[t] != detail::no_part) tets[part_of[t]].push_back(t);
+    std::vector<detail::MeshPart> parts(count);
+    std::vector<TetMesh> edited(count);
+    std::vector<ImproveReport> reports(count);
+    std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t k = 0; k < count; ++k) {
+        if (tets[k].empty()) continue;
+        try {
+            parts[k] = cutter.part(tets[k]);
+            std::vector<char> local_seeds;
+            if (!seeds.empty()) {
+                local_seeds.assign(parts[k].from_node.size(), 0);
+                for (std::size_t v = 0; v < local_seeds.size(); ++v)
+                    local_seeds[v] = parts[k].from_node[v] < seeds.size() && seeds[parts[k].from_node[v]];
+            }
+            edited[k] = std::move(parts[k].mesh);
+            detail::improve_in_place(edited[k], reference, options, reports[k], parts[k].frozen,
+                                     std::move(local_seeds));
+        } catch (...) {
+#pragma omp critical(improve_part_failure)
+            if (!failure) failure = std::current_exception();
+        }
+#pragma omp critical(improve_part_done)
+        part_done();
+    }
+    if (failure) std::rethrow_exception(failure);
+    for (std::size_t k = 0; k < count; ++k) {
+        add_counts(report, reports[k]);
+        for (std::size_t v = 0; v < parts[k].from_node.size(); ++v)
+            if (parts[k].frozen[v]) seam[parts[k].from_node[v]] = 1;
+    }
+    mesh = detail::merge_parts(mesh, part_of, parts, edited);
+}
+
+/// How many parts improve_mesh() cuts `mesh` into.
+std::size_t part_count(const TetMesh& mesh, const ImproveOptions& options)
+{
+    if (options.parts > 0) return options.parts;
+    return std::clamp<std::size_t>(mesh.tets.size() / 200000, 1, 8);
+}
+
+/// Improves the mesh in parts across it, then in bands around the faces between them (ImproveOptions::parts).
+void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
+                      std::size_t count, ImproveReport& report, const Progress& progress)
+{
+    const detail::Cut cut = detail::cut_across(mesh, count);
+    std::vector<char> seam(mesh.vertices.size(), 0);
+    std::size_t done = 0;
+    improve_parts(mesh, cut.part_of, count, reference, options, {}, seam, report,
+                  [&] { progress.update("improve", 0.8 * static_cast<double>(++done) / static_cast<double>(count)); });
+    // Then around the tets at those nodes still below the target, with two rings of tets beyond them for the
+    // edits' room (edge rings, smoothing stars).
+    const double target = detail::sine_of_deg(options.target_dihedral_deg);
+    std::vector<char> seeds(mesh.tets.size(), 0);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        const Tet& tet = mesh.tets[t];
+        if (std::none_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v < seam.size() && seam[v]; })) continue;
+        const detail::TetCorners c{mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]],
+                                   mesh.vertices[tet[3]]};
+        seeds[t] = detail::min_sine(c) < target;
+    }
+    const std::vector<char> around = detail::tets_around(mesh, seeds, 2);
+    const std::size_t bands = cut.between.size();
+    std::vector<std::uint32_t> band_of(mesh.tets.size(), detail::no_part);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+        if (around[t]) band_of[t] = cut.nearest(mesh, t);
+    std::vector<char> band_seam(mesh.vertices.size(), 0);
+    done = 0;
+    improve_parts(mesh, band_of, bands, reference, options, seam, band_seam, report, [&] {
+        progress.update("improve", 0.8 + 0.2 * static_cast<double>(++done) / static_cast<double>(bands));
+    });
+    report.parts = count;
+    report.bands = bands;
 }
 
 /// Builds the reference with `make_reference` and improves `mesh` against it, timing both.
@@ -262,7 +155,9 @@ ImproveReport run(TetMesh& mesh, MakeReference make_reference, const ImproveOpti
     const detail::SurfaceReference reference = make_reference();
     ImproveReport report;
     report.before = shape_figures(mesh);
-    Improver(mesh, reference, options, report).run(progress);
+    if (const std::size_t count = part_count(mesh, options); count > 1)
+        improve_in_parts(mesh, reference, options, count, report, progress);
+    else detail::improve_in_place(mesh, reference, options, report, {}, {}, progress);
     report.after = shape_figures(mesh);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
@@ -276,16 +171,16 @@ ShapeFigures shape_figures(const TetMesh& mesh)
     ShapeFigures figures;
     figures.tets = mesh.tets.size();
     if (mesh.tets.empty()) return figures;
-    std::vector<double> smallest(mesh.tets.size());
-    figures.min_dihedral_deg = 180;
+    std::vector<double> smallest(mesh.tets.size()), largest(mesh.tets.size());
+#pragma omp parallel for schedule(static)
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const TetShape shape = tet_shape(mesh, t);
-        smallest[t] = shape.min_dihedral_deg;
-        figures.min_dihedral_deg = std::min(figures.min_dihedral_deg, shape.min_dihedral_deg);
-        figures.max_dihedral_deg = std::max(figures.max_dihedral_deg, shape.max_dihedral_deg);
-        figures.tets_under_10_deg += shape.min_dihedral_deg < 10;
-        figures.tets_under_20_deg += shape.min_dihedral_deg < 20;
+        smallest[t] = shape.min_dihedral_deg, largest[t] = shape.max_dihedral_deg;
     }
+    figures.min_dihedral_deg = *std::min_element(smallest.begin(), smallest.end());
+    figures.max_dihedral_deg = *std::max_element(largest.begin(), largest.end());
+    for (const double angle : smallest)
+        figures.tets_under_10_deg += angle < 10, figures.tets_under_20_deg += angle < 20;
     const auto nth = smallest.begin() + static_cast<std::ptrdiff_t>(smallest.size() / 100);
     std::nth_element(smallest.begin(), nth, smallest.end());
     figures.p1_min_dihedral_deg = *nth;

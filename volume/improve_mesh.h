@@ -45,6 +45,11 @@ struct ImproveOptions {
     /// break (measured: tets of 0.65 mm^3 under a bound of 0.5 with the 22-degree target).
     double max_tet_volume_mm3 = 0;
     std::map<Label, double> max_tet_volume_per_tissue_mm3;
+    /// The mesh is cut into this many parts across its longest side, improved side by side (the nodes on the
+    /// faces between parts held still), then bands around those faces are improved the same way. 0: one part
+    /// per 200 000 tets (at most 8); 1: the whole mesh at once. The result depends on this, not on the
+    /// thread count.
+    std::size_t parts = 0;
 };
 
 /// Shape figures of a mesh. A tet's smallest dihedral angle is its quality here.
@@ -70,6 +75,8 @@ struct ImproveReport {
     std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
     std::size_t passes = 0;
+    std::size_t parts = 1; ///< parts improved side by side (ImproveOptions::parts)
+    std::size_t bands = 0; ///< then bands around the faces between them
     double seconds = 0;
     double cpu_seconds = 0; ///< processor time of the calling process meanwhile
 };
@@ -81,7 +88,7 @@ struct ImproveReport {
 /// as they are on entry. Every step raises the worst quality of the tets it replaces, so the worst tet of the
 /// mesh never gets worse; every tet stays positively oriented (exact predicates); no tet changes tissue; no
 /// interface or boundary face is removed other than by splitting it at a point of the reference surface, and
-/// interface nodes stay on it. Deterministic (one thread).
+/// interface nodes stay on it. Runs its parts (ImproveOptions::parts) on every core; deterministic.
 /// @pre  `mesh` is conforming with positively oriented tets (check_mesh() finds no inverted tet, no
 ///       non-conforming face); its faces are its interface and outer-boundary faces
 /// @post the same, and the interfaces are those of the reference surface

@@ -119,6 +119,9 @@ bool sphere_boundary(const WorkMesh& mesh, const std::vector<std::uint32_t>& cav
 
 std::optional<std::uint32_t> split_simplex(WorkMesh& mesh, const std::vector<std::uint32_t>& simplex, const Vec3& p)
 {
+    // A face or edge of frozen nodes may be one a mesh part shares with the rest.
+    if (std::all_of(simplex.begin(), simplex.end(), [&](std::uint32_t v) { return mesh.frozen(v); }))
+        return std::nullopt;
     std::vector<std::uint32_t> holding, faces;
     for (const std::uint32_t t : mesh.tets_of(simplex[0]))
         if (holds_all(mesh.tet(t), simplex)) holding.push_back(t);

@@ -91,6 +91,7 @@ bool linked_without(const WorkMesh& mesh, std::uint32_t flat, std::uint32_t a, s
 bool flip_interface_edge(WorkMesh& mesh, std::uint32_t a, std::uint32_t b, const SurfaceReference& reference,
                          double tolerance_mm, std::size_t max_ring)
 {
+    if (mesh.frozen(a) && mesh.frozen(b)) return false; // perhaps on a face a mesh part shares with the rest
     const std::vector<std::uint32_t> on_edge = faces_on(mesh, a, b);
     if (on_edge.size() != 2) return false;
     const ConstraintFace first = mesh.face(on_edge[0]), second = mesh.face(on_edge[1]);

@@ -34,11 +34,11 @@ bool even_order(const Tet& tet, std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 } // namespace
 
-WorkMesh::WorkMesh(const TetMesh& mesh)
-    : points_(mesh.vertices), kinds_(mesh.vertices.size(), NodeKind::interior), tets_of_(mesh.vertices.size()),
-      faces_of_(mesh.vertices.size()), tets_(mesh.tets), labels_(mesh.tet_labels), alive_(mesh.tets.size(), 1),
-      quality_(mesh.tets.size()), volume_(mesh.tets.size(), 0), stamps_(mesh.tets.size(), 0),
-      births_(mesh.tets.size(), 0), alive_count_(mesh.tets.size()), names_(mesh.names)
+WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
+    : points_(mesh.vertices), kinds_(mesh.vertices.size(), NodeKind::interior), frozen_(std::move(frozen)),
+      tets_of_(mesh.vertices.size()), faces_of_(mesh.vertices.size()), tets_(mesh.tets), labels_(mesh.tet_labels),
+      alive_(mesh.tets.size(), 1), quality_(mesh.tets.size()), volume_(mesh.tets.size(), 0),
+      stamps_(mesh.tets.size(), 0), births_(mesh.tets.size(), 0), alive_count_(mesh.tets.size()), names_(mesh.names)
 {
     // Built directly, not through the journaled edits: nothing here is ever undone.
     std::vector<std::uint32_t> degree(points_.size(), 0);
@@ -140,6 +140,7 @@ std::vector<std::uint32_t> WorkMesh::curve_neighbours(std::uint32_t v) const
 
 NodeKind WorkMesh::compute_kind(std::uint32_t v) const
 {
+    if (frozen(v)) return NodeKind::corner;
     const auto& star = faces_of_[v];
     if (star.empty()) return NodeKind::interior;
     std::vector<std::pair<std::uint32_t, int>> ring; // neighbour, faces on the edge to it

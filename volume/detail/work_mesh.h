@@ -30,8 +30,10 @@ struct ConstraintFace {
 class WorkMesh {
 public:
     /// The mesh's tets, and as constraint faces its listed faces plus every face between two tissues and
-    /// every outer-boundary face. @pre tets positively oriented, conforming
-    explicit WorkMesh(const TetMesh& mesh);
+    /// every outer-boundary face. Nodes flagged in `frozen` (per node; empty: none) are corners whatever their
+    /// faces: the nodes of a mesh part that have tets outside it (mesh_parts.h), whose faces no edit may change.
+    /// @pre tets positively oriented, conforming
+    explicit WorkMesh(const TetMesh& mesh, std::vector<char> frozen = {});
 
     /// The mesh now: alive tets in slot order, every node (new ones after the old), the listed faces.
     TetMesh result() const;
@@ -40,6 +42,9 @@ public:
     std::size_t node_count() const { return points_.size(); }
     const Vec3& point(std::uint32_t v) const { return points_[v]; }
     NodeKind kind(std::uint32_t v) const { return kinds_[v]; }
+    /// Whether v is frozen: it never moves, and no edit may split or flip a face or edge all of whose nodes
+    /// are frozen (they may lie on a face shared with another part).
+    bool frozen(std::uint32_t v) const { return v < frozen_.size() && frozen_[v] != 0; }
     /// The local size at v: for the mesh's own nodes their shortest edge on entry, for new nodes what
     /// set_scale() gave them (infinity until then). Insertion keeps new nodes a fraction of it apart.
     double scale(std::uint32_t v) const { return scales_[v]; }
@@ -153,6 +158,7 @@ private:
 
     std::vector<Vec3> points_;
     std::vector<NodeKind> kinds_;
+    std::vector<char> frozen_;
     std::vector<double> scales_;
     std::vector<std::vector<std::uint32_t>> tets_of_, faces_of_;
     std::vector<Tet> tets_;

@@ -1,0 +1,252 @@
+#include "volume/detail/improver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <queue>
+
+#include "core/error.h"
+#include "volume/detail/flips.h"
+#include "volume/detail/insert_node.h"
+#include "volume/detail/interface_flip.h"
+#include "volume/detail/smooth_node.h"
+#include "volume/detail/work_mesh.h"
+
+namespace tissuemesh::volume::detail {
+namespace {
+
+/// A tet waiting to be improved: worst quality first, then lowest slot; `stamp` tells whether it is current.
+struct Waiting {
+    double quality;
+    std::uint32_t tet, stamp;
+    bool operator>(const Waiting& other) const
+    {
+        return quality > other.quality || (quality == other.quality && tet > other.tet);
+    }
+};
+using Queue = std::priority_queue<Waiting, std::vector<Waiting>, std::greater<>>;
+constexpr std::uint32_t never = ~0u;
+
+/// What improved a tet.
+enum class Change { none, edge_removal, face_removal, interface_flip, move, insertion };
+
+/// The schedule: passes over the tets below the target, worst first, each tet trying flips, then smoothing of
+/// its nodes, then (from the second pass on, for the tets below the insertion bar) node insertion. The first
+/// change that raises the local minimum is kept; tets it makes or reshapes below the target join the queue.
+class Improver {
+public:
+    /// Nodes flagged in `frozen` never change (WorkMesh); with `seeds` (per node), only tets at a flagged node
+    /// are queued at the start of a pass (tets the edits make or reshape join as always).
+    Improver(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
+             ImproveReport& report, std::vector<char> frozen = {}, std::vector<char> seeds = {})
+        : mesh_(mesh), work_(mesh, std::move(frozen)), seeds_(std::move(seeds)), reference_(reference), options_(options), report_(report),
+          target_(sine_of_deg(options.target_dihedral_deg)),
+          insert_bar_(sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
+          // Never quite zero: a node moving in a flat patch leaves its faces there up to rounding.
+          face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
+          start_volumes_(work_.tissue_volumes())
+    {
+    }
+
+    void run(const Progress& progress)
+    {
+        for (std::size_t pass = 0; pass < options_.max_passes; ++pass) {
+            const bool insert = pass > 0 && options_.insert;
+            const std::size_t changes = run_pass(insert);
+            ++report_.passes;
+            progress.update("improve", static_cast<double>(pass + 1) / static_cast<double>(options_.max_passes));
+            std::size_t below = 0;
+            for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) below += work_.alive(t) && work_.quality(t) < target_;
+            progress.debug("improve",
+                           concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target"));
+            if (changes == 0 && (insert || !options_.insert)) break;
+        }
+        mesh_ = work_.result();
+    }
+
+private:
+    std::size_t run_pass(bool insert)
+    {
+        Queue queue;
+        for (std::uint32_t t = 0; t < work_.tet_slots(); ++t)
+            if (work_.alive(t) && work_.quality(t) < target_ && seeded(t))
+                queue.push({work_.quality(t), t, work_.stamp(t)});
+        // Each tet is tried once a pass (a reshaped tet is the same tet; a new one in a reused slot is not).
+        std::vector<std::uint32_t> tried(work_.tet_slots(), never);
+        std::size_t changes = 0;
+        while (!queue.empty()) {
+            const Waiting w = queue.top();
+            queue.pop();
+            if (!work_.alive(w.tet) || work_.stamp(w.tet) != w.stamp) continue;
+            if (w.tet >= tried.size()) tried.resize(work_.tet_slots(), never);
+            if (tried[w.tet] == work_.birth(w.tet)) continue;
+            tried[w.tet] = work_.birth(w.tet);
+            if (unchanged_since_failure(w.tet, insert ? 2 : 1)) continue;
+            // Flips and smoothing that failed on this tet with nothing changed around it since fail again: only
+            // insertion is new to it.
+            const bool local_failed = unchanged_since_failure(w.tet, 1);
+            const std::size_t nodes = work_.node_count();
+            const Change change = improve(w.tet, insert, local_failed);
+            if (change == Change::none || !volumes_kept() || !tets_within_bounds()) {
+                work_.rollback(0);
+                if (failed_.size() < work_.tet_slots()) failed_.resize(work_.tet_slots());
+                failed_[w.tet] = {work_.birth(w.tet), clock_, insert ? 2 : 1};
+                continue;
+            }
+            count(change, nodes);
+            ++changes;
+            work_.commit();
+            ++clock_;
+            node_changed_.resize(work_.node_count(), 0), node_tried_.resize(work_.node_count(), -1);
+            for (const std::uint32_t t : work_.take_touched()) {
+                if (!work_.alive(t)) continue;
+                for (const std::uint32_t v : work_.tet(t)) node_changed_[v] = clock_;
+                if (work_.quality(t) < target_) queue.push({work_.quality(t), t, work_.stamp(t)});
+            }
+        }
+        work_.take_touched();
+        return changes;
+    }
+
+    /// Whether t has a frozen node. No node is inserted for such a tet: many of its edits are barred, insertion
+    /// costs a dozen trials, and the bands around the faces between mesh parts, where none of its nodes is frozen,
+    /// take it on with every edit (improve_mesh.cpp).
+    bool at_frozen(std::uint32_t t) const
+    {
+        const Tet& tet = work_.tet(t);
+        return std::any_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return work_.frozen(v); });
+    }
+
+    bool seeded(std::uint32_t t) const
+    {
+        if (seeds_.empty()) return true;
+        const Tet& tet = work_.tet(t);
+        return std::any_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v < seeds_.size() && seeds_[v]; });
+    }
+
+    Change improve(std::uint32_t t, bool insert, bool only_insert)
+    {
+        const Tet tet = work_.tet(t);
+        if (options_.flip && !only_insert) {
+            for (const auto& e : edge_corners)
+                if (remove_edge(work_, tet[e[0]], tet[e[1]])) return Change::edge_removal;
+            if (options_.move_interface_nodes)
+                for (const auto& e : edge_corners)
+                    if (flip_interface_edge(work_, tet[e[0]], tet[e[1]], reference_, face_tolerance_mm_))
+                        return Change::interface_flip;
+            for (int i = 0; i < 4; ++i)
+                if (remove_faces(work_, t, i)) return Change::face_removal;
+        }
+        if (options_.smooth && !only_insert) {
+            node_changed_.resize(work_.node_count(), 0), node_tried_.resize(work_.node_count(), -1);
+            for (const std::uint32_t v : tet) {
+                if (!options_.move_interface_nodes && work_.kind(v) != NodeKind::interior) continue;
+                // A node that could not be moved stays so until something around it changes.
+                if (node_tried_[v] >= node_changed_[v]) continue;
+                if (smooth_node(work_, v, reference_, face_tolerance_mm_)) return Change::move;
+                node_tried_[v] = clock_;
+            }
+        }
+        if (insert && work_.quality(t) < insert_bar_ && !at_frozen(t) && !insertion_tried(t) &&
+            insert_for_tet(work_, t, reference_, options_.insert_on_interfaces, face_tolerance_mm_))
+            return Change::insertion;
+        return Change::none;
+    }
+
+    void count(Change change, std::size_t nodes_before)
+    {
+        switch (change) {
+        case Change::edge_removal: ++report_.edges_removed; break;
+        case Change::face_removal: ++report_.faces_removed; break;
+        case Change::interface_flip: ++report_.interface_edges_flipped; break;
+        case Change::move: ++report_.smoothed_nodes; break;
+        case Change::insertion:
+            for (auto v = static_cast<std::uint32_t>(nodes_before); v < work_.node_count(); ++v)
+                ++(work_.kind(v) == NodeKind::interior ? report_.nodes_inserted
+                                                               : report_.nodes_inserted_on_interfaces);
+            break;
+        case Change::none: break;
+        }
+    }
+
+    /// Whether the tets the edit made or reshaped keep the volume bounds (ImproveOptions::max_tet_volume_mm3).
+    bool tets_within_bounds() const
+    {
+        if (!(options_.max_tet_volume_mm3 > 0) && options_.max_tet_volume_per_tissue_mm3.empty()) return true;
+        const double none = std::numeric_limits<double>::infinity();
+        return work_.changed_tets_within(0, [&](Label label) {
+            const auto it = options_.max_tet_volume_per_tissue_mm3.find(label);
+            if (it != options_.max_tet_volume_per_tissue_mm3.end()) return it->second;
+            return options_.max_tet_volume_mm3 > 0 ? options_.max_tet_volume_mm3 : none;
+        });
+    }
+
+    /// Whether every tissue's volume is within the allowed change of its start, or no further from it than at the
+    /// last commit (interface moves and splits on curved patches change volumes a little; flips never do).
+    bool volumes_kept()
+    {
+        bool kept = true;
+        for (const auto& [label, volume] : work_.tissue_volumes()) {
+            const double from = start_volumes_.count(label) ? start_volumes_.at(label) : 0;
+            const double drift = std::abs(volume - from), allowed = options_.max_volume_change * std::abs(from);
+            if (drift > allowed && drift > committed_drift_[label] + 1e-12 * std::abs(from)) kept = false;
+        }
+        if (kept)
+            for (const auto& [label, volume] : work_.tissue_volumes())
+                committed_drift_[label] =
+                    std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
+        return kept;
+    }
+
+    /// Whether insertion was tried for this tet (slot and birth) before; marks it tried. Insertion costs a
+    /// dozen trials, so each tet gets one, however its neighbours change.
+    bool insertion_tried(std::uint32_t t)
+    {
+        if (insertion_tried_.size() < work_.tet_slots()) insertion_tried_.resize(work_.tet_slots(), never);
+        if (insertion_tried_[t] == work_.birth(t)) return true;
+        insertion_tried_[t] = work_.birth(t);
+        return false;
+    }
+
+    /// Whether every operation of `level` failed on t before and nothing around it changed since.
+    bool unchanged_since_failure(std::uint32_t t, int level) const
+    {
+        if (t >= failed_.size() || failed_[t].birth != work_.birth(t) || failed_[t].level < level) return false;
+        const Tet& tet = work_.tet(t);
+        return std::all_of(tet.begin(), tet.end(), [&](std::uint32_t v) {
+            return v >= node_changed_.size() || node_changed_[v] <= failed_[t].clock;
+        });
+    }
+
+    TetMesh& mesh_;
+    WorkMesh work_;
+    std::vector<char> seeds_;
+    const SurfaceReference& reference_;
+    const ImproveOptions& options_;
+    ImproveReport& report_;
+    double target_, insert_bar_, face_tolerance_mm_;
+    std::map<Label, double> start_volumes_, committed_drift_;
+    std::int64_t clock_ = 0;                 ///< commits so far
+    std::vector<std::int64_t> node_changed_; ///< per node: the commit that last changed a tet around it
+    std::vector<std::int64_t> node_tried_;   ///< per node: the clock of its last failed smoothing (-1: none)
+    /// Per tet slot: the tet (birth) on which every operation of a level (1: flips and smoothing, 2: also
+    /// insertion) failed, and when.
+    struct Failure {
+        std::uint32_t birth = never;
+        std::int64_t clock = 0;
+        int level = 0;
+    };
+    std::vector<Failure> failed_;
+    std::vector<std::uint32_t> insertion_tried_; ///< per tet slot: the birth insertion was tried for
+};
+
+} // namespace
+
+void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
+                      ImproveReport& report, std::vector<char> frozen, std::vector<char> seeds, const Progress& progress)
+{
+    Improver(mesh, reference, options, report, std::move(frozen), std::move(seeds)).run(progress);
+}
+
+} // namespace tissuemesh::volume::detail

@@ -1,0 +1,23 @@
+// The improver's schedule on one mesh (improve_mesh() runs it on the whole mesh or on its parts side by side):
+// passes over the tets below the target, worst first, each tet trying flips, then smoothing of its nodes, then
+// node insertion.
+#pragma once
+
+#include <vector>
+
+#include "core/progress.h"
+#include "core/tet_mesh.h"
+#include "volume/detail/surface_reference.h"
+#include "volume/improve_mesh.h"
+
+namespace tissuemesh::volume::detail {
+
+/// Improves `mesh` in place against `reference` (one thread), adding its counts to `report` (not its figures or
+/// times). Nodes flagged in `frozen` (per node) never change, nor any face or edge all of whose nodes are
+/// frozen (WorkMesh); with `seeds` (per node), only the tets at a flagged node are queued at the start of a
+/// pass (tets the edits make or reshape join the queue as always).
+void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
+                      ImproveReport& report, std::vector<char> frozen = {}, std::vector<char> seeds = {},
+                      const Progress& progress = {});
+
+} // namespace tissuemesh::volume::detail

@@ -1,0 +1,181 @@
+#include "volume/detail/mesh_parts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_set>
+
+#include "volume/detail/face_map.h"
+
+namespace tissuemesh::volume::detail {
+
+PartCutter::PartCutter(const TetMesh& whole) : whole_(whole), tets_at_(whole.vertices.size(), 0)
+{
+    listed_.reserve(2 * whole.faces.size());
+    on_face_.assign(whole.vertices.size(), 0);
+    for (std::uint32_t f = 0; f < whole.faces.size(); ++f) {
+        listed_.emplace(face_key(whole.faces[f][0], whole.faces[f][1], whole.faces[f][2]), f);
+        for (const std::uint32_t v : whole.faces[f]) on_face_[v] = 1;
+    }
+    for (const Tet& tet : whole.tets)
+        for (const std::uint32_t v : tet) ++tets_at_[v];
+}
+
+MeshPart PartCutter::part(const std::vector<std::uint32_t>& tets) const
+{
+    MeshPart part;
+    part.mesh.names = whole_.names;
+    // The part's nodes in ascending order, each with how many of its tets hold it: frozen when the whole has more.
+    std::vector<std::uint32_t> count(whole_.vertices.size(), 0);
+    for (const std::uint32_t t : tets)
+        for (const std::uint32_t v : whole_.tets[t]) ++count[v];
+    std::vector<std::uint32_t>& local = count; // reused: the part's index of each node it holds
+    for (std::uint32_t v = 0; v < count.size(); ++v) {
+        if (count[v] == 0) continue;
+        part.frozen.push_back(count[v] < tets_at_[v]);
+        local[v] = static_cast<std::uint32_t>(part.from_node.size());
+        part.from_node.push_back(v);
+    }
+    part.mesh.vertices.reserve(part.from_node.size());
+    for (const std::uint32_t v : part.from_node) part.mesh.vertices.push_back(whole_.vertices[v]);
+    std::vector<std::uint32_t> faces;
+    part.mesh.tets.reserve(tets.size());
+    part.mesh.tet_labels.reserve(tets.size());
+    for (const std::uint32_t t : tets) {
+        const Tet& tet = whole_.tets[t];
+        part.mesh.tets.push_back({local[tet[0]], local[tet[1]], local[tet[2]], local[tet[3]]});
+        part.mesh.tet_labels.push_back(whole_.tet_labels[t]);
+        for (int i = 0; i < 4; ++i) {
+            const std::uint32_t a = tet[(i + 1) % 4], b = tet[(i + 2) % 4], c = tet[(i + 3) % 4];
+            if (!on_face_[a] || !on_face_[b] || !on_face_[c]) continue; // most faces: no lookup
+            const auto found = listed_.find(face_key(a, b, c));
+            if (found != listed_.end()) faces.push_back(found->second);
+        }
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    part.listed = faces;
+    for (const std::uint32_t f : faces) {
+        const Triangle& c = whole_.faces[f];
+        part.mesh.faces.push_back({local[c[0]], local[c[1]], local[c[2]]});
+        part.mesh.face_sides.push_back(whole_.face_sides[f]);
+    }
+    return part;
+}
+
+namespace {
+
+double axis_key(const TetMesh& mesh, std::uint32_t t, int axis)
+{
+    double sum = 0;
+    for (const std::uint32_t v : mesh.tets[t]) sum += mesh.vertices[v][axis];
+    return sum;
+}
+
+} // namespace
+
+std::uint32_t Cut::nearest(const TetMesh& mesh, std::uint32_t t) const
+{
+    const double key = axis_key(mesh, t, axis);
+    std::uint32_t best = 0;
+    for (std::uint32_t j = 1; j < between.size(); ++j)
+        if (std::abs(key - between[j]) < std::abs(key - between[best])) best = j;
+    return best;
+}
+
+Cut cut_across(const TetMesh& mesh, std::size_t count)
+{
+    Vec3 low = mesh.vertices.front(), high = low;
+    for (const Vec3& p : mesh.vertices)
+        for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], p[a]), high[a] = std::max(high[a], p[a]);
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (high[a] - low[a] > high[axis] - low[axis]) axis = a;
+    std::vector<double> key(mesh.tets.size());
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) key[t] = axis_key(mesh, t, axis);
+    std::vector<std::uint32_t> order(mesh.tets.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+    Cut cut{std::vector<std::uint32_t>(mesh.tets.size()), axis, {}};
+    for (std::size_t r = 0; r < order.size(); ++r) {
+        const auto k = static_cast<std::uint32_t>(r * count / order.size());
+        if (r > 0 && k != cut.part_of[order[r - 1]]) cut.between.push_back((key[order[r - 1]] + key[order[r]]) / 2);
+        cut.part_of[order[r]] = k;
+    }
+    return cut;
+}
+
+std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seeds, std::size_t rings)
+{
+    // The tets of each node, flat.
+    std::vector<std::uint32_t> start(mesh.vertices.size() + 1, 0), around(4 * mesh.tets.size());
+    for (const Tet& tet : mesh.tets)
+        for (const std::uint32_t v : tet) ++start[v + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+        for (const std::uint32_t v : mesh.tets[t]) around[fill[v]++] = t;
+    std::vector<char> marked(mesh.vertices.size(), 0), in(mesh.tets.size(), 0);
+    for (std::size_t t = 0; t < std::min(seeds.size(), in.size()); ++t) in[t] = seeds[t];
+    for (std::size_t ring = 0; ring < rings; ++ring) {
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+            if (in[t])
+                for (const std::uint32_t v : mesh.tets[t]) marked[v] = 1;
+        for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
+            if (marked[v])
+                for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) in[around[i]] = 1;
+    }
+    return in;
+}
+
+TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of,
+                    const std::vector<MeshPart>& parts, const std::vector<TetMesh>& edited)
+{
+    TetMesh out;
+    out.names = whole.names;
+    out.vertices = whole.vertices;
+    for (std::size_t t = 0; t < whole.tets.size(); ++t)
+        if (part_of[t] == no_part) out.tets.push_back(whole.tets[t]), out.tet_labels.push_back(whole.tet_labels[t]);
+    std::vector<std::vector<std::uint32_t>> to_whole(parts.size());
+    std::vector<char> covered(whole.faces.size(), 0);
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const MeshPart& part = parts[k];
+        const TetMesh& mesh = edited[k];
+        std::vector<std::uint32_t>& map = to_whole[k];
+        map.resize(mesh.vertices.size());
+        for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+            if (v < part.from_node.size()) {
+                map[v] = part.from_node[v];
+                out.vertices[map[v]] = mesh.vertices[v];
+            } else {
+                map[v] = static_cast<std::uint32_t>(out.vertices.size());
+                out.vertices.push_back(mesh.vertices[v]);
+            }
+        }
+        for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+            const Tet& tet = mesh.tets[t];
+            out.tets.push_back({map[tet[0]], map[tet[1]], map[tet[2]], map[tet[3]]});
+            out.tet_labels.push_back(mesh.tet_labels[t]);
+        }
+        for (const std::uint32_t f : part.listed) covered[f] = 1;
+    }
+    for (std::size_t f = 0; f < whole.faces.size(); ++f)
+        if (!covered[f]) out.faces.push_back(whole.faces[f]), out.face_sides.push_back(whole.face_sides[f]);
+    // A face two parts hold lies between them: its nodes are frozen in both.
+    std::unordered_set<FaceKey, FaceKeyHash> seen;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+        const std::vector<std::uint32_t>& map = to_whole[k];
+        const auto frozen = [&](std::uint32_t v) { return v < parts[k].frozen.size() && parts[k].frozen[v]; };
+        for (std::size_t f = 0; f < edited[k].faces.size(); ++f) {
+            const Triangle& c = edited[k].faces[f];
+            const Triangle g{map[c[0]], map[c[1]], map[c[2]]};
+            if (frozen(c[0]) && frozen(c[1]) && frozen(c[2]) && !seen.insert(face_key(g[0], g[1], g[2])).second)
+                continue;
+            out.faces.push_back(g), out.face_sides.push_back(edited[k].face_sides[f]);
+        }
+    }
+    return out;
+}
+
+} // namespace tissuemesh::volume::detail
