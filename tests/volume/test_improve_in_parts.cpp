@@ -159,8 +159,8 @@ TEST(ImproveInParts, KeepTheInvariantsAndTheBytesWhateverTheThreads)
     EXPECT_EQ(one.tet_labels, two.tet_labels);
     EXPECT_EQ(one.faces, two.faces);
     for (const Tet& t : one.tets)
-        ASSERT_GT(
-            detail::exact_side(one.vertices[t[0]], one.vertices[t[1]], one.vertices[t[2]], one.vertices[t[3]]), 0);
+        ASSERT_GT(detail::exact_side(one.vertices[t[0]], one.vertices[t[1]], one.vertices[t[2]], one.vertices[t[3]]),
+                  0);
     const MeshCheckReport check = check_mesh(one);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
     std::printf("[ figures  ] two spheres in 4 parts: smallest dihedral %.2f -> %.2f deg, 1st percentile %.2f -> "

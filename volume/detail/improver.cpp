@@ -38,10 +38,10 @@ class Improver {
 public:
     /// Nodes flagged in `frozen` never change (WorkMesh); with `seeds` (per node), only tets at a flagged node
     /// are queued at the start of a pass (tets the edits make or reshape join as always).
-    Improver(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
-             ImproveReport& report, std::vector<char> frozen = {}, std::vector<char> seeds = {})
-        : mesh_(mesh), work_(mesh, std::move(frozen)), seeds_(std::move(seeds)), reference_(reference), options_(options), report_(report),
-          target_(sine_of_deg(options.target_dihedral_deg)),
+    Improver(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options, ImproveReport& report,
+             std::vector<char> frozen = {}, std::vector<char> seeds = {})
+        : mesh_(mesh), work_(mesh, std::move(frozen)), seeds_(std::move(seeds)), reference_(reference),
+          options_(options), report_(report), target_(sine_of_deg(options.target_dihedral_deg)),
           insert_bar_(sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
           // Never quite zero: a node moving in a flat patch leaves its faces there up to rounding.
           face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
@@ -163,8 +163,7 @@ private:
         case Change::move: ++report_.smoothed_nodes; break;
         case Change::insertion:
             for (auto v = static_cast<std::uint32_t>(nodes_before); v < work_.node_count(); ++v)
-                ++(work_.kind(v) == NodeKind::interior ? report_.nodes_inserted
-                                                               : report_.nodes_inserted_on_interfaces);
+                ++(work_.kind(v) == NodeKind::interior ? report_.nodes_inserted : report_.nodes_inserted_on_interfaces);
             break;
         case Change::none: break;
         }
@@ -244,7 +243,8 @@ private:
 } // namespace
 
 void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
-                      ImproveReport& report, std::vector<char> frozen, std::vector<char> seeds, const Progress& progress)
+                      ImproveReport& report, std::vector<char> frozen, std::vector<char> seeds,
+                      const Progress& progress)
 {
     Improver(mesh, reference, options, report, std::move(frozen), std::move(seeds)).run(progress);
 }

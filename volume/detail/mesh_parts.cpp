@@ -129,8 +129,8 @@ std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seed
     return in;
 }
 
-TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of,
-                    const std::vector<MeshPart>& parts, const std::vector<TetMesh>& edited)
+TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of, const std::vector<MeshPart>& parts,
+                    const std::vector<TetMesh>& edited)
 {
     TetMesh out;
     out.names = whole.names;

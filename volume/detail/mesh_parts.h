@@ -59,9 +59,10 @@ Cut cut_across(const TetMesh& mesh, std::size_t count);
 std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seeds, std::size_t rings);
 
 /// The whole with each part replaced by its edited mesh (`edited[k]`, over the part's nodes in its order, new
-/// nodes after; the part's own `mesh` is not read and may have been moved into it): tets outside every part first (in order), then each part's; the whole's listed faces outside
-/// every part, then each part's (a face two parts share once). Frozen nodes are the same in all.
-TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of,
-                    const std::vector<MeshPart>& parts, const std::vector<TetMesh>& edited);
+/// nodes after; the part's own `mesh` is not read and may have been moved into it): tets outside every part first (in
+/// order), then each part's; the whole's listed faces outside every part, then each part's (a face two parts share
+/// once). Frozen nodes are the same in all.
+TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of, const std::vector<MeshPart>& parts,
+                    const std::vector<TetMesh>& edited);
 
 } // namespace tissuemesh::volume::detail

@@ -48,8 +48,18 @@ public:
         for (const Tet& tet : tets_)
             for (const std::uint32_t w : tet)
                 if (w != v) shortest_edge_ = std::min(shortest_edge_, distance(mesh.point(w), mesh.point(v)));
-        for (const std::uint32_t f : mesh.faces_of(v))
-            faces_.push_back(mesh.face(f).corners), face_sides_.push_back(mesh.face(f).sides);
+        for (const std::uint32_t f : mesh.faces_of(v)) {
+            const ConstraintFace& face = mesh.face(f);
+            faces_.push_back(face.corners), face_sides_.push_back(face.sides);
+            for (const std::uint32_t w : face.corners) {
+                if (w == v) continue;
+                const auto same = [&](const auto& s) {
+                    return s.first == w &&
+                           std::minmax(s.second.from, s.second.to) == std::minmax(face.sides.from, face.sides.to);
+                };
+                if (std::none_of(spokes_.begin(), spokes_.end(), same)) spokes_.push_back({w, face.sides});
+            }
+        }
     }
 
     bool set_freedom()
@@ -152,19 +162,19 @@ private:
             if (!positive(c[0], c[1], c[2], c[3])) return false;
         }
         // A face at v must not turn over (for faces of the outer boundary the tets alone do not ensure it), and
-        // must stay on its patch.
+        // must stay on its patch: as SurfaceReference::holds_triangle, less the midpoint of the edge opposite v,
+        // which stays where it was. The centroids first (the farthest from the patch), then the midpoint of each
+        // edge at v once for each tissue pair (two faces share it).
         for (std::size_t i = 0; i < faces_.size(); ++i) {
             const Triangle& f = faces_[i];
             if (dot(face_normal(f, v_, q), face_normal(f, v_, mesh_.point(v_))) <= 0) return false;
-            // As SurfaceReference::holds_triangle, less the midpoint of the edge opposite v, which stays where it was.
-            const Label from = face_sides_[i].from, to = face_sides_[i].to;
             const std::uint32_t w1 = f[0] == v_ ? f[1] : f[0], w2 = f[2] == v_ ? f[1] : f[2];
-            const Vec3 &p1 = mesh_.point(w1), &p2 = mesh_.point(w2);
-            if (!reference_.within((1.0 / 3) * (q + p1 + p2), from, to, face_tolerance_mm_) ||
-                !reference_.within(0.5 * (q + p1), from, to, face_tolerance_mm_) ||
-                !reference_.within(0.5 * (q + p2), from, to, face_tolerance_mm_))
+            if (!reference_.within((1.0 / 3) * (q + mesh_.point(w1) + mesh_.point(w2)), face_sides_[i].from,
+                                   face_sides_[i].to, face_tolerance_mm_))
                 return false;
         }
+        for (const auto& [w, sides] : spokes_)
+            if (!reference_.within(0.5 * (q + mesh_.point(w)), sides.from, sides.to, face_tolerance_mm_)) return false;
         return true;
     }
 
@@ -201,6 +211,8 @@ private:
     std::vector<int> corner_;
     std::vector<Triangle> faces_;
     std::vector<LabelPair> face_sides_;
+    /// The edges at v on its faces: the other end and a tissue pair of a face holding it, once per pair.
+    std::vector<std::pair<std::uint32_t, LabelPair>> spokes_;
     double shortest_edge_ = 0;
     Freedom freedom_;
     LabelPair pair_;
