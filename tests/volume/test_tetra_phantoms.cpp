@@ -224,7 +224,9 @@ TEST(TetraSpheres4, LongCsfAt2mmIsOnePieceBetweenSkullAndBrain)
 {
     const image::Phantom phantom = image::make_phantom("spheres4", {.voxel_mm = 2});
     const InterfaceComplex complex = surface::extract_interfaces(phantom.image, {.priority = {{3, 1}}});
-    const TetMesh mesh = volume::tetrahedralize(complex);
+    // TetGen's mesh: expect_faithful_mesh() asks every input triangle to stay a face, which the improver's moves and
+    // splits on interfaces do not keep (its own tests bound them: test_improve_mesh.cpp).
+    const TetMesh mesh = volume::tetrahedralize(complex, {.improve = false});
     const volume::MeshCheckReport check = expect_faithful_mesh(phantom.image, complex, mesh, 0.97);
     for (const LabelPair& side : mesh.face_sides) {
         const bool skull_brain = (side.from == 2 && side.to == 4) || (side.from == 4 && side.to == 2);
