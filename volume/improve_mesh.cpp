@@ -60,11 +60,11 @@ void add_counts(ImproveReport& whole, const ImproveReport& part)
 }
 
 /// Improves the parts of `mesh` (part_of per tet, `count` parts) side by side, each with the nodes on the faces
-/// it shares with the rest frozen, and puts them back; flags those nodes in `seam` (per node). With `seeds`
+/// it shares with the rest frozen, and puts them back; flags those nodes in `seam` (per node) when given. With `seeds`
 /// (per node), a part works only from the tets at a flagged node.
 void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std::size_t count,
                    const detail::SurfaceReference& reference, const ImproveOptions& options,
-                   const std::vector<char>& seeds, std::vector<char>& seam, ImproveReport& report,
+                   const std::vector<char>& seeds, std::vector<char>* seam, ImproveReport& report,
                    const std::function<void()>& part_done)
 {
     const detail::PartCutter cutter(mesh);
@@ -99,8 +99,9 @@ void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std
     if (failure) std::rethrow_exception(failure);
     for (std::size_t k = 0; k < count; ++k) {
         add_counts(report, reports[k]);
-        for (std::size_t v = 0; v < parts[k].from_node.size(); ++v)
-            if (parts[k].frozen[v]) seam[parts[k].from_node[v]] = 1;
+        if (seam != nullptr)
+            for (std::size_t v = 0; v < parts[k].from_node.size(); ++v)
+                if (parts[k].frozen[v]) (*seam)[parts[k].from_node[v]] = 1;
     }
     mesh = detail::merge_parts(mesh, part_of, parts, edited);
 }
@@ -119,7 +120,7 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
     const detail::Cut cut = detail::cut_across(mesh, count);
     std::vector<char> seam(mesh.vertices.size(), 0);
     std::size_t done = 0;
-    improve_parts(mesh, cut.part_of, count, reference, options, {}, seam, report,
+    improve_parts(mesh, cut.part_of, count, reference, options, {}, &seam, report,
                   [&] { progress.update("improve", 0.8 * static_cast<double>(++done) / static_cast<double>(count)); });
     // Then around the tets at those nodes still below the target, with two rings of tets beyond them for the
     // edits' room (edge rings, smoothing stars).
@@ -137,9 +138,8 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
     std::vector<std::uint32_t> band_of(mesh.tets.size(), detail::no_part);
     for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
         if (around[t]) band_of[t] = cut.nearest(mesh, t);
-    std::vector<char> band_seam(mesh.vertices.size(), 0);
     done = 0;
-    improve_parts(mesh, band_of, bands, reference, options, seam, band_seam, report, [&] {
+    improve_parts(mesh, band_of, bands, reference, options, seam, nullptr, report, [&] {
         progress.update("improve", 0.8 + 0.2 * static_cast<double>(++done) / static_cast<double>(bands));
     });
     report.parts = count;

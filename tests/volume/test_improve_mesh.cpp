@@ -1,14 +1,24 @@
-// improve_mesh(): invariants on meshes of complexes built in code (flat boxes, a thin layer, curved shells).
+// improve_mesh(): invariants on meshes of complexes built in code (flat boxes, a thin layer, curved shells), and
+// in mesh parts side by side (cutting and merging, frozen nodes, the same bytes whatever the thread count).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <gtest/gtest.h>
 #include <map>
+#include <omp.h>
+#include <set>
 
 #include "core/error.h"
+#include "core/tet_adjacency.h"
 #include "core/tet_shape.h"
 #include "volume/check_mesh.h"
+#include "volume/detail/insert_node.h"
+#include "volume/detail/interface_flip.h"
+#include "volume/detail/mesh_parts.h"
+#include "volume/detail/smooth_node.h"
+#include "volume/detail/surface_reference.h"
 #include "volume/detail/tetgen_adapter.h"
+#include "volume/detail/work_mesh.h"
 #include "volume/improve_mesh.h"
 #include "volume/interface_distance.h"
 #include "volume/tetrahedralize.h"
@@ -22,6 +32,17 @@ std::map<Label, double> volumes(const TetMesh& mesh)
     std::map<Label, double> v;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) v[mesh.tet_labels[t]] += signed_volume(mesh, t);
     return v;
+}
+
+/// Two concentric spheres of tissues 1 (outer shell) and 2, off centre.
+InterfaceComplex two_spheres()
+{
+    InterfaceComplex complex = testing::icosphere(3, 10, {0, 0, 0});
+    const InterfaceComplex inner = testing::icosphere(2, 6, {0.4, -0.3, 0.2});
+    const auto base = static_cast<std::uint32_t>(complex.vertices.size());
+    complex.vertices.insert(complex.vertices.end(), inner.vertices.begin(), inner.vertices.end());
+    for (const Triangle& t : inner.triangles) complex.add_triangle({t[0] + base, t[1] + base, t[2] + base}, {2, 1});
+    return complex;
 }
 
 /// Every tet positive by the exact predicate, and the mesh fit for FEM.
@@ -107,11 +128,7 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
 /// Two concentric spheres: nodes slide on curved patches, and stay on them.
 TEST(ImproveMesh, CurvedInterfacesStayOnTheComplexAndTheRunIsDeterministic)
 {
-    InterfaceComplex complex = testing::icosphere(3, 10, {0, 0, 0});
-    const InterfaceComplex inner = testing::icosphere(2, 6, {0.4, -0.3, 0.2});
-    const auto base = static_cast<std::uint32_t>(complex.vertices.size());
-    complex.vertices.insert(complex.vertices.end(), inner.vertices.begin(), inner.vertices.end());
-    for (const Triangle& t : inner.triangles) complex.add_triangle({t[0] + base, t[1] + base, t[2] + base}, {2, 1});
+    const InterfaceComplex complex = two_spheres();
     TetMesh mesh = tetrahedralize(complex, {.max_volume_mm3 = 3, .improve = false});
     TetMesh again = mesh;
     const auto before_volumes = volumes(mesh);
@@ -155,6 +172,142 @@ TEST(ImproveMesh, RejectsBadOptions)
     TetMesh mesh = tetrahedralize(complex, {.improve = false});
     EXPECT_THROW(improve_mesh(mesh, complex, {.target_dihedral_deg = 0}), InputError);
     EXPECT_THROW(improve_mesh(mesh, complex, {.target_dihedral_deg = 80}), InputError);
+}
+
+// ---- In mesh parts side by side (ImproveOptions::parts): cutting and merging, frozen nodes, threads.
+
+/// Tets as sorted node sets with their tissues, and faces as sorted node sets with their tissue pairs: the
+/// mesh whatever the order of its lists.
+std::set<std::pair<std::array<std::uint32_t, 4>, Label>> tet_set(const TetMesh& mesh)
+{
+    std::set<std::pair<std::array<std::uint32_t, 4>, Label>> out;
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        std::array<std::uint32_t, 4> key = mesh.tets[t];
+        std::sort(key.begin(), key.end());
+        out.insert({key, mesh.tet_labels[t]});
+    }
+    return out;
+}
+std::set<std::array<std::uint32_t, 3>> face_set(const TetMesh& mesh)
+{
+    std::set<std::array<std::uint32_t, 3>> out;
+    for (const Triangle& f : mesh.faces) {
+        std::array<std::uint32_t, 3> key = f;
+        std::sort(key.begin(), key.end());
+        out.insert(key);
+    }
+    return out;
+}
+
+TEST(ImproveInParts, PartsCutAndMergedUneditedGiveTheMeshBack)
+{
+    const InterfaceComplex complex = two_spheres();
+    const TetMesh mesh = tetrahedralize(complex, {.max_volume_mm3 = 2, .improve = false});
+    const detail::Cut cut = detail::cut_across(mesh, 3);
+    ASSERT_EQ(cut.between.size(), 2u);
+    const detail::PartCutter cutter(mesh);
+    const TetAdjacency adjacency(mesh.tets, mesh.vertices.size());
+    std::vector<std::vector<std::uint32_t>> tets(3);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) tets[cut.part_of[t]].push_back(t);
+    std::vector<detail::MeshPart> parts;
+    std::vector<TetMesh> edited;
+    for (std::uint32_t k = 0; k < 3; ++k) {
+        // About a third of the tets each.
+        EXPECT_NEAR(static_cast<double>(tets[k].size()), static_cast<double>(mesh.tets.size()) / 3, 1.0);
+        parts.push_back(cutter.part(tets[k]));
+        edited.push_back(parts.back().mesh);
+        // Every face of a part's tet that another part's tet shares has only frozen nodes.
+        for (const std::uint32_t t : tets[k])
+            for (int i = 0; i < 4; ++i) {
+                const std::uint32_t n = adjacency.across(t, i);
+                if (n == no_tet || cut.part_of[n] == k) continue;
+                for (int j = 0; j < 4; ++j) {
+                    if (j == i) continue;
+                    const std::uint32_t v = mesh.tets[t][static_cast<std::size_t>(j)];
+                    const auto local = std::lower_bound(parts[k].from_node.begin(), parts[k].from_node.end(), v) -
+                                       parts[k].from_node.begin();
+                    EXPECT_TRUE(parts[k].frozen[static_cast<std::size_t>(local)]);
+                }
+            }
+    }
+    // The middle part meets both others: it has the most frozen nodes.
+    const auto frozen = [&](std::size_t k) { return std::count(parts[k].frozen.begin(), parts[k].frozen.end(), 1); };
+    EXPECT_GT(frozen(1), frozen(0));
+    EXPECT_GT(frozen(1), frozen(2));
+    const TetMesh merged = detail::merge_parts(mesh, cut.part_of, parts, edited);
+    EXPECT_EQ(merged.vertices, mesh.vertices);
+    EXPECT_EQ(tet_set(merged), tet_set(mesh));
+    EXPECT_EQ(merged.faces.size(), mesh.faces.size());
+    EXPECT_EQ(face_set(merged), face_set(mesh));
+}
+
+TEST(ImproveInParts, FrozenNodesNeitherMoveNorLoseTheirFaces)
+{
+    const InterfaceComplex complex = two_spheres();
+    const TetMesh mesh = tetrahedralize(complex, {.max_volume_mm3 = 2, .improve = false});
+    const detail::SurfaceReference reference(complex);
+    // Every node frozen: no move, no flip of an interface edge, no split of an interface face.
+    detail::WorkMesh work(mesh, std::vector<char>(mesh.vertices.size(), 1));
+    std::size_t moves = 0, flips = 0, splits = 0;
+    for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
+        EXPECT_EQ(work.kind(v), detail::NodeKind::corner);
+        moves += detail::smooth_node(work, v, reference, 1.0);
+    }
+    for (const Triangle& f : mesh.faces) {
+        flips += detail::flip_interface_edge(work, f[0], f[1], reference, 1.0);
+        const Vec3 centre = (1.0 / 3) * (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]);
+        splits += detail::split_simplex(work, {f[0], f[1], f[2]}, centre).has_value();
+    }
+    EXPECT_EQ(moves + flips + splits, 0u);
+    // Unfrozen, the same mesh has nodes that move and faces that split (the checks above could fail).
+    detail::WorkMesh free_mesh(mesh);
+    std::size_t free_moves = 0, free_splits = 0;
+    for (std::uint32_t v = 0; v < mesh.vertices.size() && free_moves == 0; ++v)
+        free_moves += detail::smooth_node(free_mesh, v, reference, 1.0);
+    for (const Triangle& f : mesh.faces) {
+        const Vec3 centre = (1.0 / 3) * (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]);
+        if (detail::split_simplex(free_mesh, {f[0], f[1], f[2]}, centre)) {
+            ++free_splits;
+            break;
+        }
+    }
+    EXPECT_GT(free_moves, 0u);
+    EXPECT_GT(free_splits, 0u);
+}
+
+TEST(ImproveInParts, KeepTheInvariantsAndTheBytesWhateverTheThreads)
+{
+    const InterfaceComplex complex = two_spheres();
+    const TetMesh start = tetrahedralize(complex, {.max_volume_mm3 = 1, .improve = false});
+    const auto before_volumes = volumes(start);
+    const int threads = omp_get_max_threads();
+    TetMesh one = start, two = start;
+    omp_set_num_threads(1);
+    const ImproveReport report = improve_mesh(one, complex, {.parts = 4});
+    omp_set_num_threads(2);
+    improve_mesh(two, complex, {.parts = 4});
+    omp_set_num_threads(threads);
+    EXPECT_EQ(one.vertices, two.vertices);
+    EXPECT_EQ(one.tets, two.tets);
+    EXPECT_EQ(one.tet_labels, two.tet_labels);
+    EXPECT_EQ(one.faces, two.faces);
+    expect_valid(one);
+    std::printf("[ figures  ] two spheres in 4 parts: smallest dihedral %.2f -> %.2f deg, 1st percentile %.2f -> "
+                "%.2f deg\n",
+                report.before.min_dihedral_deg, report.after.min_dihedral_deg, report.before.p1_min_dihedral_deg,
+                report.after.p1_min_dihedral_deg);
+    EXPECT_GE(report.after.min_dihedral_deg, std::max(10.0, report.before.min_dihedral_deg));
+    EXPECT_GT(report.after.p1_min_dihedral_deg, report.before.p1_min_dihedral_deg);
+    const InterfaceDistance distance = interface_distance(one, complex);
+    EXPECT_LT(distance.max_node_mm, 1e-9);
+    EXPECT_EQ(distance.unmatched_faces, 0u);
+    const auto after_volumes = volumes(one);
+    for (const auto& [label, v] : before_volumes)
+        EXPECT_NEAR(after_volumes.at(label), v, 1e-3 * v) << "tissue " << label;
+    // The parts did work the serial run does: the figures are alike.
+    TetMesh whole = start;
+    const ImproveReport serial = improve_mesh(whole, complex, {.parts = 1});
+    EXPECT_NEAR(report.after.p1_min_dihedral_deg, serial.after.p1_min_dihedral_deg, 1.0);
 }
 
 } // namespace
