@@ -46,7 +46,8 @@ struct ImproveOptions {
     double max_tet_volume_mm3 = 0;
     std::map<Label, double> max_tet_volume_per_tissue_mm3;
     /// The mesh is cut into this many parts across its longest side, improved side by side (the nodes on the
-    /// faces between parts held still), then bands around those faces are improved the same way. 0: one part
+    /// faces between parts held still), then bands around those faces (and around any tet left under half the
+    /// target) are improved the same way. 0: one part
     /// per 200 000 tets (at most 8); 1: the whole mesh at once. The result depends on this, not on the
     /// thread count.
     std::size_t parts = 0;

@@ -241,6 +241,47 @@ TEST(ImproveInParts, PartsCutAndMergedUneditedGiveTheMeshBack)
     EXPECT_EQ(face_set(merged), face_set(mesh));
 }
 
+// The bands after the parts take each group of touching tets whole (improve_mesh.cpp): split between two bands, a tet
+// midway between two cuts had its nodes frozen in both (the 1 mm usc19-5 head's refined mesh kept a 4.77-degree tet).
+TEST(ImproveInParts, GroupsOfTouchingTetsAreWholeAndApart)
+{
+    const TetMesh mesh = tetrahedralize(two_spheres(), {.max_volume_mm3 = 2, .improve = false});
+    // Two seeds at the ends of the mesh's longest side, with two rings of tets around each.
+    const detail::Cut cut = detail::cut_across(mesh, 2);
+    std::vector<char> seeds(mesh.tets.size(), 0);
+    const auto first_in = [&](std::uint32_t part) {
+        return static_cast<std::uint32_t>(std::find(cut.part_of.begin(), cut.part_of.end(), part) -
+                                          cut.part_of.begin());
+    };
+    seeds[first_in(0)] = seeds[first_in(1)] = 1;
+    // Far apart: the first in part 0 and a tet of part 1 farthest from it.
+    std::uint32_t far = first_in(1);
+    const auto centroid = [&](std::uint32_t t) {
+        Vec3 c{0, 0, 0};
+        for (const std::uint32_t v : mesh.tets[t]) c = c + 0.25 * mesh.vertices[v];
+        return c;
+    };
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+        if (distance(centroid(t), centroid(first_in(0))) > distance(centroid(far), centroid(first_in(0)))) far = t;
+    seeds[first_in(1)] = 0, seeds[far] = 1;
+    const std::vector<char> around = detail::tets_around(mesh, seeds, 2);
+    const std::vector<std::uint32_t> groups = detail::groups_of(mesh, around);
+    std::set<std::uint32_t> roots;
+    std::vector<std::uint32_t> group_at(mesh.vertices.size(), detail::no_part);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        ASSERT_EQ(groups[t] == detail::no_part, !around[t]) << "tet " << t;
+        if (!around[t]) continue;
+        EXPECT_LE(groups[t], t);
+        EXPECT_EQ(groups[groups[t]], groups[t]) << "a group's root is its own";
+        roots.insert(groups[t]);
+        for (const std::uint32_t v : mesh.tets[t]) {
+            if (group_at[v] == detail::no_part) group_at[v] = groups[t];
+            EXPECT_EQ(group_at[v], groups[t]) << "tets sharing node " << v << " are in one group";
+        }
+    }
+    EXPECT_EQ(roots.size(), 2u);
+}
+
 TEST(ImproveInParts, FrozenNodesNeitherMoveNorLoseTheirFaces)
 {
     const InterfaceComplex complex = two_spheres();

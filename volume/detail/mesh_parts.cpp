@@ -129,6 +129,31 @@ std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seed
     return in;
 }
 
+std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in)
+{
+    std::vector<std::uint32_t> root(mesh.tets.size(), no_part);
+    const auto find = [&](std::uint32_t t) {
+        while (root[t] != t) t = root[t] = root[root[t]];
+        return t;
+    };
+    std::vector<std::uint32_t> first(mesh.vertices.size(), no_part); // per node: the first flagged tet at it
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        if (t >= in.size() || !in[t]) continue;
+        root[t] = t;
+        for (const std::uint32_t v : mesh.tets[t]) {
+            if (first[v] == no_part) {
+                first[v] = t;
+                continue;
+            }
+            const std::uint32_t a = find(first[v]), b = find(t);
+            if (a != b) root[std::max(a, b)] = std::min(a, b); // the lower index stays the root
+        }
+    }
+    for (std::uint32_t t = 0; t < root.size(); ++t)
+        if (root[t] != no_part) root[t] = find(t);
+    return root;
+}
+
 TetMesh merge_parts(const TetMesh& whole, const std::vector<std::uint32_t>& part_of, const std::vector<MeshPart>& parts,
                     const std::vector<TetMesh>& edited)
 {
