@@ -149,11 +149,15 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
         if (seeds[t])
             for (const std::uint32_t v : mesh.tets[t]) start[v] = 1;
     const std::size_t bands = cut.between.size();
-    // Each group of touching tets goes whole to the band of the cut nearest its first tet: a tet midway between two
-    // cuts would otherwise see its neighbours split between two bands and its nodes frozen in both.
-    std::vector<std::uint32_t> band_of = detail::groups_of(mesh, around);
-    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+    // The tets at those nodes go in groups (joined through those nodes), each group whole to the band of the cut
+    // nearest its first tet, so that no band freezes a node of a tet it is to improve: a tet midway between two cuts
+    // otherwise saw its neighbours split between two bands and its nodes frozen in both. The outer ring goes to the
+    // cut nearest each tet. (Groups joined through any node spanned the whole head: one band of 1.0 M tets.)
+    std::vector<std::uint32_t> band_of = detail::groups_of(mesh, detail::tets_around(mesh, seeds, 1), start);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
         if (band_of[t] != detail::no_part) band_of[t] = band_of[t] == t ? cut.nearest(mesh, t) : band_of[band_of[t]];
+        else if (around[t]) band_of[t] = cut.nearest(mesh, t);
+    }
     done = 0;
     improve_parts(mesh, band_of, bands, reference, options, start, nullptr, report, [&] {
         progress.update("improve", 0.8 + 0.2 * static_cast<double>(++done) / static_cast<double>(bands));

@@ -16,7 +16,7 @@ namespace tissuemesh::volume {
 struct ImproveOptions {
     double target_dihedral_deg = 22; ///< tets whose smallest dihedral angle (or 180 minus the largest) is below
                                      ///< this are worked on, worst first
-    std::size_t max_passes = 3;      ///< rounds over the tets below the target
+    std::size_t max_passes = 5;      ///< rounds over the tets below the target (fewer when one changes nothing)
     bool smooth = true;              ///< move nodes (interior nodes anywhere; see move_interface_nodes)
     bool flip = true;                ///< edge removal (3-2, 4-4, ... flips) and multi-face removal (2-3 flips)
     bool insert = true;              ///< new nodes inside tissues (splits and Delaunay cavities)

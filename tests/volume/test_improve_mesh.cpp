@@ -241,8 +241,9 @@ TEST(ImproveInParts, PartsCutAndMergedUneditedGiveTheMeshBack)
     EXPECT_EQ(face_set(merged), face_set(mesh));
 }
 
-// The bands after the parts take each group of touching tets whole (improve_mesh.cpp): split between two bands, a tet
-// midway between two cuts had its nodes frozen in both (the 1 mm usc19-5 head's refined mesh kept a 4.77-degree tet).
+// The bands after the parts take each group of tets joined through the nodes of tets to improve whole
+// (improve_mesh.cpp): split between two bands, a tet midway between two cuts had its nodes frozen in both (the 1 mm
+// usc19-5 head's refined mesh kept a 4.77-degree tet).
 TEST(ImproveInParts, GroupsOfTouchingTetsAreWholeAndApart)
 {
     const TetMesh mesh = tetrahedralize(two_spheres(), {.max_volume_mm3 = 2, .improve = false});
@@ -280,6 +281,25 @@ TEST(ImproveInParts, GroupsOfTouchingTetsAreWholeAndApart)
         }
     }
     EXPECT_EQ(roots.size(), 2u);
+    // Joined only through the seeds' nodes (as the bands are): the seeds' stars, each whole with its seed.
+    std::vector<char> seed_nodes(mesh.vertices.size(), 0);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+        if (seeds[t])
+            for (const std::uint32_t v : mesh.tets[t]) seed_nodes[v] = 1;
+    const std::vector<char> stars = detail::tets_around(mesh, seeds, 1);
+    const std::vector<std::uint32_t> star_groups = detail::groups_of(mesh, stars, seed_nodes);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        if (!stars[t]) continue;
+        const std::uint32_t seed =
+            std::any_of(mesh.tets[t].begin(), mesh.tets[t].end(),
+                        [&](std::uint32_t v) {
+                            return std::find(mesh.tets[far].begin(), mesh.tets[far].end(), v) != mesh.tets[far].end();
+                        })
+                ? far
+                : first_in(0);
+        EXPECT_EQ(star_groups[t], star_groups[seed]) << "tet " << t;
+    }
+    EXPECT_NE(star_groups[far], star_groups[first_in(0)]);
 }
 
 TEST(ImproveInParts, FrozenNodesNeitherMoveNorLoseTheirFaces)

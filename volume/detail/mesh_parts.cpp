@@ -129,7 +129,7 @@ std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seed
     return in;
 }
 
-std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in)
+std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in, const std::vector<char>& through)
 {
     std::vector<std::uint32_t> root(mesh.tets.size(), no_part);
     const auto find = [&](std::uint32_t t) {
@@ -141,6 +141,7 @@ std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char
         if (t >= in.size() || !in[t]) continue;
         root[t] = t;
         for (const std::uint32_t v : mesh.tets[t]) {
+            if (!through.empty() && !through[v]) continue;
             if (first[v] == no_part) {
                 first[v] = t;
                 continue;

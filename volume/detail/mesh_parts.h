@@ -58,9 +58,10 @@ Cut cut_across(const TetMesh& mesh, std::size_t count);
 /// flagged per tet.
 std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seeds, std::size_t rings);
 
-/// Per tet flagged in `in`, the lowest index of the flagged tets connected to it through shared nodes (its group);
-/// no_part for the others.
-std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in);
+/// Per tet flagged in `in`, the lowest index of the flagged tets connected to it through shared nodes flagged in
+/// `through` (per node; every node when empty): its group. no_part for the others.
+std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in,
+                                     const std::vector<char>& through = {});
 
 /// The whole with each part replaced by its edited mesh (`edited[k]`, over the part's nodes in its order, new
 /// nodes after; the part's own `mesh` is not read and may have been moved into it): tets outside every part first (in
