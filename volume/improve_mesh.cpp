@@ -155,6 +155,7 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
     // cut nearest each tet. (Groups joined through any node spanned the whole head: one band of 1.0 M tets.)
     std::vector<std::uint32_t> band_of = detail::groups_of(mesh, detail::tets_around(mesh, seeds, 1), start);
     for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
+        // A group's root is its lowest tet, so it has its band already when its other tets come.
         if (band_of[t] != detail::no_part) band_of[t] = band_of[t] == t ? cut.nearest(mesh, t) : band_of[band_of[t]];
         else if (around[t]) band_of[t] = cut.nearest(mesh, t);
     }
