@@ -172,6 +172,45 @@ TEST(ImproveMesh, OwnFacesServeAsTheReference)
     EXPECT_LT(interface_distance(mesh, complex).max_node_mm, 1e-9);
 }
 
+TEST(SurfaceReference, HintsChangeNoAnswer)
+{
+    // The smoothing asks the reference again and again about points that move a little and passes the triangle
+    // found last as a hint: the answers must be those without one, whatever the hint (near, far, of another
+    // tissue pair, out of range).
+    const InterfaceComplex complex = two_spheres();
+    const detail::SurfaceReference reference(complex);
+    const auto count = static_cast<std::uint32_t>(complex.triangles.size());
+    std::uint32_t carried = ~0u, patch_hits = 0, within_hits = 0;
+    for (std::uint32_t i = 0; i < 400; ++i) {
+        // Points around the inner sphere (radius 6 about (0.4, -0.3, 0.2)), on it and up to 0.6 mm off it.
+        const double theta = 0.37 * i, z = std::fmod(0.013 * i * i, 2.0) - 1.0, r = std::sqrt(1 - z * z);
+        const double radius = 6 + 0.003 * static_cast<double>(i % 200) - 0.3;
+        const Vec3 p = Vec3{0.4, -0.3, 0.2} + radius * Vec3{r * std::cos(theta), r * std::sin(theta), z};
+        for (const double reach : {0.05, 0.4, 3.0}) {
+            const std::optional<Vec3> plain = reference.onto_patch(p, 1, 2, reach);
+            const double tolerance = 0.1 * reach;
+            const bool near = reference.within(p, 2, 1, tolerance);
+            for (const std::uint32_t start : {~0u, 0u, count - 1, (i * 7919u) % count, count + 5, carried}) {
+                std::uint32_t hint = start;
+                const std::optional<Vec3> hinted = reference.onto_patch(p, 2, 1, reach, &hint);
+                ASSERT_EQ(plain.has_value(), hinted.has_value()) << "point " << i << ", reach " << reach;
+                if (plain) {
+                    EXPECT_EQ(*plain, *hinted) << "point " << i << ", reach " << reach << ", hint " << start;
+                    EXPECT_LT(hint, count);
+                    carried = hint, ++patch_hits;
+                }
+                std::uint32_t within_hint = start;
+                EXPECT_EQ(near, reference.within(p, 1, 2, tolerance, &within_hint)) << "point " << i;
+                within_hits += near;
+            }
+        }
+    }
+    // Both answers occur (the comparisons above could fail).
+    EXPECT_GT(patch_hits, 0u);
+    EXPECT_GT(within_hits, 0u);
+    EXPECT_LT(within_hits, 400u * 3 * 6);
+}
+
 TEST(ImproveMesh, RejectsBadOptions)
 {
     InterfaceComplex complex;

@@ -1,6 +1,7 @@
 #include "volume/detail/improver.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -52,6 +53,7 @@ public:
     void run(const Progress& progress)
     {
         for (std::size_t pass = 0; pass < options_.max_passes; ++pass) {
+            const auto start = std::chrono::steady_clock::now();
             const bool insert = pass > 0 && options_.insert;
             const std::size_t changes = run_pass(insert);
             ++report_.passes;
@@ -59,7 +61,9 @@ public:
             std::size_t below = 0;
             for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) below += work_.alive(t) && work_.quality(t) < target_;
             progress.debug("improve",
-                           concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target"));
+                           concat("pass ", pass + 1, ": ", changes, " changes, ", below, " tets below the target, ",
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                                  " s"));
             if (changes == 0 && (insert || !options_.insert)) break;
         }
         mesh_ = work_.result();

@@ -15,6 +15,7 @@ constexpr double model_band = 0.25; ///< sines this close to the minimum enter t
 constexpr int max_halvings = 10;
 constexpr double max_step_fraction = 0.4; ///< of the shortest edge at the node, per step
 constexpr double min_gain = 1e-2;         ///< a move is kept when it raises the smallest sine by this much
+constexpr std::uint32_t no_hint = ~0u;
 
 /// The six sines of each of v's tets with v at some point (6 per tet, in tet order), and their minimum.
 struct Evaluation {
@@ -60,6 +61,7 @@ public:
                 if (std::none_of(spokes_.begin(), spokes_.end(), same)) spokes_.push_back({w, face.sides});
             }
         }
+        face_hints_.assign(faces_.size(), no_hint), spoke_hints_.assign(spokes_.size(), no_hint);
     }
 
     bool set_freedom()
@@ -97,6 +99,7 @@ public:
         std::vector<Vec3> gradients(now.values.size());
         std::vector<std::size_t> modelled; // sines in the linear model (their tets' gradients computed)
         std::vector<Vec3> active;
+        Evaluation trial;
         for (int step = 0; step < max_steps; ++step) {
             // Gradients only for the tets near the minimum: the others cannot become the minimum within a step
             // the model trusts, and halving catches those that do.
@@ -128,8 +131,8 @@ public:
             for (int h = 0; h < max_halvings && !moved; ++h, alpha *= 0.5) {
                 const std::optional<Vec3> q = place(p + alpha * d, alpha * std::sqrt(rate));
                 // Cheap tests first: the sines in doubles, the exact orientations only for a point that gains.
-                if (!q || !rises_above(*q, now.minimum + 1e-12) || !valid(*q)) continue;
-                p = *q, now = evaluate(p), moved = true;
+                if (!q || !rises_above(*q, now.minimum + 1e-12, trial) || !valid(*q)) continue;
+                p = *q, std::swap(now, trial), moved = true;
             }
             if (!moved) break;
         }
@@ -149,7 +152,8 @@ private:
     std::optional<Vec3> place(const Vec3& p, double step) const
     {
         const double reach = 2 * step + 1e-9 * shortest_edge_;
-        if (freedom_.kind == NodeKind::surface) return reference_.onto_patch(p, pair_.from, pair_.to, reach);
+        if (freedom_.kind == NodeKind::surface)
+            return reference_.onto_patch(p, pair_.from, pair_.to, reach, &patch_hint_);
         if (freedom_.kind == NodeKind::curve) return reference_.onto_curve(p, tissues_, reach);
         return p;
     }
@@ -170,21 +174,32 @@ private:
             if (dot(face_normal(f, v_, q), face_normal(f, v_, mesh_.point(v_))) <= 0) return false;
             const std::uint32_t w1 = f[0] == v_ ? f[1] : f[0], w2 = f[2] == v_ ? f[1] : f[2];
             if (!reference_.within((1.0 / 3) * (q + mesh_.point(w1) + mesh_.point(w2)), face_sides_[i].from,
-                                   face_sides_[i].to, face_tolerance_mm_))
+                                   face_sides_[i].to, face_tolerance_mm_, &face_hints_[i]))
                 return false;
         }
-        for (const auto& [w, sides] : spokes_)
-            if (!reference_.within(0.5 * (q + mesh_.point(w)), sides.from, sides.to, face_tolerance_mm_)) return false;
+        for (std::size_t i = 0; i < spokes_.size(); ++i) {
+            const auto& [w, sides] = spokes_[i];
+            if (!reference_.within(0.5 * (q + mesh_.point(w)), sides.from, sides.to, face_tolerance_mm_,
+                                   &spoke_hints_[i]))
+                return false;
+        }
         return true;
     }
 
-    /// Whether every sine of v's tets with v at q exceeds `bar` (stops at the first that does not).
-    bool rises_above(const Vec3& q, double bar) const
+    /// Whether every sine of v's tets with v at q exceeds `bar` (stops at the first that does not); the sines
+    /// and their minimum in `e` when they do.
+    bool rises_above(const Vec3& q, double bar, Evaluation& e) const
     {
+        e.values.clear();
+        e.minimum = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < tets_.size(); ++i) {
             TetCorners c = mesh_.corners(tets_[i]);
             c[static_cast<std::size_t>(corner_[i])] = q;
-            if (!(min_sine(c) > bar)) return false;
+            const std::array<double, 6> sines = dihedral_sines(c);
+            const double least = *std::min_element(sines.begin(), sines.end());
+            if (!(least > bar)) return false;
+            e.values.insert(e.values.end(), sines.begin(), sines.end());
+            e.minimum = std::min(e.minimum, least);
         }
         return true;
     }
@@ -213,6 +228,9 @@ private:
     std::vector<LabelPair> face_sides_;
     /// The edges at v on its faces: the other end and a tissue pair of a face holding it, once per pair.
     std::vector<std::pair<std::uint32_t, LabelPair>> spokes_;
+    /// Per face and spoke: the reference triangle its last check found near (SurfaceReference::within).
+    mutable std::vector<std::uint32_t> face_hints_, spoke_hints_;
+    mutable std::uint32_t patch_hint_ = no_hint; ///< the reference triangle v was last projected onto
     double shortest_edge_ = 0;
     Freedom freedom_;
     LabelPair pair_;

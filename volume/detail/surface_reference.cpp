@@ -87,7 +87,7 @@ SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Trian
 
 template <class Closest>
 std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach,
-                                              Closest closest) const
+                                              Closest closest, std::uint32_t* found) const
 {
     // The search box grows from a quarter of a typical edge until it holds the nearest point found (nothing
     // outside it can be nearer) or reaches `reach`.
@@ -101,21 +101,45 @@ std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& i
             const double d = distance(p, *q);
             if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
         });
-        if (best_distance <= r) return best;
+        if (best_distance <= r) {
+            if (found != nullptr) *found = best_item;
+            return best;
+        }
         if (r >= reach) return std::nullopt;
     }
 }
 
-std::optional<Vec3> SurfaceReference::onto_patch(const Vec3& p, Label a, Label b, double reach) const
+std::optional<Vec3> SurfaceReference::onto_patch(const Vec3& p, Label a, Label b, double reach,
+                                                 std::uint32_t* hint) const
 {
     const std::uint32_t key = pair_key(a, b);
-    return nearest(triangle_index_, p, reach, [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
+    const auto closest = [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
         if (pairs_[t] != key) return std::nullopt;
         const Triangle& tri = triangles_[t];
         const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};
         if (box_distance(p, surface::detail::bounding_box(c)) > so_far) return std::nullopt;
         return surface::detail::closest_point_on_triangle(p, c);
-    });
+    };
+    if (hint != nullptr && *hint < triangles_.size() && pairs_[*hint] == key) {
+        std::uint32_t best_item = *hint;
+        Vec3 best = *closest(best_item, std::numeric_limits<double>::max());
+        double best_distance = distance(p, best);
+        if (best_distance <= reach) {
+            // Every triangle as near as the hint's lies in the cube of that half-side: one search of it finds the
+            // nearest, as nearest() would (the same point, the first of equally near triangles).
+            const double r = best_distance;
+            triangle_index_.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t t) {
+                const std::optional<Vec3> q = closest(t, best_distance);
+                if (!q) return;
+                const double d = distance(p, *q);
+                if (d < best_distance || (d == best_distance && t < best_item))
+                    best_distance = d, best = *q, best_item = t;
+            });
+            *hint = best_item;
+            return best;
+        }
+    }
+    return nearest(triangle_index_, p, reach, closest, hint);
 }
 
 std::optional<Vec3> SurfaceReference::onto_curve(const Vec3& p, const std::vector<Label>& tissues, double reach) const
@@ -142,20 +166,25 @@ double SurfaceReference::distance_to(const Vec3& p, Label a, Label b, bool any_p
     return q ? distance(p, *q) : std::numeric_limits<double>::infinity();
 }
 
-bool SurfaceReference::within(const Vec3& p, Label a, Label b, double tolerance) const
+bool SurfaceReference::triangle_within(std::uint32_t t, const Vec3& p, double tolerance) const
+{
+    const Triangle& tri = triangles_[t];
+    const Vec3 d =
+        p - surface::detail::closest_point_on_triangle(p, {vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]});
+    return dot(d, d) <= tolerance * tolerance;
+}
+
+bool SurfaceReference::within(const Vec3& p, Label a, Label b, double tolerance, std::uint32_t* hint) const
 {
     const std::uint32_t key = pair_key(a, b);
-    const double squared = tolerance * tolerance;
+    if (hint != nullptr && *hint < triangles_.size() && pairs_[*hint] == key && triangle_within(*hint, p, tolerance))
+        return true;
     bool found = false;
     // Any triangle of the pair that near will do: the visit stops at the first.
     triangle_index_.visit(Box3{p - Vec3{tolerance, tolerance, tolerance}, p + Vec3{tolerance, tolerance, tolerance}},
                           [&](std::uint32_t t) {
-                              if (pairs_[t] != key) return false;
-                              const Triangle& tri = triangles_[t];
-                              const Vec3 q = surface::detail::closest_point_on_triangle(
-                                  p, {vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]});
-                              const Vec3 d = p - q;
-                              found = dot(d, d) <= squared;
+                              found = pairs_[t] == key && triangle_within(t, p, tolerance);
+                              if (found && hint != nullptr) *hint = t;
                               return found;
                           });
     return found;

@@ -21,8 +21,9 @@ public:
     explicit SurfaceReference(const InterfaceComplex& complex);
 
     /// The nearest point to p of the triangles separating tissues a and b (either order), when one lies
-    /// within `reach` mm; of equally near triangles the first.
-    std::optional<Vec3> onto_patch(const Vec3& p, Label a, Label b, double reach) const;
+    /// within `reach` mm; of equally near triangles the first. With `hint`, the search starts from triangle
+    /// *hint (nothing outside the cube its distance spans can be nearer) and the triangle found is stored there.
+    std::optional<Vec3> onto_patch(const Vec3& p, Label a, Label b, double reach, std::uint32_t* hint = nullptr) const;
     /// The nearest point to p of the junction segments whose tissues are exactly `tissues` (ascending),
     /// within `reach` mm.
     std::optional<Vec3> onto_curve(const Vec3& p, const std::vector<Label>& tissues, double reach) const;
@@ -30,8 +31,10 @@ public:
     /// within `reach` mm; infinity when none is that near.
     double distance_to(const Vec3& p, Label a, Label b, bool any_pair, double reach) const;
 
-    /// Whether a triangle separating tissues a and b (either order) lies within `tolerance` mm of p.
-    bool within(const Vec3& p, Label a, Label b, double tolerance) const;
+    /// Whether a triangle separating tissues a and b (either order) lies within `tolerance` mm of p. With
+    /// `hint`, the triangle *hint is tried first and the one found is stored there: a caller asking again and
+    /// again about points that move a little (a node's faces while it is smoothed) mostly needs no search.
+    bool within(const Vec3& p, Label a, Label b, double tolerance, std::uint32_t* hint = nullptr) const;
 
     /// Whether the triangle (a, b, c) of the tissue pair lies on the patch: its centroid and edge midpoints
     /// within `tolerance_mm` of the triangles separating those tissues. A node sliding on a curved or creased
@@ -43,9 +46,11 @@ public:
     double mean_edge_mm() const { return mean_edge_mm_; }
 
 private:
+    /// Whether triangle t lies within `tolerance` mm of p.
+    bool triangle_within(std::uint32_t t, const Vec3& p, double tolerance) const;
     template <class Closest>
-    std::optional<Vec3> nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach,
-                                Closest closest) const;
+    std::optional<Vec3> nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach, Closest closest,
+                                std::uint32_t* found = nullptr) const;
 
     std::vector<Vec3> vertices_;
     std::vector<Triangle> triangles_;

@@ -55,7 +55,6 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
             scales_[a] = std::min(scales_[a], length), scales_[b] = std::min(scales_[b], length);
         }
     }
-    face_index_.reserve(2 * mesh.faces.size() + 64);
     faces_.reserve(mesh.faces.size() + 64);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
         if (!face_with(mesh.faces[f][0], mesh.faces[f][1], mesh.faces[f][2]))
@@ -174,9 +173,14 @@ TetCorners WorkMesh::corners(const Tet& tet) const
 
 std::optional<std::uint32_t> WorkMesh::face_with(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
 {
-    const auto found = face_index_.find(face_key(a, b, c));
-    if (found == face_index_.end()) return std::nullopt;
-    return found->second;
+    // The faces at a node are few (none at an inner node): a scan beats a hash lookup, a cache miss in a big map.
+    const auto& list = faces_of_[a].size() <= faces_of_[b].size() ? faces_of_[a] : faces_of_[b];
+    const std::uint32_t other = faces_of_[a].size() <= faces_of_[b].size() ? b : a;
+    for (const std::uint32_t f : list) {
+        const Triangle& corners = faces_[f].corners;
+        if (holds(corners, other) && holds(corners, c)) return f;
+    }
+    return std::nullopt;
 }
 
 bool WorkMesh::constrained_edge(std::uint32_t a, std::uint32_t b) const
@@ -403,14 +407,12 @@ void WorkMesh::link_face(std::uint32_t f)
 {
     const Triangle& c = faces_[f].corners;
     for (const std::uint32_t v : c) faces_of_[v].push_back(f);
-    face_index_[face_key(c[0], c[1], c[2])] = f;
 }
 
 void WorkMesh::unlink_face(std::uint32_t f)
 {
     const Triangle& c = faces_[f].corners;
     for (const std::uint32_t v : c) erase_value(faces_of_[v], f);
-    face_index_.erase(face_key(c[0], c[1], c[2]));
 }
 
 void WorkMesh::refresh_quality(std::uint32_t t)

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <map>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "core/tet_mesh.h"
@@ -170,7 +169,6 @@ private:
     std::size_t alive_count_ = 0;
     std::vector<std::uint32_t> free_slots_, freed_now_;
     std::vector<ConstraintFace> faces_;
-    std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> face_index_;
     TissueNames names_;
     std::vector<Entry> journal_;
     std::vector<std::uint32_t> touched_;
