@@ -25,7 +25,7 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
     if (!(options.target_dihedral_deg > 0 && options.target_dihedral_deg <= 70))
         throw InputError(concat("target dihedral angle ", options.target_dihedral_deg,
                                 " deg is outside (0, 70]; a regular "
-                                "tetrahedron has 70.5 deg; the default is 22"));
+                                "tetrahedron has 70.5 deg; the default is 21"));
     if (!(options.max_face_deviation >= 0 && options.max_face_deviation <= 1))
         throw InputError(concat("face deviation ", options.max_face_deviation,
                                 " is outside [0, 1]; it is a fraction of the "
