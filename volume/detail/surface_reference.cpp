@@ -86,15 +86,19 @@ SurfaceReference::SurfaceReference(std::vector<Vec3> vertices, std::vector<Trian
 }
 
 template <class Closest>
-std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& index, const Vec3& p, double reach,
-                                              Closest closest, std::uint32_t* found) const
+std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& index, std::size_t items, const Vec3& p,
+                                              double reach, Closest closest, std::uint32_t* hint) const
 {
+    std::optional<Vec3> best;
+    double best_distance = std::numeric_limits<double>::max();
+    std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
     // The search box grows from a quarter of a typical edge until it holds the nearest point found (nothing
-    // outside it can be nearer) or reaches `reach`.
-    for (double r = std::min(reach, 0.25 * mean_edge_mm_);; r = std::min(reach, 2 * r)) {
-        std::optional<Vec3> best;
-        double best_distance = std::numeric_limits<double>::max();
-        std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
+    // outside it can be nearer) or reaches `reach`; from the hint's distance at once when the hint is that near.
+    double r = std::min(reach, 0.25 * mean_edge_mm_);
+    if (hint != nullptr && *hint < items)
+        if (const std::optional<Vec3> q = closest(*hint, best_distance); q && distance(p, *q) <= reach)
+            best = q, best_distance = distance(p, *q), best_item = *hint, r = best_distance;
+    for (;; r = std::min(reach, 2 * r)) {
         index.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t i) {
             const std::optional<Vec3> q = closest(i, best_distance);
             if (!q) return;
@@ -102,7 +106,7 @@ std::optional<Vec3> SurfaceReference::nearest(const surface::detail::BoxIndex& i
             if (d < best_distance || (d == best_distance && i < best_item)) best_distance = d, best = *q, best_item = i;
         });
         if (best_distance <= r) {
-            if (found != nullptr) *found = best_item;
+            if (hint != nullptr) *hint = best_item;
             return best;
         }
         if (r >= reach) return std::nullopt;
@@ -113,40 +117,23 @@ std::optional<Vec3> SurfaceReference::onto_patch(const Vec3& p, Label a, Label b
                                                  std::uint32_t* hint) const
 {
     const std::uint32_t key = pair_key(a, b);
-    const auto closest = [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
-        if (pairs_[t] != key) return std::nullopt;
-        const Triangle& tri = triangles_[t];
-        const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};
-        if (box_distance(p, surface::detail::bounding_box(c)) > so_far) return std::nullopt;
-        return surface::detail::closest_point_on_triangle(p, c);
-    };
-    if (hint != nullptr && *hint < triangles_.size() && pairs_[*hint] == key) {
-        std::uint32_t best_item = *hint;
-        Vec3 best = *closest(best_item, std::numeric_limits<double>::max());
-        double best_distance = distance(p, best);
-        if (best_distance <= reach) {
-            // Every triangle as near as the hint's lies in the cube of that half-side: one search of it finds the
-            // nearest, as nearest() would (the same point, the first of equally near triangles).
-            const double r = best_distance;
-            triangle_index_.visit(Box3{p - Vec3{r, r, r}, p + Vec3{r, r, r}}, [&](std::uint32_t t) {
-                const std::optional<Vec3> q = closest(t, best_distance);
-                if (!q) return;
-                const double d = distance(p, *q);
-                if (d < best_distance || (d == best_distance && t < best_item))
-                    best_distance = d, best = *q, best_item = t;
-            });
-            *hint = best_item;
-            return best;
-        }
-    }
-    return nearest(triangle_index_, p, reach, closest, hint);
+    return nearest(
+        triangle_index_, triangles_.size(), p, reach,
+        [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
+            if (pairs_[t] != key) return std::nullopt;
+            const Triangle& tri = triangles_[t];
+            const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};
+            if (box_distance(p, surface::detail::bounding_box(c)) > so_far) return std::nullopt;
+            return surface::detail::closest_point_on_triangle(p, c);
+        },
+        hint);
 }
 
 std::optional<Vec3> SurfaceReference::onto_curve(const Vec3& p, const std::vector<Label>& tissues, double reach) const
 {
     const auto set = tissue_sets_.find(tissues);
     if (set == tissue_sets_.end()) return std::nullopt;
-    return nearest(segment_index_, p, reach, [&](std::uint32_t s, double) -> std::optional<Vec3> {
+    return nearest(segment_index_, segments_.size(), p, reach, [&](std::uint32_t s, double) -> std::optional<Vec3> {
         if (segment_tissues_[s] != set->second) return std::nullopt;
         return surface::detail::closest_point_on_segment(p, vertices_[segments_[s][0]], vertices_[segments_[s][1]]);
     });
@@ -155,8 +142,8 @@ std::optional<Vec3> SurfaceReference::onto_curve(const Vec3& p, const std::vecto
 double SurfaceReference::distance_to(const Vec3& p, Label a, Label b, bool any_pair, double reach) const
 {
     const std::uint32_t key = pair_key(a, b);
-    const std::optional<Vec3> q =
-        nearest(triangle_index_, p, reach, [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
+    const std::optional<Vec3> q = nearest(
+        triangle_index_, triangles_.size(), p, reach, [&](std::uint32_t t, double so_far) -> std::optional<Vec3> {
             if (!any_pair && pairs_[t] != key) return std::nullopt;
             const Triangle& tri = triangles_[t];
             const surface::detail::TriangleCorners c{vertices_[tri[0]], vertices_[tri[1]], vertices_[tri[2]]};

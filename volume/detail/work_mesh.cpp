@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "volume/detail/face_map.h"
 
 namespace tissuemesh::volume::detail {
 namespace {

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/tet_mesh.h"
-#include "volume/detail/face_map.h"
 #include "volume/detail/tet_quality.h"
 
 namespace tissuemesh::volume::detail {
