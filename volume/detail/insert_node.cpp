@@ -14,6 +14,10 @@ namespace {
 
 constexpr std::size_t max_cavity = 48; ///< tets in a Delaunay cavity at most
 constexpr int max_walk = 64;           ///< steps of the walk to the tet holding the point
+/// A candidate that raises the local smallest sine by this much is taken without trying the rest. On the 1 mm
+/// usc19-5 head, a third fewer candidates were tried, and the best of all would have been better by 0.0065 in
+/// sine on average.
+constexpr double enough_gain = 0.1;
 /// A new node keeps at least this fraction of the local size (WorkMesh::scale(): the shortest edge of the mesh
 /// on entry at the bad tet's nodes, inherited by the new node) from every node it is joined to. Without it,
 /// insertions repeated at one place left clusters of nodes microns apart (torso at 3 mm: edges of 6 um,
@@ -330,6 +334,8 @@ bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& ref
         if (applied) {
             const WorkMesh::Balance balance = mesh.balance_since(mark);
             if (balance.after - balance.before > best_gain) best_gain = balance.after - balance.before, best = k;
+            // Enough gain is kept as it is: the best of all candidates would add little to it.
+            if (best == k && best_gain >= enough_gain) return true;
         }
         mesh.rollback(mark);
     }

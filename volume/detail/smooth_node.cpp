@@ -129,6 +129,11 @@ public:
             }
             bool moved = false;
             for (int h = 0; h < max_halvings && !moved; ++h, alpha *= 0.5) {
+                // A move is kept only when it gains min_gain in all. Once even this step's model gain, repeated in
+                // every step left, could not bring the move there, smaller steps are not tried: most moves that
+                // fail end in a step whose every halving fails, and that step cost 36-54% of the trial points (1 mm
+                // usc19-5 head, nodes on patches and on junction curves).
+                if (h > 0 && now.minimum - start + alpha * rate * (max_steps - step) < min_gain) break;
                 const std::optional<Vec3> q = place(p + alpha * d, alpha * std::sqrt(rate));
                 // Cheap tests first: the sines in doubles, the exact orientations only for a point that gains.
                 if (!q || !rises_above(*q, now.minimum + 1e-12, trial) || !valid(*q)) continue;
