@@ -167,13 +167,14 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
     report.bands = bands;
 }
 
-/// Builds the reference with `make_reference` and improves `mesh` against it, timing both.
+/// Builds the reference with `make_reference` (or takes it, when it returns one made before) and improves `mesh`
+/// against it, timing both.
 template <class MakeReference>
 ImproveReport run(TetMesh& mesh, MakeReference make_reference, const ImproveOptions& options, const Progress& progress)
 {
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
-    const detail::SurfaceReference reference = make_reference();
+    const detail::SurfaceReference& reference = make_reference();
     ImproveReport report;
     report.before = shape_figures(mesh);
     if (const std::size_t count = part_count(mesh, options); count > 1)
@@ -222,5 +223,17 @@ ImproveReport improve_mesh(TetMesh& mesh, const ImproveOptions& options, const P
     return run(
         mesh, [&] { return detail::SurfaceReference(mesh.vertices, mesh.faces, mesh.face_sides); }, options, progress);
 }
+
+namespace detail {
+
+ImproveReport improve_mesh_against(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
+                                   const Progress& progress)
+{
+    validate(mesh, options);
+    return run(
+        mesh, [&]() -> const SurfaceReference& { return reference; }, options, progress);
+}
+
+} // namespace detail
 
 } // namespace tissuemesh::volume

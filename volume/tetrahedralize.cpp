@@ -5,12 +5,15 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <optional>
 
 #include "core/error.h"
 #include "core/tet_adjacency.h"
 #include "core/tet_shape.h"
 #include "surface/check_complex.h"
 #include "volume/check_mesh.h"
+#include "volume/detail/improver.h"
+#include "volume/detail/surface_reference.h"
 #include "volume/detail/tetgen_adapter.h"
 
 namespace tissuemesh::volume {
@@ -257,7 +260,11 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
 
     progress.info("tetra", concat("TetGen -", input.switches, " on ", complex.vertices.size(), " vertices, ",
                                   complex.triangles.size(), " triangles"));
-    const detail::TetgenOutput out = detail::run_tetgen(input);
+    // The improver's reference surface is built here while TetGen runs in its child process.
+    std::optional<detail::SurfaceReference> reference;
+    const detail::TetgenOutput out = detail::run_tetgen(input, [&] {
+        if (options.improve) reference.emplace(complex);
+    });
     progress.update("tetra", 0.8);
     const std::vector<Label> labels = label_tets(complex, out);
     TetMesh mesh = assemble(complex, out, labels, options.mesh_background_cavities);
@@ -267,7 +274,7 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
         ImproveOptions improve_options = options.improvement;
         improve_options.max_tet_volume_mm3 = options.max_volume_mm3;
         improve_options.max_tet_volume_per_tissue_mm3 = options.max_volume_per_tissue_mm3;
-        improvement = improve_mesh(mesh, complex, improve_options, progress);
+        improvement = detail::improve_mesh_against(mesh, *reference, improve_options, progress);
     }
     require_fit_for_fem(mesh);
     progress.update("tetra", 1.0);

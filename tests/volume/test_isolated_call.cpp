@@ -1,8 +1,13 @@
 // run_isolated(): third-party code that aborts or crashes in a child process becomes an AlgorithmError.
 #include <cassert>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -30,6 +35,40 @@ TEST(IsolatedCall, ReturnsTheChildsBytesAndWhatItPrinted)
     });
     EXPECT_EQ(result.bytes, std::string("a\0b", 3));
     EXPECT_EQ(result.printed, "working\n");
+}
+
+TEST(IsolatedCall, TheParentWorksMeanwhileAndItsErrorComesAfterTheChildEnded)
+{
+    // The child waits for a file the parent's `meanwhile` writes: both run at once, or the test hangs.
+    char path[] = "/tmp/tm-isolated-XXXXXX";
+    const int fd = ::mkstemp(path);
+    ASSERT_GE(fd, 0);
+    ::close(fd);
+    std::remove(path);
+    const std::string flag = path;
+    bool parent_worked = false;
+    const IsolatedResult result = run_isolated(
+        "the test library",
+        [&flag] {
+            for (int i = 0; i < 2000 && !std::filesystem::exists(flag); ++i) ::usleep(5000);
+            return std::string(std::filesystem::exists(flag) ? "saw it" : "timed out");
+        },
+        [&] {
+            std::ofstream(flag) << "x";
+            parent_worked = true;
+        });
+    std::remove(path);
+    EXPECT_TRUE(parent_worked);
+    EXPECT_EQ(result.bytes, "saw it");
+
+    // An error of `meanwhile` is thrown once the child has been waited for: no child is left behind.
+    EXPECT_THROW(run_isolated(
+                     "the test library", [] { return std::string("done"); },
+                     [] { throw InputError("the parent's part failed"); }),
+                 InputError);
+    errno = 0;
+    EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+    EXPECT_EQ(errno, ECHILD);
 }
 
 TEST(IsolatedCall, LargeResultsComeBackWhole)

@@ -20,4 +20,9 @@ void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const Im
                       ImproveReport& report, std::vector<char> frozen = {}, std::vector<char> seeds = {},
                       const Progress& progress = {});
 
+/// improve_mesh() against a reference built before (tetrahedralize() builds it while TetGen runs); the report's
+/// times leave its building out.
+ImproveReport improve_mesh_against(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
+                                   const Progress& progress = {});
+
 } // namespace tissuemesh::volume::detail

@@ -3,6 +3,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -107,7 +108,8 @@ std::string last_lines(const std::string& text, int count)
 
 } // namespace
 
-IsolatedResult run_isolated(const std::string& what, const std::function<std::string()>& work)
+IsolatedResult run_isolated(const std::string& what, const std::function<std::string()>& work,
+                            const std::function<void()>& meanwhile)
 {
     TempFile result;
     TempFile printed;
@@ -118,7 +120,16 @@ IsolatedResult run_isolated(const std::string& what, const std::function<std::st
                              "); the machine may be out of memory or processes"));
     if (child == 0) run_child(work, result.fd(), printed.fd());
 
+    std::exception_ptr failure; // thrown once the child has ended, so that no child is left behind
+    if (meanwhile) {
+        try {
+            meanwhile();
+        } catch (...) {
+            failure = std::current_exception();
+        }
+    }
     const int status = wait_for(child);
+    if (failure) std::rethrow_exception(failure);
     IsolatedResult out{result.contents(), printed.contents()};
     if (WIFSIGNALED(status)) {
         const int signal = WTERMSIG(status);

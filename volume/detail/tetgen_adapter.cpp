@@ -142,24 +142,28 @@ int exact_side(const std::array<double, 3>& a, const std::array<double, 3>& b, c
     return orientation < 0 ? 1 : orientation > 0 ? -1 : 0;
 }
 
-TetgenOutput run_tetgen(const TetgenInput& input)
+TetgenOutput run_tetgen(const TetgenInput& input, const std::function<void()>& meanwhile)
 {
     // TetGen runs in a child process: an assert inside it (Debian's build keeps them) then ends the child,
     // not the program, and its printf output is captured there instead of reaching our stdout.
-    IsolatedResult result = run_isolated("TetGen", [&input] {
-        tetgenio in;
-        tetgenio out;
-        fill_input(input, in);
-        std::string switches = input.switches;
-        try {
-            tetrahedralize(switches.data(), &in, &out);
-        } catch (int code) {
-            throw AlgorithmError(explain_code(code));
-        } catch (const std::bad_alloc&) {
-            throw AlgorithmError("TetGen ran out of memory; ask for larger tets (--max-volume) or coarser surfaces");
-        }
-        return OutputBytes::pack(out);
-    });
+    IsolatedResult result = run_isolated(
+        "TetGen",
+        [&input] {
+            tetgenio in;
+            tetgenio out;
+            fill_input(input, in);
+            std::string switches = input.switches;
+            try {
+                tetrahedralize(switches.data(), &in, &out);
+            } catch (int code) {
+                throw AlgorithmError(explain_code(code));
+            } catch (const std::bad_alloc&) {
+                throw AlgorithmError(
+                    "TetGen ran out of memory; ask for larger tets (--max-volume) or coarser surfaces");
+            }
+            return OutputBytes::pack(out);
+        },
+        meanwhile);
     return OutputBytes::unpack(std::move(result.bytes));
 }
 

@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,9 +36,10 @@ struct TetgenOutput {
 int exact_side(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
                const std::array<double, 3>& d);
 
-/// Runs TetGen in a child process (see isolated_call.h). TetGen's own printing is captured, not shown.
+/// Runs TetGen in a child process (see isolated_call.h), and `meanwhile` (when given) in this one while it
+/// runs. TetGen's own printing is captured, not shown.
 /// @throws AlgorithmError with TetGen's diagnosis (its error code explained, its last message lines),
 ///         also when TetGen crashed or aborted on an assertion
-TetgenOutput run_tetgen(const TetgenInput& input);
+TetgenOutput run_tetgen(const TetgenInput& input, const std::function<void()>& meanwhile = {});
 
 } // namespace tissuemesh::volume::detail
