@@ -39,7 +39,7 @@ TEST(IsolatedCall, ReturnsTheChildsBytesAndWhatItPrinted)
 
 TEST(IsolatedCall, TheParentWorksMeanwhileAndItsErrorComesAfterTheChildEnded)
 {
-    // The child waits for a file the parent's `meanwhile` writes: both run at once, or the test hangs.
+    // The child waits (up to 10 s) for a file the parent's `meanwhile` writes: it sees it only if both run at once.
     char path[] = "/tmp/tm-isolated-XXXXXX";
     const int fd = ::mkstemp(path);
     ASSERT_GE(fd, 0);
