@@ -162,8 +162,8 @@ def main():
     cases = a.cases.split()
     steps, measures = load(a.records)
     print("# Benchmarks: tissuemesh against CGAL Mesh_3\n")
-    print(f"Measured by `bench/run` on {datetime.date.today().isoformat()}, 2 cores shared with other engineers' builds and "
-          f"runs (load average at the end: {a.load}); {a.repeats} repeat(s) of every timed run (medians), "
+    print(f"Measured by `bench/run` on {datetime.date.today().isoformat()}, 2 cores (whatever else ran "
+          f"shows in the load average at the end: {a.load}); {a.repeats} repeat(s) of every timed run (medians), "
           f"{a.elapsed} s in all, {a.jobs} case(s) at a time. Times are wall and CPU (user + system) seconds from `/usr/bin/time`; on a loaded "
           "machine CPU seconds are the steadier figure.\n")
     print("## Side by side\n")
