@@ -113,29 +113,43 @@ std::size_t part_count(const TetMesh& mesh, const ImproveOptions& options)
     return std::clamp<std::size_t>(mesh.tets.size() / 200000, 1, 8);
 }
 
+/// Rings of tets around the tets a band or the last round improves: room for their edits (edge rings, stars).
+constexpr std::size_t band_rings = 2;
+
+/// The smallest dihedral sine of tet t.
+double min_sine_of(const TetMesh& mesh, std::size_t t)
+{
+    const Tet& tet = mesh.tets[t];
+    return detail::min_sine(
+        {mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]], mesh.vertices[tet[3]]});
+}
+
+/// Per node: whether a flagged tet holds it.
+std::vector<char> nodes_of(const TetMesh& mesh, const std::vector<char>& tets)
+{
+    std::vector<char> nodes(mesh.vertices.size(), 0);
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
+        if (tets[t])
+            for (const std::uint32_t v : mesh.tets[t]) nodes[v] = 1;
+    return nodes;
+}
+
 /// One more round around the tets still under `below` (a sine) after the parts and the bands: every tet within
-/// `last_rings` rings of them, as one part. The bands can leave such a tet: on the 3 mm torso a 9.49-degree tet stayed,
+/// `band_rings` rings of them, as one part. The bands can leave such a tet: on the 3 mm torso a 9.49-degree tet stayed,
 /// which this round lifts to 12.66 degrees (with 2 to 6 rings alike), as does a second improver run. Nothing happens,
 /// and nothing costs, when no tet is that low.
 void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
                        double below, ImproveReport& report)
 {
-    constexpr std::size_t last_rings = 2; // as the bands
     std::vector<char> seeds(mesh.tets.size(), 0);
     bool any = false;
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const Tet& tet = mesh.tets[t];
-        const detail::TetCorners c{mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]],
-                                   mesh.vertices[tet[3]]};
-        seeds[t] = detail::min_sine(c) < below;
+        seeds[t] = min_sine_of(mesh, t) < below;
         any = any || seeds[t];
     }
     if (!any) return;
-    std::vector<char> start(mesh.vertices.size(), 0);
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (seeds[t])
-            for (const std::uint32_t v : mesh.tets[t]) start[v] = 1;
-    const std::vector<char> around = detail::tets_around(mesh, seeds, last_rings);
+    const std::vector<char> start = nodes_of(mesh, seeds);
+    const std::vector<char> around = detail::tets_around(mesh, seeds, band_rings);
     std::vector<std::uint32_t> part_of(mesh.tets.size(), detail::no_part);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         if (around[t]) part_of[t] = 0;
@@ -164,19 +178,11 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
         at_seam[t] = std::any_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v < seam.size() && seam[v]; });
     }
     std::vector<char> seeds = detail::tets_around(mesh, at_seam, 2);
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const Tet& tet = mesh.tets[t];
-        const detail::TetCorners c{mesh.vertices[tet[0]], mesh.vertices[tet[1]], mesh.vertices[tet[2]],
-                                   mesh.vertices[tet[3]]};
-        const double sine = detail::min_sine(c);
-        seeds[t] = sine < (seeds[t] ? target : far_target);
-    }
-    const std::vector<char> around = detail::tets_around(mesh, seeds, 2);
-    // The bands' improvers start from the nodes of those tets (the seam's own nodes alone would leave them).
-    std::vector<char> start(mesh.vertices.size(), 0);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        if (seeds[t])
-            for (const std::uint32_t v : mesh.tets[t]) start[v] = 1;
+        seeds[t] = min_sine_of(mesh, t) < (seeds[t] ? target : far_target);
+    const std::vector<char> around = detail::tets_around(mesh, seeds, band_rings);
+    // The bands' improvers start from the nodes of those tets (the seam's own nodes alone would leave them).
+    const std::vector<char> start = nodes_of(mesh, seeds);
     const std::size_t bands = cut.between.size();
     // The tets at those nodes go in groups (joined through those nodes), each group whole to the band of the cut
     // nearest its first tet, so that no band freezes a node of a tet it is to improve: a tet midway between two cuts

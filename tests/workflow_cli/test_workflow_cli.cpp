@@ -138,12 +138,17 @@ TEST_F(WorkflowCli, CohortMeshesEverySubjectAndAMissingImageIsExplained)
 }
 
 /// Runs the ready-made target `preset` (make sphere-head, ...) into `out` with this build's programs.
-void make_preset(const std::string& preset, const fs::path& out)
+/// make -C data/workflows with our tools, OUT=`out` and `arguments` (targets and variables); it must succeed.
+void make_workflow(const std::vector<std::string>& arguments, const fs::path& out)
 {
-    const auto result = run_program(
-        "make", {"-C", testing::data_path("workflows").string(), preset, "OUT=" + out.string(), "BIN=" TM_TOOLS_DIR});
+    std::vector<std::string> args{"-C", testing::data_path("workflows").string(), "OUT=" + out.string(),
+                                  "BIN=" TM_TOOLS_DIR};
+    args.insert(args.end(), arguments.begin(), arguments.end());
+    const auto result = run_program("make", args);
     ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
 }
+
+void make_preset(const std::string& preset, const fs::path& out) { make_workflow({preset}, out); }
 
 TEST(WorkflowCliLong, SphereHeadEndsWithASolvedModelAndItsReport)
 {
@@ -193,12 +198,10 @@ TEST(WorkflowCliLong, Usc19HeadEndsWithAFemFitMeshAndASolvedModel)
 void expect_real_volume_meshed_well(const std::string& image, const std::string& labels)
 {
     TempDir dir;
-    std::vector<std::string> args{"-C", testing::data_path("workflows").string(), "OUT=" + (dir / "out").string(),
-                                  "BIN=" TM_TOOLS_DIR, "IMAGE=" + testing::data_path(image).string()};
-    if (!labels.empty()) args.push_back("LABELS=" + testing::data_path(labels).string());
-    const auto result = run_program("make", args);
-    ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
     const fs::path out = dir / "out";
+    std::vector<std::string> variables{"IMAGE=" + testing::data_path(image).string()};
+    if (!labels.empty()) variables.push_back("LABELS=" + testing::data_path(labels).string());
+    ASSERT_NO_FATAL_FAILURE(make_workflow(variables, out));
     EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
     for (const char* step : {"tetra.json", "refine.json"}) {
         const auto after = testing::read_json(out / step)["improvement"]["after"];

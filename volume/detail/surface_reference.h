@@ -48,9 +48,9 @@ public:
 private:
     /// Whether triangle t lies within `tolerance` mm of p.
     bool triangle_within(std::uint32_t t, const Vec3& p, double tolerance) const;
-    template <class Closest>
     /// The nearest point to p that `closest` gives for an item of `index` (`items` of them), within `reach`; with
     /// `hint`, starting from item *hint and storing the item found there.
+    template <class Closest>
     std::optional<Vec3> nearest(const surface::detail::BoxIndex& index, std::size_t items, const Vec3& p, double reach,
                                 Closest closest, std::uint32_t* hint = nullptr) const;
 
