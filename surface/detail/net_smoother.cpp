@@ -91,47 +91,87 @@ private:
     void build_topology()
     {
         const std::size_t vertex_count = net_.positions.size();
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> incidences;
-        incidences.reserve(3 * net_.triangles.size());
-        for (std::size_t t = 0; t < net_.triangles.size(); ++t)
-            for (const std::uint32_t v : net_.triangles[t]) incidences.emplace_back(v, static_cast<std::uint32_t>(t));
-        stars_ = group_rows(vertex_count, incidences);
-        sheets_ = build_star_sheets(net_.triangles, vertex_count);
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> links, junction_edges;
+        // The triangles of each vertex, in triangle order (a counting sort).
+        stars_.offsets.assign(vertex_count + 1, 0);
+        for (const Triangle& t : net_.triangles)
+            for (const std::uint32_t v : t) ++stars_.offsets[v + 1];
+        for (std::size_t v = 0; v < vertex_count; ++v) stars_.offsets[v + 1] += stars_.offsets[v];
+        stars_.items.resize(stars_.offsets.back());
+        {
+            std::vector<std::uint32_t> fill(stars_.offsets.begin(), stars_.offsets.end() - 1);
+            for (std::size_t t = 0; t < net_.triangles.size(); ++t)
+                for (const std::uint32_t v : net_.triangles[t]) stars_.items[fill[v]++] = static_cast<std::uint32_t>(t);
+        }
+        sheets_ = build_star_sheets(net_.triangles, stars_);
         movable_.assign(vertex_count, 0);
         tissues_.assign(vertex_count, {});
-        std::vector<std::pair<std::uint32_t, int>> around; // neighbour, triangles on the edge
-        for (std::uint32_t v = 0; v < vertex_count; ++v) {
-            around.clear();
-            auto& tissues = tissues_[v];
-            for (const std::uint32_t t : stars_[v]) {
-                for (const std::uint32_t w : net_.triangles[t]) {
-                    if (w == v) continue;
-                    auto it = std::find_if(around.begin(), around.end(), [&](const auto& x) { return x.first == w; });
-                    if (it == around.end()) around.emplace_back(w, 1);
-                    else ++it->second;
-                }
-                for (const Label label : {net_.sides[t].from, net_.sides[t].to})
-                    if (std::find(tissues.labels.begin(), tissues.labels.begin() + tissues.count, label) ==
-                            tissues.labels.begin() + tissues.count &&
-                        tissues.count < tissues.labels.size())
-                        tissues.labels[tissues.count++] = label;
-            }
-            std::sort(around.begin(), around.end());
-            std::size_t junction = 0;
-            for (const auto& [w, count] : around)
-                if (count >= 3) {
-                    ++junction;
-                    if (w > v) junction_edges.emplace_back(v, w);
-                }
-            if (net_.kinds[v] != NetVertexKind::cube || (junction != 0 && junction != 2)) continue;
-            movable_[v] = 1;
-            ++movable_count_;
-            for (const auto& [w, count] : around)
-                if (junction == 0 || count >= 3) links.emplace_back(v, w);
+        // Blocks of vertices side by side, each with its rows of links and junction neighbours; joined in order.
+        constexpr std::size_t block = 16384;
+        const std::size_t blocks = (vertex_count + block - 1) / block;
+        std::vector<std::vector<std::uint32_t>> block_links(blocks), block_junctions(blocks);
+        std::vector<std::uint32_t> link_count(vertex_count, 0), junction_count(vertex_count, 0);
+        std::size_t movable_count = 0;
+#pragma omp parallel reduction(+ : movable_count)
+        {
+            std::vector<std::pair<std::uint32_t, int>> around; // neighbour, triangles on the edge
+#pragma omp for schedule(dynamic, 1)
+            for (std::size_t b = 0; b < blocks; ++b)
+                for (auto v = static_cast<std::uint32_t>(b * block); v < std::min(vertex_count, (b + 1) * block); ++v)
+                    movable_count +=
+                        sort_links(v, around, block_links[b], link_count[v], block_junctions[b], junction_count[v]);
         }
-        links_ = group_rows(vertex_count, links);
-        junction_links_ = group_rows(vertex_count, junction_edges);
+        movable_count_ = movable_count;
+        links_ = join_rows(link_count, block_links);
+        junction_links_ = join_rows(junction_count, block_junctions);
+    }
+
+    /// Vertex v's tissues and kind, and its rows: the neighbours it is smoothed towards (appended to `links`,
+    /// `link_count` of them) and its neighbours of larger index across junction edges. Returns whether it moves.
+    bool sort_links(std::uint32_t v, std::vector<std::pair<std::uint32_t, int>>& around,
+                    std::vector<std::uint32_t>& links, std::uint32_t& link_count, std::vector<std::uint32_t>& junctions,
+                    std::uint32_t& junction_count)
+    {
+        around.clear();
+        auto& tissues = tissues_[v];
+        for (const std::uint32_t t : stars_[v]) {
+            for (const std::uint32_t w : net_.triangles[t]) {
+                if (w == v) continue;
+                auto it = std::find_if(around.begin(), around.end(), [&](const auto& x) { return x.first == w; });
+                if (it == around.end()) around.emplace_back(w, 1);
+                else ++it->second;
+            }
+            for (const Label label : {net_.sides[t].from, net_.sides[t].to})
+                if (std::find(tissues.labels.begin(), tissues.labels.begin() + tissues.count, label) ==
+                        tissues.labels.begin() + tissues.count &&
+                    tissues.count < tissues.labels.size())
+                    tissues.labels[tissues.count++] = label;
+        }
+        std::sort(around.begin(), around.end());
+        std::size_t junction = 0;
+        for (const auto& [w, count] : around)
+            if (count >= 3) {
+                ++junction;
+                if (w > v) junctions.push_back(w), ++junction_count;
+            }
+        if (net_.kinds[v] != NetVertexKind::cube || (junction != 0 && junction != 2)) return false;
+        movable_[v] = 1;
+        for (const auto& [w, count] : around)
+            if (junction == 0 || count >= 3) links.push_back(w), ++link_count;
+        return true;
+    }
+
+    /// Rows from the number of items of each row and their items, block after block of rows.
+    static Rows join_rows(const std::vector<std::uint32_t>& count,
+                          const std::vector<std::vector<std::uint32_t>>& blocks)
+    {
+        Rows rows;
+        rows.offsets.resize(count.size() + 1);
+        rows.offsets[0] = 0;
+        for (std::size_t r = 0; r < count.size(); ++r) rows.offsets[r + 1] = rows.offsets[r] + count[r];
+        rows.items.reserve(rows.offsets.back());
+        for (const std::vector<std::uint32_t>& items : blocks)
+            rows.items.insert(rows.items.end(), items.begin(), items.end());
+        return rows;
     }
 
     /// Per movable vertex and tissue of its star, the corners of its cube (voxels) holding that tissue.
@@ -225,8 +265,9 @@ private:
         };
         // File every triangle in each cube its reach box overlaps (counting sort by cube).
         std::vector<std::uint32_t> start(g[0] * g[1] * g[2] + 1, 0);
+#pragma omp parallel for schedule(static)
+        for (std::size_t t = 0; t < triangle_count; ++t) boxes[t] = reach(net_.triangles[t]);
         for (std::size_t t = 0; t < triangle_count; ++t) {
-            boxes[t] = reach(net_.triangles[t]);
             const auto r = cells_of(t);
             for (std::size_t k = r[2]; k <= r[5]; ++k)
                 for (std::size_t j = r[1]; j <= r[4]; ++j)
@@ -243,23 +284,39 @@ private:
         }
         next.clear();
         next.shrink_to_fit();
-        std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-        for (std::size_t cell = 0; cell + 1 < start.size(); ++cell) {
-            const std::size_t begin = start[cell], end = start[cell + 1];
-            for (std::size_t x = begin; x < end; ++x)
-                for (std::size_t y = x + 1; y < end; ++y) {
-                    const std::uint32_t t = filed[x], u = filed[y];
-                    if (share_vertex(net_.triangles[t], net_.triangles[u]) || !overlap(boxes[t], boxes[u])) continue;
-                    // File the pair once: in the cell of the low corner of the two boxes' overlap.
-                    std::array<std::size_t, 3> c{};
-                    for (int a = 0; a < 3; ++a) c[a] = cell_of(std::max(boxes[t].low[a], boxes[u].low[a]), a);
-                    if (cube_index(g, c[0], c[1], c[2]) != cell) continue;
-                    pairs.emplace_back(t, u);
-                    pairs.emplace_back(u, t);
-                }
+        // The pairs, each once, cube after cube: blocks of cubes side by side, joined in order (the same rows
+        // whatever the threads).
+        const std::size_t cube_count = start.size() - 1;
+        constexpr std::size_t block = 4096;
+        const std::size_t blocks = (cube_count + block - 1) / block;
+        std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> found(blocks);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (std::size_t b = 0; b < blocks; ++b)
+            for (std::size_t cell = b * block; cell < std::min(cube_count, (b + 1) * block); ++cell) {
+                const std::size_t begin = start[cell], end = start[cell + 1];
+                for (std::size_t x = begin; x < end; ++x)
+                    for (std::size_t y = x + 1; y < end; ++y) {
+                        const std::uint32_t t = filed[x], u = filed[y];
+                        if (share_vertex(net_.triangles[t], net_.triangles[u]) || !overlap(boxes[t], boxes[u]))
+                            continue;
+                        // File the pair once: in the cell of the low corner of the two boxes' overlap.
+                        std::array<std::size_t, 3> c{};
+                        for (int a = 0; a < 3; ++a) c[a] = cell_of(std::max(boxes[t].low[a], boxes[u].low[a]), a);
+                        if (cube_index(g, c[0], c[1], c[2]) != cell) continue;
+                        found[b].emplace_back(t, u);
+                    }
+            }
+        // Per triangle its partners, in the order the pairs were found, both ways.
+        partners_.offsets.assign(triangle_count + 1, 0);
+        for (const auto& pairs : found)
+            for (const auto& [t, u] : pairs) ++partners_.offsets[t + 1], ++partners_.offsets[u + 1];
+        for (std::size_t t = 0; t < triangle_count; ++t) partners_.offsets[t + 1] += partners_.offsets[t];
+        partners_.items.resize(partners_.offsets.back());
+        std::vector<std::uint32_t> fill(partners_.offsets.begin(), partners_.offsets.end() - 1);
+        for (const auto& pairs : found) {
+            candidate_pairs_ += pairs.size();
+            for (const auto& [t, u] : pairs) partners_.items[fill[t]++] = u, partners_.items[fill[u]++] = t;
         }
-        candidate_pairs_ = pairs.size() / 2;
-        partners_ = group_rows(triangle_count, pairs);
     }
 
     /// One Jacobi step of factor f: each movable vertex towards the mean of its links, inside its box and
@@ -354,7 +411,6 @@ private:
                     for (const std::uint32_t w : net_.triangles[t])
                         if (!dirty[w]) dirty[w] = 1, vertices.push_back(w);
                 }
-            for (const std::uint32_t t : triangles) seen[t] = 0;
             for (const std::uint32_t w : vertices) dirty[w] = 0;
             // (Any order: what offends depends on the positions only, and offenders are sorted below.)
             std::vector<std::uint32_t> offenders;
@@ -367,7 +423,8 @@ private:
                     const Triangle& tri = net_.triangles[t];
                     bool offends = (moved[tri[0]] || moved[tri[1]] || moved[tri[2]]) && shape_breaks(t);
                     for (const std::uint32_t u : partners_[t])
-                        if (meet(t, u)) {
+                        // A pair of two judged triangles once, from its lower one.
+                        if (!(seen[u] && u < t) && meet(t, u)) {
                             offends = true;
                             local.push_back(u);
                         }
@@ -383,6 +440,7 @@ private:
 #pragma omp critical
                 offenders.insert(offenders.end(), local.begin(), local.end());
             }
+            for (const std::uint32_t t : triangles) seen[t] = 0;
             changed.clear();
             std::sort(offenders.begin(), offenders.end());
             offenders.erase(std::unique(offenders.begin(), offenders.end()), offenders.end());

@@ -151,29 +151,54 @@ StarSheets build_star_sheets(const std::vector<Triangle>& triangles, std::size_t
     incidences.reserve(3 * triangles.size());
     for (std::size_t t = 0; t < triangles.size(); ++t)
         for (const std::uint32_t v : triangles[t]) incidences.emplace_back(v, static_cast<std::uint32_t>(t));
-    const Rows stars = group_rows(vertex_count, incidences);
+    return build_star_sheets(triangles, group_rows(vertex_count, incidences));
+}
+
+StarSheets build_star_sheets(const std::vector<Triangle>& triangles, const Rows& stars)
+{
+    // Each vertex's ordered star takes the place of its star; its sheet starts go to a list per block of
+    // vertices, joined in order afterwards, so the result does not depend on the threads.
+    const std::size_t vertex_count = stars.size();
     StarSheets out;
     out.stars.offsets = stars.offsets;
-    out.stars.items.reserve(stars.items.size());
-    out.sheets.offsets.assign(1, 0);
+    out.stars.items.resize(stars.items.size());
     out.closed_bits.assign(vertex_count, 0);
     out.irregular.assign(vertex_count, 0);
-    std::vector<std::uint32_t> order, starts;
-    for (std::uint32_t v = 0; v < vertex_count; ++v) {
-        std::uint32_t closed = 0;
-        const bool regular = order_sheets(v, stars[v], triangles, order, starts, closed) && starts.size() <= max_sheets;
-        if (!regular) {
-            // Keep the star whole and unordered: every pair is tested.
-            out.irregular[v] = 1;
-            order.assign(stars[v].begin(), stars[v].end());
-            starts.assign(1, 0);
-            closed = 0;
+    std::vector<std::uint32_t> sheet_count(vertex_count, 0);
+    constexpr std::size_t block = 16384;
+    const std::size_t blocks = (vertex_count + block - 1) / block;
+    std::vector<std::vector<std::uint32_t>> block_starts(blocks);
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> order, starts;
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t b = 0; b < blocks; ++b) {
+            std::vector<std::uint32_t>& all_starts = block_starts[b];
+            for (std::size_t v = b * block; v < std::min(vertex_count, (b + 1) * block); ++v) {
+                std::uint32_t closed = 0;
+                const bool regular =
+                    order_sheets(static_cast<std::uint32_t>(v), stars[v], triangles, order, starts, closed) &&
+                    starts.size() <= max_sheets;
+                if (!regular) {
+                    // Keep the star whole and unordered: every pair is tested.
+                    out.irregular[v] = 1;
+                    order.assign(stars[v].begin(), stars[v].end());
+                    starts.assign(1, 0);
+                    closed = 0;
+                }
+                std::copy(order.begin(), order.end(), out.stars.items.begin() + stars.offsets[v]);
+                all_starts.insert(all_starts.end(), starts.begin(), starts.end());
+                sheet_count[v] = static_cast<std::uint32_t>(starts.size());
+                out.closed_bits[v] = static_cast<std::uint8_t>(closed);
+            }
         }
-        out.stars.items.insert(out.stars.items.end(), order.begin(), order.end());
-        out.sheets.items.insert(out.sheets.items.end(), starts.begin(), starts.end());
-        out.sheets.offsets.push_back(static_cast<std::uint32_t>(out.sheets.items.size()));
-        out.closed_bits[v] = static_cast<std::uint8_t>(closed);
     }
+    out.sheets.offsets.resize(vertex_count + 1);
+    out.sheets.offsets[0] = 0;
+    for (std::size_t v = 0; v < vertex_count; ++v) out.sheets.offsets[v + 1] = out.sheets.offsets[v] + sheet_count[v];
+    out.sheets.items.reserve(out.sheets.offsets.back());
+    for (const std::vector<std::uint32_t>& starts : block_starts)
+        out.sheets.items.insert(out.sheets.items.end(), starts.begin(), starts.end());
     return out;
 }
 

@@ -34,6 +34,10 @@ bool order_sheets(std::uint32_t v, std::span<const std::uint32_t> star, const st
 /// Builds the sheets of every vertex of `triangles` (indices below `vertex_count`).
 StarSheets build_star_sheets(const std::vector<Triangle>& triangles, std::size_t vertex_count);
 
+/// The same from the triangles around each vertex (`stars`, one row per vertex), side by side (OpenMP); the
+/// result does not depend on the thread count.
+StarSheets build_star_sheets(const std::vector<Triangle>& triangles, const Rows& stars);
+
 /// Whether triangles a and b meet other than at the vertices and edge they share by index: boxes, then the
 /// plane test (certainly_apart), then the exact test (triangles_intersect).
 bool triangles_meet(const std::vector<Vec3>& positions, const Triangle& a, const Triangle& b);
