@@ -7,13 +7,14 @@
 
 namespace tissuemesh {
 
-TetShape tet_shape(const TetMesh& mesh, std::size_t t)
+std::pair<double, double> dihedral_range_deg(const TetMesh& mesh, std::size_t t)
 {
     constexpr double pi = 3.14159265358979323846;
     const Tet& tet = mesh.tets[t];
     std::array<Vec3, 4> p;
     for (int c = 0; c < 4; ++c) p[c] = mesh.vertices[tet[c]];
-    // Dihedral angle at the edge two faces share, from their outward unit normals.
+    // Dihedral angle at the edge two faces share, from their outward unit normals: 180 degrees less the angle
+    // between the normals, so it grows with their (clamped) dot product.
     std::array<Vec3, 4> normals;
     for (int f = 0; f < 4; ++f) {
         const Vec3& a = p[tet_faces[f][0]];
@@ -21,12 +22,22 @@ TetShape tet_shape(const TetMesh& mesh, std::size_t t)
         const double length = norm(n);
         normals[f] = length > 0 ? (1.0 / length) * n : Vec3{0, 0, 0};
     }
-    double min_angle = 180, max_angle = 0;
+    double low = 1, high = -1;
     for (int f = 0; f < 4; ++f)
         for (int g = f + 1; g < 4; ++g) {
-            const double angle = 180.0 - std::acos(std::clamp(dot(normals[f], normals[g]), -1.0, 1.0)) * 180.0 / pi;
-            min_angle = std::min(min_angle, angle), max_angle = std::max(max_angle, angle);
+            const double d = std::clamp(dot(normals[f], normals[g]), -1.0, 1.0);
+            low = std::min(low, d), high = std::max(high, d);
         }
+    const auto angle = [&](double d) { return 180.0 - std::acos(d) * 180.0 / pi; };
+    return {angle(low), angle(high)};
+}
+
+TetShape tet_shape(const TetMesh& mesh, std::size_t t)
+{
+    const Tet& tet = mesh.tets[t];
+    std::array<Vec3, 4> p;
+    for (int c = 0; c < 4; ++c) p[c] = mesh.vertices[tet[c]];
+    const auto [min_angle, max_angle] = dihedral_range_deg(mesh, t);
     double shortest = std::numeric_limits<double>::max();
     for (int i = 0; i < 4; ++i)
         for (int j = i + 1; j < 4; ++j) shortest = std::min(shortest, distance(p[i], p[j]));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 
 #include "core/tet_mesh.h"
 
@@ -18,6 +19,12 @@ inline constexpr int tet_faces[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 
 struct TetShape {
     double min_dihedral_deg, max_dihedral_deg, radius_edge_ratio;
 };
+
+/// Smallest and largest dihedral angle (degrees) of tet `t` of `mesh`: the same values as tet_shape()'s, for
+/// a sixth of its arc cosines (the angles grow with the cosines of the face normals, so only the extremes are
+/// turned into angles).
+/// @pre t < mesh.tets.size() and its vertex indices are in range
+std::pair<double, double> dihedral_range_deg(const TetMesh& mesh, std::size_t t);
 
 /// The shape of tet `t` of `mesh`.
 /// @pre t < mesh.tets.size() and its vertex indices are in range

@@ -7,6 +7,7 @@
 #include <exception>
 #include <functional>
 #include <map>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/tet_shape.h"
@@ -142,12 +143,9 @@ void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference,
                        double below, ImproveReport& report)
 {
     std::vector<char> seeds(mesh.tets.size(), 0);
-    bool any = false;
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        seeds[t] = min_sine_of(mesh, t) < below;
-        any = any || seeds[t];
-    }
-    if (!any) return;
+#pragma omp parallel for schedule(static)
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) seeds[t] = min_sine_of(mesh, t) < below;
+    if (std::find(seeds.begin(), seeds.end(), 1) == seeds.end()) return;
     const std::vector<char> start = nodes_of(mesh, seeds);
     const std::vector<char> around = detail::tets_around(mesh, seeds, band_rings);
     std::vector<std::uint32_t> part_of(mesh.tets.size(), detail::no_part);
@@ -177,10 +175,12 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
         const Tet& tet = mesh.tets[t];
         at_seam[t] = std::any_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v < seam.size() && seam[v]; });
     }
-    std::vector<char> seeds = detail::tets_around(mesh, at_seam, 2);
+    const detail::TetsAtNodes tets_at(mesh);
+    std::vector<char> seeds = tets_at.around(at_seam, 2);
+#pragma omp parallel for schedule(static)
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         seeds[t] = min_sine_of(mesh, t) < (seeds[t] ? target : far_target);
-    const std::vector<char> around = detail::tets_around(mesh, seeds, band_rings);
+    const std::vector<char> around = tets_at.around(seeds, band_rings);
     // The bands' improvers start from the nodes of those tets (the seam's own nodes alone would leave them).
     const std::vector<char> start = nodes_of(mesh, seeds);
     const std::size_t bands = cut.between.size();
@@ -188,7 +188,7 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
     // nearest its first tet, so that no band freezes a node of a tet it is to improve: a tet midway between two cuts
     // otherwise saw its neighbours split between two bands and its nodes frozen in both. The outer ring goes to the
     // cut nearest each tet. (Groups joined through any node spanned the whole head: one band of 1.0 M tets.)
-    std::vector<std::uint32_t> band_of = detail::groups_of(mesh, detail::tets_around(mesh, seeds, 1), start);
+    std::vector<std::uint32_t> band_of = detail::groups_of(mesh, tets_at.around(seeds, 1), start);
     for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) {
         // A group's root is its lowest tet, so it has its band already when its other tets come.
         if (band_of[t] != detail::no_part) band_of[t] = band_of[t] == t ? cut.nearest(mesh, t) : band_of[band_of[t]];
@@ -232,8 +232,7 @@ ShapeFigures shape_figures(const TetMesh& mesh)
     std::vector<double> smallest(mesh.tets.size()), largest(mesh.tets.size());
 #pragma omp parallel for schedule(static)
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
-        const TetShape shape = tet_shape(mesh, t);
-        smallest[t] = shape.min_dihedral_deg, largest[t] = shape.max_dihedral_deg;
+        std::tie(smallest[t], largest[t]) = dihedral_range_deg(mesh, t);
     }
     figures.min_dihedral_deg = *std::min_element(smallest.begin(), smallest.end());
     figures.max_dihedral_deg = *std::max_element(largest.begin(), largest.end());

@@ -9,16 +9,31 @@
 
 namespace tissuemesh::volume::detail {
 
-PartCutter::PartCutter(const TetMesh& whole) : whole_(whole), tets_at_(whole.vertices.size(), 0)
+PartCutter::PartCutter(const TetMesh& whole)
+    : whole_(whole), row_start_(whole.vertices.size() + 1, 0), tets_at_(whole.vertices.size(), 0)
 {
-    listed_.reserve(2 * whole.faces.size());
     on_face_.assign(whole.vertices.size(), 0);
+    for (const Triangle& face : whole.faces) {
+        ++row_start_[std::min({face[0], face[1], face[2]}) + 1];
+        for (const std::uint32_t v : face) on_face_[v] = 1;
+    }
+    for (std::size_t v = 0; v + 1 < row_start_.size(); ++v) row_start_[v + 1] += row_start_[v];
+    by_low_.resize(whole.faces.size());
+    std::vector<std::uint32_t> fill(row_start_.begin(), row_start_.end() - 1);
     for (std::uint32_t f = 0; f < whole.faces.size(); ++f) {
-        listed_.emplace(face_key(whole.faces[f][0], whole.faces[f][1], whole.faces[f][2]), f);
-        for (const std::uint32_t v : whole.faces[f]) on_face_[v] = 1;
+        const FaceKey key = face_key(whole.faces[f][0], whole.faces[f][1], whole.faces[f][2]);
+        by_low_[fill[key.v[0]]++] = {key.v[1], key.v[2], f};
     }
     for (const Tet& tet : whole.tets)
         for (const std::uint32_t v : tet) ++tets_at_[v];
+}
+
+std::optional<std::uint32_t> PartCutter::listed(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
+{
+    const FaceKey key = face_key(a, b, c);
+    for (std::uint32_t i = row_start_[key.v[0]]; i < row_start_[key.v[0] + 1]; ++i)
+        if (by_low_[i].middle == key.v[1] && by_low_[i].high == key.v[2]) return by_low_[i].face;
+    return std::nullopt;
 }
 
 MeshPart PartCutter::part(const std::vector<std::uint32_t>& tets) const
@@ -48,8 +63,7 @@ MeshPart PartCutter::part(const std::vector<std::uint32_t>& tets) const
         for (int i = 0; i < 4; ++i) {
             const std::uint32_t a = tet[(i + 1) % 4], b = tet[(i + 2) % 4], c = tet[(i + 3) % 4];
             if (!on_face_[a] || !on_face_[b] || !on_face_[c]) continue; // most faces: no lookup
-            const auto found = listed_.find(face_key(a, b, c));
-            if (found != listed_.end()) faces.push_back(found->second);
+            if (const std::optional<std::uint32_t> found = listed(a, b, c)) faces.push_back(*found);
         }
     }
     std::sort(faces.begin(), faces.end());
@@ -95,38 +109,55 @@ Cut cut_across(const TetMesh& mesh, std::size_t count)
     for (std::uint32_t t = 0; t < mesh.tets.size(); ++t) key[t] = axis_key(mesh, t, axis);
     std::vector<std::uint32_t> order(mesh.tets.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+    const auto before = [&](std::uint32_t a, std::uint32_t b) {
+        return key[a] < key[b] || (key[a] == key[b] && a < b);
+    };
+    // Rank r goes to part r * count / n: only the ranks where that changes need their tets, not a full sort.
     Cut cut{std::vector<std::uint32_t>(mesh.tets.size()), axis, {}};
-    for (std::size_t r = 0; r < order.size(); ++r) {
-        const auto k = static_cast<std::uint32_t>(r * count / order.size());
-        if (r > 0 && k != cut.part_of[order[r - 1]]) cut.between.push_back((key[order[r - 1]] + key[order[r]]) / 2);
-        cut.part_of[order[r]] = k;
+    const std::size_t n = order.size();
+    std::size_t from = 0;
+    for (std::size_t k = 1; k < count; ++k) {
+        const std::size_t r = (k * n + count - 1) / count; // the first rank of part k
+        if (r <= from || r >= n) continue;
+        const auto at = order.begin() + static_cast<std::ptrdiff_t>(r);
+        std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(from), at, order.end(), before);
+        const std::uint32_t last = *std::max_element(order.begin() + static_cast<std::ptrdiff_t>(from), at, before);
+        cut.between.push_back((key[last] + key[*at]) / 2);
+        from = r;
     }
+    for (std::size_t r = 0; r < n; ++r) cut.part_of[order[r]] = static_cast<std::uint32_t>(r * count / n);
     return cut;
+}
+
+TetsAtNodes::TetsAtNodes(const TetMesh& mesh)
+    : mesh_(mesh), start_(mesh.vertices.size() + 1, 0), tets_(4 * mesh.tets.size())
+{
+    for (const Tet& tet : mesh.tets)
+        for (const std::uint32_t v : tet) ++start_[v + 1];
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
+        for (const std::uint32_t v : mesh.tets[t]) tets_[fill[v]++] = t;
+}
+
+std::vector<char> TetsAtNodes::around(const std::vector<char>& seeds, std::size_t rings) const
+{
+    std::vector<char> marked(mesh_.vertices.size(), 0), in(mesh_.tets.size(), 0);
+    for (std::size_t t = 0; t < std::min(seeds.size(), in.size()); ++t) in[t] = seeds[t];
+    for (std::size_t ring = 0; ring < rings; ++ring) {
+        for (std::size_t t = 0; t < mesh_.tets.size(); ++t)
+            if (in[t])
+                for (const std::uint32_t v : mesh_.tets[t]) marked[v] = 1;
+        for (std::uint32_t v = 0; v < mesh_.vertices.size(); ++v)
+            if (marked[v])
+                for (std::uint32_t i = start_[v]; i < start_[v + 1]; ++i) in[tets_[i]] = 1;
+    }
+    return in;
 }
 
 std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seeds, std::size_t rings)
 {
-    // The tets of each node, flat.
-    std::vector<std::uint32_t> start(mesh.vertices.size() + 1, 0), around(4 * mesh.tets.size());
-    for (const Tet& tet : mesh.tets)
-        for (const std::uint32_t v : tet) ++start[v + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
-        for (const std::uint32_t v : mesh.tets[t]) around[fill[v]++] = t;
-    std::vector<char> marked(mesh.vertices.size(), 0), in(mesh.tets.size(), 0);
-    for (std::size_t t = 0; t < std::min(seeds.size(), in.size()); ++t) in[t] = seeds[t];
-    for (std::size_t ring = 0; ring < rings; ++ring) {
-        for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-            if (in[t])
-                for (const std::uint32_t v : mesh.tets[t]) marked[v] = 1;
-        for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
-            if (marked[v])
-                for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) in[around[i]] = 1;
-    }
-    return in;
+    return TetsAtNodes(mesh).around(seeds, rings);
 }
 
 std::vector<std::uint32_t> groups_of(const TetMesh& mesh, const std::vector<char>& in, const std::vector<char>& through)

@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include <unordered_map>
+#include <optional>
 
 #include "core/tet_mesh.h"
 #include "volume/detail/face_map.h"
@@ -35,8 +35,16 @@ public:
     MeshPart part(const std::vector<std::uint32_t>& tets) const;
 
 private:
+    /// The listed face with nodes {a, b, c}, if any (the first listed).
+    std::optional<std::uint32_t> listed(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
+
     const TetMesh& whole_;
-    std::unordered_map<FaceKey, std::uint32_t, FaceKeyHash> listed_;
+    /// The listed faces by their lowest node (compressed rows): the other two nodes, ascending, and the face.
+    struct Listed {
+        std::uint32_t middle, high, face;
+    };
+    std::vector<std::uint32_t> row_start_;
+    std::vector<Listed> by_low_;
     std::vector<std::uint32_t> tets_at_; ///< per node: how many tets hold it
     std::vector<char> on_face_;          ///< per node: on a listed face
 };
@@ -54,8 +62,20 @@ struct Cut {
 /// tets (by their centroids). Depends only on the mesh and the count.
 Cut cut_across(const TetMesh& mesh, std::size_t count);
 
-/// The tets flagged in `seeds` (per tet) and every tet within `rings` rings of them (through shared nodes),
-/// flagged per tet.
+/// The tets at each node of a mesh, to find the tets around others (built once for several questions).
+class TetsAtNodes {
+public:
+    explicit TetsAtNodes(const TetMesh& mesh);
+    /// The tets flagged in `seeds` (per tet) and every tet within `rings` rings of them (through shared nodes),
+    /// flagged per tet.
+    std::vector<char> around(const std::vector<char>& seeds, std::size_t rings) const;
+
+private:
+    const TetMesh& mesh_;
+    std::vector<std::uint32_t> start_, tets_; ///< compressed rows: the tets of node v are tets_[start_[v]..]
+};
+
+/// TetsAtNodes(mesh).around(seeds, rings).
 std::vector<char> tets_around(const TetMesh& mesh, const std::vector<char>& seeds, std::size_t rings);
 
 /// Per tet flagged in `in`, the lowest index of the flagged tets connected to it through shared nodes flagged in
