@@ -118,20 +118,33 @@ LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, cons
     // neighbours it has passed, as a chamfer distance transform).
     const auto grade = [&](int direction) {
         const std::int64_t nx = counts_[0], ny = counts_[1], nz = counts_[2];
+        // The 13 neighbours swept before a cell (lower index forwards, higher backwards), with their distances.
+        struct Neighbour {
+            std::int64_t di, dj, dk, offset;
+            double step;
+        };
+        std::vector<Neighbour> before;
+        for (std::int64_t dk = -1; dk <= 1; ++dk)
+            for (std::int64_t dj = -1; dj <= 1; ++dj)
+                for (std::int64_t di = -1; di <= 1; ++di) {
+                    const std::int64_t offset = di + nx * (dj + ny * dk);
+                    if (offset == 0 || (offset < 0) != (direction > 0)) continue;
+                    before.push_back(
+                        {di, dj, dk, offset, cell_mm_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk))});
+                }
         for (std::int64_t n = 0; n < nx * ny * nz; ++n) {
             const std::int64_t m = direction > 0 ? n : nx * ny * nz - 1 - n;
             const std::int64_t i = m % nx, j = (m / nx) % ny, k = m / (nx * ny);
             float& s = size_[static_cast<std::size_t>(m)];
-            for (std::int64_t dk = -1; dk <= 1; ++dk)
-                for (std::int64_t dj = -1; dj <= 1; ++dj)
-                    for (std::int64_t di = -1; di <= 1; ++di) {
-                        const std::int64_t a = i + di, b = j + dj, c = k + dk;
-                        if (a < 0 || b < 0 || c < 0 || a >= nx || b >= ny || c >= nz) continue;
-                        // Forwards from the neighbours already swept, backwards likewise.
-                        if ((a + nx * (b + ny * c) < m) != (direction > 0)) continue;
-                        const double step = cell_mm_ * std::sqrt(static_cast<double>(di * di + dj * dj + dk * dk));
-                        s = std::min(s, static_cast<float>(size_[index_of(a, b, c)] + options.growth * step));
-                    }
+            const bool inside = i > 0 && j > 0 && k > 0 && i + 1 < nx && j + 1 < ny && k + 1 < nz;
+            for (const Neighbour& b : before) {
+                if (!inside) {
+                    const std::int64_t a = i + b.di, c = j + b.dj, d = k + b.dk;
+                    if (a < 0 || c < 0 || d < 0 || a >= nx || c >= ny || d >= nz) continue;
+                }
+                s = std::min(
+                    s, static_cast<float>(size_[static_cast<std::size_t>(m + b.offset)] + options.growth * b.step));
+            }
         }
     };
     grade(1);
