@@ -25,6 +25,73 @@ LocalEditor::LocalEditor(InterfaceComplex complex, const LocalLimits& limits, do
     filed_boxes_.resize(triangles_.size());
     stamp_.assign(triangles_.size(), 0);
     rebuild_grid(cell_mm);
+    count_pieces();
+}
+
+void LocalEditor::count_pieces()
+{
+    // Union-find over (triangle, side), joined at each vertex per tissue.
+    std::vector<std::uint32_t> parent(2 * triangles_.size());
+    for (std::uint32_t n = 0; n < parent.size(); ++n) parent[n] = n;
+    const auto find = [&](std::uint32_t n) {
+        while (parent[n] != n) n = parent[n] = parent[parent[n]];
+        return n;
+    };
+    std::vector<std::pair<Label, std::uint32_t>> first; // per tissue at the vertex: its first (triangle, side)
+    for (std::uint32_t v = 0; v < stars_.size(); ++v) {
+        first.clear();
+        for (const std::uint32_t t : stars_[v]) {
+            if (!alive_[t]) continue;
+            for (std::uint32_t s = 0; s < 2; ++s) {
+                const Label tissue = s == 0 ? sides_[t].from : sides_[t].to;
+                if (tissue == background_) continue;
+                const auto it =
+                    std::find_if(first.begin(), first.end(), [&](const auto& f) { return f.first == tissue; });
+                if (it == first.end()) {
+                    first.emplace_back(tissue, 2 * t + s);
+                    continue;
+                }
+                const std::uint32_t a = find(it->second), b = find(2 * t + s);
+                if (a != b) parent[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    }
+    piece_of_.assign(triangles_.size(), {no_piece, no_piece});
+    piece_size_.clear();
+    std::vector<std::uint32_t> id(parent.size(), no_piece);
+    for (std::uint32_t t = 0; t < triangles_.size(); ++t) {
+        if (!alive_[t]) continue;
+        for (std::uint32_t s = 0; s < 2; ++s) {
+            if ((s == 0 ? sides_[t].from : sides_[t].to) == background_) continue;
+            std::uint32_t& piece = id[find(2 * t + s)];
+            if (piece == no_piece) piece = static_cast<std::uint32_t>(piece_size_.size()), piece_size_.push_back(0);
+            piece_of_[t][s] = piece;
+            ++piece_size_[piece];
+        }
+    }
+}
+
+std::size_t LocalEditor::counted_piece(std::uint32_t v, Label tissue) const
+{
+    for (const std::uint32_t t : stars_[v]) {
+        const std::size_t s = sides_[t].from == tissue ? 0 : sides_[t].to == tissue ? 1 : 2;
+        if (s < 2 && piece_of_[t][s] != no_piece) return piece_size_[piece_of_[t][s]];
+    }
+    return 0;
+}
+
+bool LocalEditor::counted_above(std::uint32_t v, Label tissue, std::size_t limit) const
+{
+    return counted_piece(v, tissue) > limit;
+}
+
+void LocalEditor::recount(std::uint32_t t, int delta)
+{
+    for (const std::uint32_t piece : piece_of_[t])
+        if (piece != no_piece) {
+            saved_piece_sizes_.emplace_back(piece, piece_size_[piece]);
+            piece_size_[piece] = static_cast<std::uint32_t>(static_cast<std::int64_t>(piece_size_[piece]) + delta);
+        }
 }
 
 void LocalEditor::set_limits(const LocalLimits& limits)
@@ -177,6 +244,7 @@ void LocalEditor::begin_edit()
     saved_.clear();
     saved_stars_.clear();
     saved_star_items_.clear();
+    saved_piece_sizes_.clear();
     triangles_before_edit_ = triangles_.size();
     vertices_before_edit_ = positions_.size();
 }
@@ -195,6 +263,7 @@ std::uint32_t LocalEditor::new_triangle(const Triangle& t, const LabelPair& side
     triangles_.push_back(t);
     sides_.push_back(side);
     alive_.push_back(1);
+    piece_of_.push_back({no_piece, no_piece});
     filed_.push_back({});
     filed_boxes_.push_back({});
     stamp_.push_back(0);
@@ -212,9 +281,12 @@ void LocalEditor::undo()
     for (auto it = saved_stars_.rbegin(); it != saved_stars_.rend(); ++it)
         stars_[it->vertex].assign(saved_star_items_.begin() + it->start,
                                   saved_star_items_.begin() + it->start + it->size);
+    for (auto it = saved_piece_sizes_.rbegin(); it != saved_piece_sizes_.rend(); ++it)
+        piece_size_[it->first] = it->second;
     triangles_.resize(triangles_before_edit_);
     sides_.resize(triangles_before_edit_);
     alive_.resize(triangles_before_edit_);
+    piece_of_.resize(triangles_before_edit_);
     filed_.resize(triangles_before_edit_);
     filed_boxes_.resize(triangles_before_edit_);
     stamp_.resize(triangles_before_edit_);
@@ -322,15 +394,6 @@ double LocalEditor::smallest_sector_deg(const std::vector<std::uint32_t>& triang
     return smallest;
 }
 
-bool LocalEditor::sectors_ok(const std::vector<std::uint32_t>& changed, double before)
-{
-    if (!(limits_.min_sector_deg > 0)) return true;
-    const double after = smallest_sector_deg(changed);
-    if (after >= limits_.min_sector_deg || after >= before - 1e-9) return true;
-    ++counters_.wedge;
-    return false;
-}
-
 bool LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, std::size_t margin,
                                std::span<const Label> known)
 {
@@ -348,6 +411,7 @@ bool LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, st
             if (tissue == background_ || std::find(seen.begin(), seen.end(), tissue) != seen.end()) continue;
             seen.push_back(tissue);
             if (std::find(known.begin(), known.end(), tissue) != known.end()) continue;
+            if (counted_above(v, tissue, limit)) continue; // more than limit: clear of the margin
             // Breadth first through shared vertices over the triangles with `tissue` on a side, at most `limit`.
             ++query_;
             vertices.assign(1, v), triangles.clear();

@@ -94,6 +94,11 @@ public:
     /// The complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
 
+    /// How many triangles the piece of `tissue` at v is counted to have (0 when no triangle at v has that tissue
+    /// on a side): at most the triangles with `tissue` on a side reachable from v through shared vertices
+    /// (small_pieces() trusts a count above its limit and searches no further).
+    std::size_t counted_piece(std::uint32_t v, Label tissue) const;
+
 private:
     struct Saved {
         std::uint32_t triangle;
@@ -149,8 +154,17 @@ private:
     /// when the sector rule is off.
     double smallest_sector_deg(const std::vector<std::uint32_t>& triangles) const;
     /// The sector rule (LocalLimits::min_sector_deg) for the edit that changed `changed`, whose
-    /// neighbourhood's smallest sector was `before` (smallest_sector_deg() before the edit).
-    bool sectors_ok(const std::vector<std::uint32_t>& changed, double before);
+    /// neighbourhood's smallest sector was `before()` (smallest_sector_deg() before the edit). `before` is called
+    /// only when the sectors after the edit fall under the limit, which few edits do: most never pay for it.
+    template <class Before>
+    bool sectors_ok(const std::vector<std::uint32_t>& changed, Before before)
+    {
+        if (!(limits_.min_sector_deg > 0)) return true;
+        const double after = smallest_sector_deg(changed);
+        if (after >= limits_.min_sector_deg || after >= before() - 1e-9) return true;
+        ++counters_.wedge;
+        return false;
+    }
     void save(std::uint32_t t);
     void undo();
     void remove_from_star(std::uint32_t v, std::uint32_t t);
@@ -203,6 +217,21 @@ private:
         std::vector<Prior> prior;
         std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;
     } edit_;
+    /// Per triangle, for its `from` and `to` tissue (no_piece for the background): the piece of that tissue it lay
+    /// in when the editor started (the triangles with the tissue on a side, joined through shared vertices), which
+    /// the triangles split from it inherit; and per piece, how many live triangles carry it. No edit parts a piece
+    /// (a collapse keeps the triangles around its dying ones joined at its surviving vertex; splits, flips and
+    /// moves keep every vertex's triangles), so a count is at most the size of the piece it names, and a piece
+    /// counted above small_pieces()' limit needs no search there.
+    static constexpr std::uint32_t no_piece = ~std::uint32_t{0};
+    std::vector<std::array<std::uint32_t, 2>> piece_of_;
+    std::vector<std::uint32_t> piece_size_;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> saved_piece_sizes_; ///< (piece, count) before the edit
+    void count_pieces();
+    /// Whether the piece of `tissue` at v is counted above `limit` triangles.
+    bool counted_above(std::uint32_t v, Label tissue, std::size_t limit) const;
+    /// Adds `delta` to the counts of t's pieces, saved for undo.
+    void recount(std::uint32_t t, int delta);
     std::vector<FanBlade> blades_;                                    ///< fans_ok()
     std::vector<std::uint32_t> piece_vertices_, piece_triangles_;     ///< small_pieces()
     std::vector<Label> piece_tissues_;                                ///< small_pieces()

@@ -150,26 +150,36 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         if (std::none_of(pieces_before.begin(), pieces_before.end(),
                          [&](const SmallPiece& b) { return b.tissue == p.tissue; }))
             pieces_before.push_back(p);
-    const double sectors_before = std::min(smallest_sector_deg(stars_[v]), smallest_sector_deg(stars_[w]));
-    begin_edit();
-    save_star(v);
-    save_star(w);
-    for (const std::uint32_t t : dying)
-        for (const std::uint32_t x : triangles_[t])
-            if (x != v && x != w) save_star(x);
-    for (const std::uint32_t t : dying) {
-        save(t);
-        alive_[t] = 0;
-        for (const std::uint32_t x : triangles_[t])
-            if (x != v) remove_from_star(x, t);
-    }
-    for (const std::uint32_t t : changed) {
-        save(t);
-        for (std::uint32_t& x : triangles_[t])
-            if (x == v) x = w;
-        stars_[w].push_back(t);
-    }
-    stars_[v].clear();
+    const auto apply = [&] {
+        begin_edit();
+        save_star(v);
+        save_star(w);
+        for (const std::uint32_t t : dying)
+            for (const std::uint32_t x : triangles_[t])
+                if (x != v && x != w) save_star(x);
+        for (const std::uint32_t t : dying) {
+            save(t);
+            alive_[t] = 0;
+            recount(t, -1);
+            for (const std::uint32_t x : triangles_[t])
+                if (x != v) remove_from_star(x, t);
+        }
+        for (const std::uint32_t t : changed) {
+            save(t);
+            for (std::uint32_t& x : triangles_[t])
+                if (x == v) x = w;
+            stars_[w].push_back(t);
+        }
+        stars_[v].clear();
+    };
+    apply();
+    // The sectors before the collapse only when those after fall under the limit: undone, measured, made again.
+    const auto sectors_before = [&] {
+        undo();
+        const double before = std::min(smallest_sector_deg(stars_[v]), smallest_sector_deg(stars_[w]));
+        apply();
+        return before;
+    };
     if (!sectors_ok(stars_[w], sectors_before) || !surroundings_ok(changed, prior)) {
         undo();
         return false;
@@ -199,7 +209,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
     for (const std::uint32_t t : stars_[v])
         if (has(triangles_[t], w)) parents.push_back(t);
     if (parents.size() < 2) return std::nullopt;
-    const double sectors_before = smallest_sector_deg(parents);
+    const double sectors_before = smallest_sector_deg(parents); // the parents' triangles change: measured now
     begin_edit();
     if (positions_.size() >= std::numeric_limits<std::uint32_t>::max() - 1)
         throw InputError("LocalEditor: over 2^32 vertices");
@@ -230,6 +240,8 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
         remove_from_star(w, t);
         stars_[u].push_back(t);
         const std::uint32_t added = new_triangle(near_w, sides_[t]);
+        piece_of_[added] = piece_of_[t];
+        recount(added, 1);
         changed.push_back(t);
         changed.push_back(added);
         before.emplace_back(t, corners(parent));
@@ -240,7 +252,7 @@ std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32
         undo();
         return std::nullopt;
     }
-    if (!sectors_ok(changed, sectors_before) || !surroundings_ok(changed, before)) {
+    if (!sectors_ok(changed, [&] { return sectors_before; }) || !surroundings_ok(changed, before)) {
         undo();
         return std::nullopt;
     }
@@ -333,7 +345,7 @@ bool LocalEditor::try_flip(std::uint32_t v, std::uint32_t w)
     remove_from_star(w, first);
     stars_[a].push_back(second);
     stars_[b].push_back(first);
-    if (!sectors_ok(changed, sectors_before) || !surroundings_ok(changed, prior)) {
+    if (!sectors_ok(changed, [&] { return sectors_before; }) || !surroundings_ok(changed, prior)) {
         undo();
         return false;
     }
@@ -357,7 +369,6 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
     std::vector<Prior>& before = edit_.prior;
     before.clear();
     for (const std::uint32_t t : stars_[v]) before.emplace_back(t, corners(triangles_[t]));
-    const double sectors_before = smallest_sector_deg(stars_[v]);
     const Vec3 old = positions_[v];
     positions_[v] = p;
     for (const auto& [t, was] : before) {
@@ -381,6 +392,12 @@ bool LocalEditor::try_move(std::uint32_t v, const Vec3& p)
         positions_[v] = old;
         return false;
     }
+    const auto sectors_before = [&] { // only when the sectors after the move fall under the limit
+        positions_[v] = old;
+        const double sectors = smallest_sector_deg(stars_[v]);
+        positions_[v] = p;
+        return sectors;
+    };
     if (!sectors_ok(stars_[v], sectors_before) || !surroundings_ok(stars_[v], before)) {
         positions_[v] = old;
         return false;

@@ -3,6 +3,9 @@
 // to a flat tetrahedron: TetGen's tet inside it had a smallest dihedral angle of 0.012 degrees, and no
 // improvement can mend a tet whose four faces are all interfaces. The usc19-5 head had the same in a CSF speck.
 #include <cmath>
+#include <iostream>
+#include <random>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +90,87 @@ TEST(SmallPieces, APocketBetweenTwoTissuesIsNotFlattened)
     const Shape final_shape = pocket_shape(editor, pocket, any, editor.position(any));
     EXPECT_GE(final_shape.fatness(), 0.02 - 1e-12);
     EXPECT_GT(final_shape.volume, 0);
+    EXPECT_TRUE(surface::check_complex(editor.result()).ok());
+}
+
+/// Per vertex, the triangles with `tissue` on a side reachable from it through shared vertices (0 for vertices
+/// without such a triangle), counted the slow way: a search from each vertex not yet reached.
+std::vector<std::size_t> piece_sizes(const LocalEditor& editor, Label tissue)
+{
+    std::vector<std::size_t> size(editor.vertex_slots(), 0);
+    std::vector<char> reached(editor.vertex_slots(), 0);
+    for (std::uint32_t start = 0; start < editor.vertex_slots(); ++start) {
+        if (reached[start] || !editor.vertex_alive(start)) continue;
+        std::set<std::uint32_t> triangles;
+        std::vector<std::uint32_t> piece{start}, next{start};
+        reached[start] = 1;
+        while (!next.empty()) {
+            const std::uint32_t x = next.back();
+            next.pop_back();
+            for (const std::uint32_t t : editor.star(x)) {
+                if (editor.side(t).from != tissue && editor.side(t).to != tissue) continue;
+                if (!triangles.insert(t).second) continue;
+                for (const std::uint32_t y : editor.triangle(t))
+                    if (!reached[y]) reached[y] = 1, piece.push_back(y), next.push_back(y);
+            }
+        }
+        for (const std::uint32_t x : piece) size[x] = triangles.size();
+    }
+    return size;
+}
+
+// small_pieces() trusts a count of each piece's triangles above its limit instead of searching; the counts must
+// stay at most the true sizes through any accepted edit, or a small piece would be let through unmeasured.
+TEST(SmallPieces, CountedPiecesNeverExceedTheirTrianglesThroughEdits)
+{
+    // A slab of tissue 1 over tissue 2, specks of tissues 3 and 4 in it, two of them across the interface.
+    LabelImage image({10, 10, 10}, {1, 1, 1});
+    for (std::size_t k = 0; k < 10; ++k)
+        for (std::size_t j = 0; j < 10; ++j)
+            for (std::size_t i = 0; i < 10; ++i) image.at(i, j, k) = k >= 5 ? 1 : 2;
+    image.at(2, 2, 4) = image.at(2, 2, 5) = 3;
+    image.at(6, 3, 7) = 3;
+    image.at(3, 7, 2) = image.at(4, 7, 2) = 4;
+    image.at(7, 7, 4) = image.at(7, 7, 5) = image.at(7, 6, 5) = 4;
+    const InterfaceComplex complex = surface::extract_surface_nets(image);
+    ASSERT_TRUE(surface::check_complex(complex).ok());
+    LocalEditor editor(complex, {.min_angle_deg = 1, .max_tilt_deg = 80, .min_gap_mm = 0}, 2.0);
+    std::mt19937 random(7);
+    std::size_t accepted = 0, checked_small = 0, checked_big = 0;
+    for (int round = 0; round < 1500; ++round) {
+        std::vector<std::uint32_t> alive;
+        for (std::uint32_t v = 0; v < editor.vertex_slots(); ++v)
+            if (editor.vertex_alive(v)) alive.push_back(v);
+        const std::uint32_t v = alive[random() % alive.size()];
+        const Triangle& first = editor.triangle(editor.star(v)[random() % editor.star(v).size()]);
+        const std::uint32_t w = first[0] == v ? first[1] : first[0];
+        const Vec3 middle = 0.5 * (editor.position(v) + editor.position(w));
+        bool done = false;
+        switch (random() % 4) {
+        case 0: done = editor.try_collapse(v, w); break;
+        case 1: done = editor.try_split(v, w, middle).has_value(); break;
+        case 2: done = editor.try_flip(v, w); break;
+        default: done = editor.try_move(v, editor.position(v) + 0.3 * (middle - editor.position(v))); break;
+        }
+        if (!done) continue;
+        ++accepted;
+        if (round % 10 != 0) continue;
+        for (const Label tissue : {Label{1}, Label{2}, Label{3}, Label{4}}) {
+            const std::vector<std::size_t> real = piece_sizes(editor, tissue);
+            for (std::uint32_t x = 0; x < editor.vertex_slots(); ++x) {
+                if (!editor.vertex_alive(x)) continue;
+                const std::size_t counted = editor.counted_piece(x, tissue);
+                if (counted == 0) continue;
+                ASSERT_LE(counted, real[x]) << "vertex " << x << ", tissue " << tissue << ", round " << round;
+                ++(real[x] <= 24 ? checked_small : checked_big);
+            }
+        }
+    }
+    std::cout << "[ figures  ] " << accepted << " edits accepted; counts checked at " << checked_small
+              << " vertices of small pieces and " << checked_big << " of large ones\n";
+    EXPECT_GT(accepted, 300u);
+    EXPECT_GT(checked_small, 0u);
+    EXPECT_GT(checked_big, 0u);
     EXPECT_TRUE(surface::check_complex(editor.result()).ok());
 }
 
