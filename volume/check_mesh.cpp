@@ -65,25 +65,35 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     double ratio_sum = 0;
     std::vector<float> smallest(mesh.tets.size());
     report.quality.min_dihedral_deg = 180;
+    // Each tet's volume, longest edge and shape side by side; summed and reported in order below.
+    std::vector<double> volumes(mesh.tets.size()), longest(mesh.tets.size());
+    std::vector<TetShape> shapes(mesh.tets.size());
+#pragma omp parallel for schedule(static)
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+        volumes[t] = signed_volume(mesh, t);
+        longest[t] = longest_edge(mesh, mesh.tets[t]);
+        shapes[t] = tet_shape(mesh, t);
+    }
+    const auto tissue_name = [&](Label label) {
+        return mesh.names.count(label) ? mesh.names.at(label) : std::to_string(label);
+    };
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
         for (const std::uint32_t v : tet) used[v] = true;
-        const double volume = signed_volume(mesh, t);
+        const double volume = volumes[t];
         TissueMeshStats& tissue = report.tissues[mesh.tet_labels[t]];
         ++tissue.tets, tissue.volume_mm3 += volume;
-        const std::string tissue_name = mesh.names.count(mesh.tet_labels[t]) ? mesh.names.at(mesh.tet_labels[t])
-                                                                             : std::to_string(mesh.tet_labels[t]);
         if (!(volume > 0)) {
             ++report.inverted_tets;
-            note(report, concat("tetrahedron ", t, " (", tissue_name, ") has volume ", volume, " mm^3 at ",
-                                where(mesh.vertices[tet[0]])));
-        } else if (const double edge = longest_edge(mesh, tet); volume < flat_volume_ratio * edge * edge * edge) {
+            note(report, concat("tetrahedron ", t, " (", tissue_name(mesh.tet_labels[t]), ") has volume ", volume,
+                                " mm^3 at ", where(mesh.vertices[tet[0]])));
+        } else if (const double edge = longest[t]; volume < flat_volume_ratio * edge * edge * edge) {
             ++report.flat_tets;
-            note(report,
-                 concat("tetrahedron ", t, " (", tissue_name, ") is flat: volume ", volume, " mm^3 with edges up to ",
-                        edge, " mm at ", where(mesh.vertices[tet[0]]), "; its four nodes are coplanar"));
+            note(report, concat("tetrahedron ", t, " (", tissue_name(mesh.tet_labels[t]), ") is flat: volume ", volume,
+                                " mm^3 with edges up to ", edge, " mm at ", where(mesh.vertices[tet[0]]),
+                                "; its four nodes are coplanar"));
         }
-        const TetShape shape = tet_shape(mesh, t);
+        const TetShape& shape = shapes[t];
         smallest[t] = static_cast<float>(shape.min_dihedral_deg);
         report.quality.min_dihedral_deg = std::min(report.quality.min_dihedral_deg, shape.min_dihedral_deg);
         report.quality.max_dihedral_deg = std::max(report.quality.max_dihedral_deg, shape.max_dihedral_deg);
