@@ -173,13 +173,6 @@ LocalEditor::Box LocalEditor::box_of(const Triangle& t) const
     return b;
 }
 
-bool LocalEditor::overlap(const Box& a, const Box& b)
-{
-    for (int axis = 0; axis < 3; ++axis)
-        if (a.high[axis] < b.low[axis] || b.high[axis] < a.low[axis]) return false;
-    return true;
-}
-
 std::uint16_t LocalEditor::cell_at(double x, int axis) const
 {
     const double c = std::floor((x - grid_origin_[axis]) / cell_mm_);

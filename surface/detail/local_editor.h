@@ -142,7 +142,12 @@ private:
     /// The gap rule for changed triangle t and triangle `other` sharing no vertex with it.
     bool gap_ok(std::uint32_t t, const std::vector<Prior>& before, std::uint32_t other) const;
     Box box_of(const Triangle& t) const;
-    static bool overlap(const Box& a, const Box& b);
+    /// Whether closed boxes a and b overlap (inline: asked for every neighbour of every changed triangle).
+    static bool overlap(const Box& a, const Box& b)
+    {
+        return !(a.high[0] < b.low[0] || b.high[0] < a.low[0] || a.high[1] < b.low[1] || b.high[1] < a.low[1] ||
+                 a.high[2] < b.low[2] || b.high[2] < a.low[2]);
+    }
     std::uint16_t cell_at(double x, int axis) const;
     bool fans_ok(const std::vector<std::uint32_t>& changed);
     /// The smallest angle (degrees) between neighbouring triangles `blades` around edge ab, the background's
