@@ -9,7 +9,7 @@
 #include <omp.h>
 
 #include "core/error.h"
-#include "fem/detail/incidence.h"
+#include "core/node_tets.h"
 
 namespace tissuemesh::fem {
 
@@ -90,7 +90,7 @@ struct RowScratch {
 
 // Row `node` of K into `scratch.entries`, sorted by column: the sum of its tets' element rows, in
 // increasing tet order for every entry (so the bytes do not depend on how rows are shared among threads).
-void gather_row(const TetMesh& mesh, const detail::NodeTets& incidence, const std::vector<ElementMatrix>& elements,
+void gather_row(const TetMesh& mesh, const NodeTets& incidence, const std::vector<ElementMatrix>& elements,
                 std::size_t node, RowScratch& scratch)
 {
     scratch.entries.clear();
@@ -118,7 +118,7 @@ SparseMatrix assemble_stiffness(const TetMesh& mesh, const Conductivities& condu
 {
     validate_indices(mesh, "mesh");
     const std::vector<ElementMatrix> elements = element_matrices(mesh, conductivities);
-    const detail::NodeTets incidence = detail::node_tets(mesh);
+    const NodeTets incidence = node_tets(mesh);
     const auto n = static_cast<std::int64_t>(mesh.vertex_count());
     SparseMatrix matrix(static_cast<int>(n), static_cast<int>(n));
     std::vector<std::int64_t> row_start(static_cast<std::size_t>(n) + 1, 0);

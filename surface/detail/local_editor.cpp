@@ -80,11 +80,6 @@ std::size_t LocalEditor::counted_piece(std::uint32_t v, Label tissue) const
     return 0;
 }
 
-bool LocalEditor::counted_above(std::uint32_t v, Label tissue, std::size_t limit) const
-{
-    return counted_piece(v, tissue) > limit;
-}
-
 void LocalEditor::recount(std::uint32_t t, int delta)
 {
     for (const std::uint32_t piece : piece_of_[t])
@@ -404,7 +399,7 @@ bool LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, st
             if (tissue == background_ || std::find(seen.begin(), seen.end(), tissue) != seen.end()) continue;
             seen.push_back(tissue);
             if (std::find(known.begin(), known.end(), tissue) != known.end()) continue;
-            if (counted_above(v, tissue, limit)) continue; // more than limit: clear of the margin
+            if (counted_piece(v, tissue) > limit) continue; // more than limit: clear of the margin
             // Breadth first through shared vertices over the triangles with `tissue` on a side, at most `limit`.
             ++query_;
             vertices.assign(1, v), triangles.clear();

@@ -233,8 +233,6 @@ private:
     std::vector<std::uint32_t> piece_size_;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> saved_piece_sizes_; ///< (piece, count) before the edit
     void count_pieces();
-    /// Whether the piece of `tissue` at v is counted above `limit` triangles.
-    bool counted_above(std::uint32_t v, Label tissue, std::size_t limit) const;
     /// Adds `delta` to the counts of t's pieces, saved for undo.
     void recount(std::uint32_t t, int delta);
     std::vector<FanBlade> blades_;                                    ///< fans_ok()

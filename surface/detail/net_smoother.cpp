@@ -91,17 +91,7 @@ private:
     void build_topology()
     {
         const std::size_t vertex_count = net_.positions.size();
-        // The triangles of each vertex, in triangle order (a counting sort).
-        stars_.offsets.assign(vertex_count + 1, 0);
-        for (const Triangle& t : net_.triangles)
-            for (const std::uint32_t v : t) ++stars_.offsets[v + 1];
-        for (std::size_t v = 0; v < vertex_count; ++v) stars_.offsets[v + 1] += stars_.offsets[v];
-        stars_.items.resize(stars_.offsets.back());
-        {
-            std::vector<std::uint32_t> fill(stars_.offsets.begin(), stars_.offsets.end() - 1);
-            for (std::size_t t = 0; t < net_.triangles.size(); ++t)
-                for (const std::uint32_t v : net_.triangles[t]) stars_.items[fill[v]++] = static_cast<std::uint32_t>(t);
-        }
+        stars_ = star_rows(net_.triangles, vertex_count);
         sheets_ = build_star_sheets(net_.triangles, stars_);
         movable_.assign(vertex_count, 0);
         tissues_.assign(vertex_count, {});
@@ -158,20 +148,6 @@ private:
         for (const auto& [w, count] : around)
             if (junction == 0 || count >= 3) links.push_back(w), ++link_count;
         return true;
-    }
-
-    /// Rows from the number of items of each row and their items, block after block of rows.
-    static Rows join_rows(const std::vector<std::uint32_t>& count,
-                          const std::vector<std::vector<std::uint32_t>>& blocks)
-    {
-        Rows rows;
-        rows.offsets.resize(count.size() + 1);
-        rows.offsets[0] = 0;
-        for (std::size_t r = 0; r < count.size(); ++r) rows.offsets[r + 1] = rows.offsets[r] + count[r];
-        rows.items.reserve(rows.offsets.back());
-        for (const std::vector<std::uint32_t>& items : blocks)
-            rows.items.insert(rows.items.end(), items.begin(), items.end());
-        return rows;
     }
 
     /// Per movable vertex and tissue of its star, the corners of its cube (voxels) holding that tissue.

@@ -145,15 +145,6 @@ bool order_sheets(std::uint32_t v, std::span<const std::uint32_t> star, const st
     return true;
 }
 
-StarSheets build_star_sheets(const std::vector<Triangle>& triangles, std::size_t vertex_count)
-{
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> incidences;
-    incidences.reserve(3 * triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t)
-        for (const std::uint32_t v : triangles[t]) incidences.emplace_back(v, static_cast<std::uint32_t>(t));
-    return build_star_sheets(triangles, group_rows(vertex_count, incidences));
-}
-
 StarSheets build_star_sheets(const std::vector<Triangle>& triangles, const Rows& stars)
 {
     // Each vertex's ordered star takes the place of its star; its sheet starts go to a list per block of
@@ -193,12 +184,7 @@ StarSheets build_star_sheets(const std::vector<Triangle>& triangles, const Rows&
             }
         }
     }
-    out.sheets.offsets.resize(vertex_count + 1);
-    out.sheets.offsets[0] = 0;
-    for (std::size_t v = 0; v < vertex_count; ++v) out.sheets.offsets[v + 1] = out.sheets.offsets[v] + sheet_count[v];
-    out.sheets.items.reserve(out.sheets.offsets.back());
-    for (const std::vector<std::uint32_t>& starts : block_starts)
-        out.sheets.items.insert(out.sheets.items.end(), starts.begin(), starts.end());
+    out.sheets = join_rows(sheet_count, block_starts);
     return out;
 }
 

@@ -31,11 +31,8 @@ struct StarSheets {
 bool order_sheets(std::uint32_t v, std::span<const std::uint32_t> star, const std::vector<Triangle>& triangles,
                   std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& starts, std::uint32_t& closed_bits);
 
-/// Builds the sheets of every vertex of `triangles` (indices below `vertex_count`).
-StarSheets build_star_sheets(const std::vector<Triangle>& triangles, std::size_t vertex_count);
-
-/// The same from the triangles around each vertex (`stars`, one row per vertex), side by side (OpenMP); the
-/// result does not depend on the thread count.
+/// Builds the sheets of every vertex from the triangles around it (`stars`, one row per vertex: star_rows()),
+/// side by side (OpenMP); the result does not depend on the thread count.
 StarSheets build_star_sheets(const std::vector<Triangle>& triangles, const Rows& stars);
 
 /// Whether triangles a and b meet other than at the vertices and edge they share by index: boxes, then the

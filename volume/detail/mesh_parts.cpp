@@ -129,17 +129,6 @@ Cut cut_across(const TetMesh& mesh, std::size_t count)
     return cut;
 }
 
-TetsAtNodes::TetsAtNodes(const TetMesh& mesh)
-    : mesh_(mesh), start_(mesh.vertices.size() + 1, 0), tets_(4 * mesh.tets.size())
-{
-    for (const Tet& tet : mesh.tets)
-        for (const std::uint32_t v : tet) ++start_[v + 1];
-    std::partial_sum(start_.begin(), start_.end(), start_.begin());
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::uint32_t t = 0; t < mesh.tets.size(); ++t)
-        for (const std::uint32_t v : mesh.tets[t]) tets_[fill[v]++] = t;
-}
-
 std::vector<char> TetsAtNodes::around(const std::vector<char>& seeds, std::size_t rings) const
 {
     std::vector<char> marked(mesh_.vertices.size(), 0), in(mesh_.tets.size(), 0);
@@ -150,7 +139,7 @@ std::vector<char> TetsAtNodes::around(const std::vector<char>& seeds, std::size_
                 for (const std::uint32_t v : mesh_.tets[t]) marked[v] = 1;
         for (std::uint32_t v = 0; v < mesh_.vertices.size(); ++v)
             if (marked[v])
-                for (std::uint32_t i = start_[v]; i < start_[v + 1]; ++i) in[tets_[i]] = 1;
+                for (std::size_t i = at_.offsets[v]; i < at_.offsets[v + 1]; ++i) in[at_.tets[i]] = 1;
     }
     return in;
 }

@@ -11,6 +11,7 @@
 
 #include <optional>
 
+#include "core/node_tets.h"
 #include "core/tet_mesh.h"
 #include "volume/detail/face_map.h"
 
@@ -65,14 +66,14 @@ Cut cut_across(const TetMesh& mesh, std::size_t count);
 /// The tets at each node of a mesh, to find the tets around others (built once for several questions).
 class TetsAtNodes {
 public:
-    explicit TetsAtNodes(const TetMesh& mesh);
+    explicit TetsAtNodes(const TetMesh& mesh) : mesh_(mesh), at_(node_tets(mesh)) {}
     /// The tets flagged in `seeds` (per tet) and every tet within `rings` rings of them (through shared nodes),
     /// flagged per tet.
     std::vector<char> around(const std::vector<char>& seeds, std::size_t rings) const;
 
 private:
     const TetMesh& mesh_;
-    std::vector<std::uint32_t> start_, tets_; ///< compressed rows: the tets of node v are tets_[start_[v]..]
+    NodeTets at_;
 };
 
 /// TetsAtNodes(mesh).around(seeds, rings).

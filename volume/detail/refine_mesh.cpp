@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/node_tets.h"
 #include "core/error.h"
 #include "volume/detail/tetgen_adapter.h"
 
@@ -37,26 +38,6 @@ std::vector<Tet> oriented(const TetgenOutput& out, const std::vector<Vec3>& vert
         tets.push_back(tet);
     }
     return tets;
-}
-
-/// Old tets around each old node (CSR).
-struct NodeTets {
-    std::vector<std::size_t> offsets;
-    std::vector<std::uint32_t> tets;
-};
-
-NodeTets node_tets(const TetMesh& mesh)
-{
-    NodeTets result;
-    result.offsets.assign(mesh.vertices.size() + 1, 0);
-    for (const Tet& tet : mesh.tets)
-        for (const std::uint32_t v : tet) ++result.offsets[v + 1];
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) result.offsets[v + 1] += result.offsets[v];
-    result.tets.resize(result.offsets.back());
-    std::vector<std::size_t> next(result.offsets.begin(), result.offsets.end() - 1);
-    for (std::size_t t = 0; t < mesh.tets.size(); ++t)
-        for (const std::uint32_t v : mesh.tets[t]) result.tets[next[v]++] = static_cast<std::uint32_t>(t);
-    return result;
 }
 
 /// How deep direction `d` from node `v` lies in the corner of old tet `t` at `v`: the smallest of its

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/tet_adjacency.h"
 #include "volume/detail/face_map.h"
 
 namespace tissuemesh::volume::detail {
@@ -60,55 +61,28 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
     for (std::size_t f = 0; f < mesh.faces.size(); ++f)
         if (!face_with(mesh.faces[f][0], mesh.faces[f][1], mesh.faces[f][2]))
             add_face(mesh.faces[f], mesh.face_sides[f], true);
-    // Faces the tissues or the outer boundary imply but the list lacks are kept all the same. The faces of all
-    // tets sorted by their nodes pair up the two sides of each (a sort is faster here than hashing them).
-    struct Side {
-        std::array<std::uint32_t, 3> key;
-        std::uint32_t tet;
-        std::uint8_t corner;
-        bool operator<(const Side& o) const { return key < o.key || (key == o.key && tet < o.tet); }
-    };
-    // In buckets by their lowest node first (a counting sort), then each small bucket sorted: the order of one
-    // full sort, in a third of its time.
-    std::vector<std::uint32_t> bucket(points_.size() + 1, 0);
-    const auto key_of = [&](std::uint32_t t, int i) {
-        std::array<std::uint32_t, 3> key{tets_[t][(i + 1) % 4], tets_[t][(i + 2) % 4], tets_[t][(i + 3) % 4]};
-        std::sort(key.begin(), key.end());
-        return key;
-    };
-    for (std::uint32_t t = 0; t < tets_.size(); ++t)
-        for (int i = 0; i < 4; ++i) ++bucket[key_of(t, i)[0] + 1];
-    for (std::size_t v = 0; v < points_.size(); ++v) bucket[v + 1] += bucket[v];
-    std::vector<Side> sides(4 * tets_.size());
-    {
-        std::vector<std::uint32_t> fill(bucket.begin(), bucket.end() - 1);
-        for (std::uint32_t t = 0; t < tets_.size(); ++t)
-            for (std::uint8_t i = 0; i < 4; ++i) {
-                const std::array<std::uint32_t, 3> key = key_of(t, i);
-                sides[fill[key[0]]++] = {key, t, i};
-            }
-    }
-    for (std::size_t v = 0; v < points_.size(); ++v)
-        std::sort(sides.begin() + bucket[v], sides.begin() + bucket[v + 1]);
-    for (std::size_t k = 0; k < sides.size();) {
-        std::size_t end = k + 1;
-        while (end < sides.size() && sides[end].key == sides[k].key) ++end;
-        if (end - k > 2)
-            throw InputError(concat("mesh: a face of tetrahedron ", sides[k].tet, " is shared by ", end - k,
+    // Faces the tissues or the outer boundary imply but the list lacks are kept all the same: every face of the
+    // tets once (core's face adjacency, ascending by nodes), each of its tets in increasing order.
+    for (const TetAdjacency::Face& face : TetAdjacency(tets_, points_.size()).faces()) {
+        if (face.holders > 2)
+            throw InputError(concat("mesh: a face of tetrahedron ", face.tets[0], " is shared by ", face.holders,
                                     " tetrahedra; the mesh is not conforming (run tm-check-mesh)"));
-        const bool boundary = end - k == 1;
-        for (std::size_t j = k; j < end; ++j) {
-            const std::uint32_t t = sides[j].tet, other = boundary ? t : sides[k + (j == k ? 1 : 0)].tet;
+        const bool boundary = face.holders == 1;
+        for (std::uint32_t j = 0; j < face.holders; ++j) {
+            const std::uint32_t t = face.tets[j], other = boundary ? t : face.tets[1 - j];
             if (!boundary && labels_[other] == labels_[t]) break;
-            const auto& key = sides[j].key;
+            const auto& key = face.vertices;
             if (face_with(key[0], key[1], key[2])) break;
-            // Outward from t: the face opposite its corner turned away from it.
-            const auto& local = local_faces[sides[j].corner];
+            // Outward from t: the face opposite its corner (the node not on the face) turned away from it.
             const Tet& tet = tets_[t];
+            const auto corner = static_cast<std::size_t>(
+                std::find_if(tet.begin(), tet.end(),
+                             [&](std::uint32_t v) { return std::find(key.begin(), key.end(), v) == key.end(); }) -
+                tet.begin());
+            const auto& local = local_faces[corner];
             add_face({tet[local[0]], tet[local[2]], tet[local[1]]}, {labels_[t], boundary ? Label{0} : labels_[other]},
                      false);
         }
-        k = end;
     }
     for (std::uint32_t v = 0; v < points_.size(); ++v) kinds_[v] = compute_kind(v);
     journal_.clear();

@@ -1,12 +1,14 @@
-// Node-to-tet incidence of a tet mesh, for assembly (the face-to-tet one is core/tet_adjacency.h).
+// The tets around every node of a tet mesh (the face-to-tet adjacency is core/tet_adjacency.h): for assembly,
+// refinement's point location and the mesh improver's rings of tets.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "core/tet_mesh.h"
 
-namespace tissuemesh::fem::detail {
+namespace tissuemesh {
 
 /// The tets around every node in compressed rows: the tets of node v are
 /// tets[offsets[v]] .. tets[offsets[v + 1] - 1], in increasing order (#V + 1 offsets, 4 #T tets).
@@ -18,4 +20,4 @@ struct NodeTets {
 /// @pre validate_indices(mesh) passes
 NodeTets node_tets(const TetMesh& mesh);
 
-} // namespace tissuemesh::fem::detail
+} // namespace tissuemesh

@@ -1,9 +1,6 @@
-#include "fem/detail/incidence.h"
+#include "core/node_tets.h"
 
-#include <cstddef>
-#include <cstdint>
-
-namespace tissuemesh::fem::detail {
+namespace tissuemesh {
 
 NodeTets node_tets(const TetMesh& mesh)
 {
@@ -20,4 +17,4 @@ NodeTets node_tets(const TetMesh& mesh)
     return incidence;
 }
 
-} // namespace tissuemesh::fem::detail
+} // namespace tissuemesh
