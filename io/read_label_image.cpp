@@ -86,4 +86,21 @@ LabelImage read_label_image(const fs::path& path, const ReadImageOptions& option
     return image;
 }
 
+Vec3 read_label_image_spacing(const fs::path& path)
+{
+    struct HeaderRead {}; // thrown once the header is checked, to stop before the voxels
+    Vec3 spacing{0, 0, 0};
+    try {
+        // Every reader calls before_voxels; were one not to, the image read in full still has its spacing.
+        return read_label_image(path, {.before_voxels =
+                                           [&](const Dims&, const Vec3& spacing_mm, std::size_t) {
+                                               spacing = spacing_mm;
+                                               throw HeaderRead{};
+                                           }})
+            .spacing_mm();
+    } catch (const HeaderRead&) {
+        return spacing;
+    }
+}
+
 } // namespace tissuemesh::io

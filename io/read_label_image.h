@@ -54,6 +54,10 @@ struct ReadImageOptions {
 /// Every message is one line: "<file>: <problem>; <fix>".
 LabelImage read_label_image(const std::filesystem::path& path, const ReadImageOptions& options = {});
 
+/// The voxel spacing (mm) of a label image, from its header: the checks of read_label_image() up to the voxels,
+/// which are not read (nor decompressed). The same errors as read_label_image() for a bad header.
+Vec3 read_label_image_spacing(const std::filesystem::path& path);
+
 /// Reads a tissue-name table, whatever its format:
 ///   - JSON (a `.json` name, or text starting with '{'): an object mapping label numbers to names
 ///     ({"1": "scalp"}), or the object under its "labels" key (the sidecars in data/samples have that shape);

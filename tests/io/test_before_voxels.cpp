@@ -1,5 +1,6 @@
 // ReadImageOptions::before_voxels: every format calls it once, after the header checks and before any voxel
 // is allocated, with the image's dimensions, spacing and stored bytes per voxel; what it throws ends the read.
+// read_label_image_spacing() reads only that far.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -46,6 +47,18 @@ TEST_P(BeforeVoxels, SeesTheHeaderAndCanRefuseTheImage)
     } catch (const InputError& error) {
         EXPECT_STREQ(error.what(), "too big for this test");
     }
+}
+
+TEST_P(BeforeVoxels, GivesTheSpacingFromTheHeaderAlone)
+{
+    testing::TempDir dir;
+    const std::filesystem::path path = dir / ("image" + GetParam());
+    LabelImage written({5, 4, 3}, {0.5, 1.25, 2.0});
+    written.at(1, 1, 1) = 3;
+    io::write_label_image(written, path);
+    const Vec3 spacing = io::read_label_image_spacing(path);
+    for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(spacing[axis], written.spacing_mm()[axis], 1e-6) << axis;
+    EXPECT_THROW((void)io::read_label_image_spacing(dir / "missing.nii.gz"), IoError);
 }
 
 std::string format_name(const ::testing::TestParamInfo<std::string>& format)
