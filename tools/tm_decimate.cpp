@@ -1,7 +1,9 @@
 // tm-decimate: fewer triangles where the surface is flat (or to a target size), never an invalid complex.
+#include <algorithm>
 #include <string>
 
 #include "core/error.h"
+#include "io/read_label_image.h"
 #include "surface/decimate.h"
 #include "tools/report_json.h"
 #include "tools/run_tool.h"
@@ -12,7 +14,8 @@ using namespace tissuemesh;
 int main(int argc, char** argv)
 {
     bool check_input = false;
-    std::string input, output, mode = "curvature";
+    std::string input, output, mode = "curvature", image;
+    double distance_voxels = 0, voxel_mm = 0;
     surface::DecimateOptions options;
     return tools::run_tool(
         argc, argv,
@@ -25,6 +28,7 @@ int main(int argc, char** argv)
          "(both are checked; the .ply output carries the stamp of its passed check, so the next of these tools does "
          "not check it again).",
          "Examples:\n  tm-decimate -i smooth.ply -o coarse.ply --max-distance-mm 0.5\n"
+         "  tm-decimate -i interfaces.ply -o coarse.ply --max-distance-voxels 0.25 --image clean.nii.gz\n"
          "  tm-decimate -i smooth.ply -o coarse.ply --target-triangles 200000\n"
          "  tm-decimate -i smooth.ply -o sized.ply --mode size --target-edge-mm 3\n"},
         [&](CLI::App& app) {
@@ -35,8 +39,19 @@ int main(int argc, char** argv)
             app.add_option("--target-triangles", options.target_triangles, "Stop at this many (0: only the limits)")
                 ->check(CLI::NonNegativeNumber)
                 ->capture_default_str();
-            app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
-                ->capture_default_str();
+            CLI::Option* in_mm =
+                app.add_option("--max-distance-mm", options.max_distance_mm, "Bound on input vertex to output distance")
+                    ->capture_default_str();
+            app.add_option("--max-distance-voxels", distance_voxels,
+                           "The same bound in voxels of --image (its smallest spacing), instead of --max-distance-mm. "
+                           "0.25 is the workflow's: on the 1 mm usc19-5 head it raises the CSF's Dice against the "
+                           "voxels after tm-tetra from 0.951 (with 0.5 mm) to 0.963, for 8% more tets")
+                ->check(CLI::PositiveNumber)
+                ->excludes(in_mm);
+            app.add_option("--image", image,
+                           "With --max-distance-voxels: the label image the surfaces come from (only its header "
+                           "is read)")
+                ->check(CLI::ExistingFile);
             app.add_option("--max-edge-mm", options.max_edge_mm,
                            "Curvature mode only: no collapse may leave an edge longer than this (0: no bound); before "
                            "tm-remesh --edge-mm L, 4/3 L saves both steps work")
@@ -70,6 +85,20 @@ int main(int argc, char** argv)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
+            if (distance_voxels > 0) {
+                if (image.empty())
+                    throw InputError("--max-distance-voxels needs the label image the surfaces come from: give "
+                                     "--image clean.nii.gz (or the bound in mm with --max-distance-mm)");
+                const Vec3 spacing = io::read_label_image_spacing(image);
+                voxel_mm = std::min({spacing[0], spacing[1], spacing[2]});
+                options.max_distance_mm = distance_voxels * voxel_mm;
+                ctx.log(concat("distance bound ", format_mm(options.max_distance_mm, 3), " mm: ", distance_voxels,
+                               " of the ", format_mm(voxel_mm, 3), " mm voxels of ", image));
+            } else if (!image.empty()) {
+                throw InputError(concat("--image ", image,
+                                        " is read only for --max-distance-voxels; give that "
+                                        "bound, or leave --image out"));
+            }
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
             tools::require_complex_output(output);
             tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
@@ -86,6 +115,8 @@ int main(int argc, char** argv)
                                 {"output", output},
                                 {"mode", mode},
                                 {"max_distance_bound_mm", options.max_distance_mm},
+                                {"max_distance_voxels", distance_voxels},
+                                {"voxel_mm", voxel_mm},
                                 {"max_edge_mm", options.max_edge_mm},
                                 {"edge_per_thickness", options.edge_per_thickness},
                                 {"max_normal_change_deg", options.max_normal_change_deg},

@@ -66,6 +66,45 @@ TEST(SmoothDecimateCli, ChainKeepsTheComplexFitAndReportsCounts)
     EXPECT_EQ(sized.exit_code, 0) << sized.err;
 }
 
+TEST(SmoothDecimateCli, BoundsTheDistanceInVoxelsOfTheImage)
+{
+    const TempDir dir;
+    const Inputs in = write_inputs(dir); // 6 mm voxels
+    const auto voxels =
+        run_cli("tm-decimate", {"-i", in.surface, "-o", (dir / "v.ply").string(), "--max-distance-voxels", "0.25",
+                                "--image", in.image, "--json", (dir / "v.json").string()});
+    ASSERT_EQ(voxels.exit_code, 0) << voxels.err;
+    const nlohmann::json v = testing::read_json((dir / "v.json").string());
+    EXPECT_DOUBLE_EQ(v.at("voxel_mm").get<double>(), 6.0);
+    EXPECT_DOUBLE_EQ(v.at("max_distance_bound_mm").get<double>(), 1.5);
+    EXPECT_LE(v.at("max_distance_mm").get<double>(), 1.5);
+    EXPECT_LT(v.at("triangles_after").get<std::size_t>(), v.at("triangles_before").get<std::size_t>());
+    // The same decimation as the bound in mm.
+    const auto mm =
+        run_cli("tm-decimate", {"-i", in.surface, "-o", (dir / "m.ply").string(), "--max-distance-mm", "1.5"});
+    ASSERT_EQ(mm.exit_code, 0) << mm.err;
+    const InterfaceComplex by_voxels = io::read_surface((dir / "v.ply").string());
+    const InterfaceComplex by_mm = io::read_surface((dir / "m.ply").string());
+    EXPECT_EQ(by_voxels.vertices, by_mm.vertices);
+    EXPECT_EQ(by_voxels.triangles, by_mm.triangles);
+    // Refused, nothing written: no image; an image for nothing; both bounds; an image that is no image.
+    const std::string out = (dir / "out.ply").string();
+    const auto no_image = run_cli("tm-decimate", {"-i", in.surface, "-o", out, "--max-distance-voxels", "0.25"});
+    EXPECT_EQ(no_image.exit_code, 2);
+    EXPECT_NE(no_image.err.find("give --image"), std::string::npos) << no_image.err;
+    const auto idle_image = run_cli("tm-decimate", {"-i", in.surface, "-o", out, "--image", in.image});
+    EXPECT_EQ(idle_image.exit_code, 2);
+    EXPECT_NE(idle_image.err.find("only for --max-distance-voxels"), std::string::npos) << idle_image.err;
+    const auto both = run_cli("tm-decimate", {"-i", in.surface, "-o", out, "--max-distance-voxels", "0.25",
+                                              "--max-distance-mm", "1", "--image", in.image});
+    EXPECT_EQ(both.exit_code, 2);
+    const auto not_image =
+        run_cli("tm-decimate", {"-i", in.surface, "-o", out, "--max-distance-voxels", "0.25", "--image", in.surface});
+    EXPECT_EQ(not_image.exit_code, 2);
+    EXPECT_NE(not_image.err.find("j.ply"), std::string::npos) << not_image.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(SmoothDecimateCli, RefusesUnfitInputBadOptionsAndLossyFormats)
 {
     const TempDir dir;
