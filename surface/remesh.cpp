@@ -13,6 +13,7 @@
 #include "surface/detail/mesh_measures.h"
 #include "surface/detail/remesh_reference.h"
 #include "surface/detail/slabs.h"
+#include "surface/detail/voxel_sides.h"
 
 namespace tissuemesh::surface {
 namespace {
@@ -59,10 +60,12 @@ double smallest_angle_deg(const InterfaceComplex& complex)
 class Remesher {
 public:
     /// `reference`: the input surface, to project onto; `fence`: where edits may happen (nullopt: anywhere).
+    /// `sides`: the voxels' sides to keep (RemeshOptions::voxel_image), or nullptr.
     Remesher(InterfaceComplex&& complex, const Reference& reference, const RemeshOptions& options, double cell_mm,
-             RemeshReport& report, const std::optional<detail::EditFence>& fence = std::nullopt)
+             RemeshReport& report, const detail::VoxelSides* sides,
+             const std::optional<detail::EditFence>& fence = std::nullopt)
         : options_(options), report_(report), editor_(std::move(complex), detail::limits_of(options), cell_mm),
-          reference_(reference)
+          reference_(reference), sides_(sides)
     {
         editor_.set_fence(fence);
     }
@@ -178,9 +181,7 @@ private:
             const auto [a, b] = e;
             if (!editor_.vertex_alive(a) || !editor_.vertex_alive(b) || editor_.edge_multiplicity(a, b) == 0) continue;
             if (length(e) >= 0.8 * target(a, b)) continue;
-            if ((may_collapse(a, b) && editor_.try_collapse(a, b)) ||
-                (may_collapse(b, a) && editor_.try_collapse(b, a)))
-                ++report_.collapses;
+            if (collapse_into(a, b) || collapse_into(b, a)) ++report_.collapses;
             else ++report_.refused;
         }
     }
@@ -210,9 +211,10 @@ private:
                     return false;
             return true;
         };
-        const auto collapse_either = [&](std::uint32_t a, std::uint32_t b) {
-            return (may(a, b) && editor_.try_collapse(a, b)) || (may(b, a) && editor_.try_collapse(b, a));
+        const auto collapse = [&](std::uint32_t v, std::uint32_t w) {
+            return may(v, w) && !carries_a_centre(v, editor_.position(w), w) && editor_.try_collapse(v, w);
         };
+        const auto collapse_either = [&](std::uint32_t a, std::uint32_t b) { return collapse(a, b) || collapse(b, a); };
         for (const auto& [angle, t] : bad) {
             if (!editor_.triangle_alive(t)) continue;
             const Triangle tri = editor_.triangle(t);
@@ -230,9 +232,8 @@ private:
             bool fixed = false;
             if (largest > 2.0944) { // 120 degrees: a cap
                 const std::uint32_t x = tri[(apex + 1) % 3], y = tri[(apex + 2) % 3];
-                fixed = (editor_.edge_multiplicity(x, y) == 2 && editor_.try_flip(x, y)) ||
-                        (may(tri[apex], x) && editor_.try_collapse(tri[apex], x)) ||
-                        (may(tri[apex], y) && editor_.try_collapse(tri[apex], y));
+                fixed = (editor_.edge_multiplicity(x, y) == 2 && editor_.try_flip(x, y)) || collapse(tri[apex], x) ||
+                        collapse(tri[apex], y);
                 if (fixed && editor_.vertex_alive(tri[apex])) ++report_.flips;
                 else if (fixed) ++report_.collapses;
             } else if (lengths[shortest] < 0.5 * std::max({lengths[0], lengths[1], lengths[2]})) {
@@ -311,6 +312,33 @@ private:
         }
     }
 
+    /// Whether moving patch vertex v to p, or collapsing it into w (at p, w's position), would carry the centre of a
+    /// voxel next to another label across the surface (counted as refused). Junction vertices are not asked: their
+    /// stars hold several patches.
+    bool carries_a_centre(std::uint32_t v, const Vec3& p, std::optional<std::uint32_t> w = std::nullopt)
+    {
+        if (sides_ == nullptr || editor_.kind(v) != VertexKind::patch) return false;
+        before_.clear(), after_.clear();
+        for (const std::uint32_t t : editor_.star(v)) {
+            const Triangle& tri = editor_.triangle(t);
+            TriangleCorners c = editor_.corners(t);
+            before_.push_back(c);
+            if (w && std::find(tri.begin(), tri.end(), *w) != tri.end()) continue; // dies with the collapse
+            for (int k = 0; k < 3; ++k)
+                if (tri[k] == v) c[k] = p;
+            after_.push_back(c);
+        }
+        if (!sides_->carries_a_centre(before_, after_)) return false;
+        ++report_.refused_by_voxels;
+        return true;
+    }
+
+    /// Collapses v into w when the length rule, the voxels' sides and the editor allow it.
+    bool collapse_into(std::uint32_t v, std::uint32_t w)
+    {
+        return may_collapse(v, w) && !carries_a_centre(v, editor_.position(w), w) && editor_.try_collapse(v, w);
+    }
+
     /// Area-weighted normal of v's star.
     Vec3 normal_at(std::uint32_t v) const
     {
@@ -348,6 +376,7 @@ private:
             // changes its triangles, and judging it costs as much as any other (1 mm usc19-5 head: 950 k -> 730 k
             // moves, remeshing 27.7 -> 25.2 s, the same smallest angle, sector and distance to the input).
             if (distance(p, target_point) < 0.02 * edge) continue;
+            if (carries_a_centre(v, target_point)) continue;
             if (editor_.try_move(v, target_point)) ++report_.moves;
             else ++report_.refused;
         }
@@ -357,7 +386,9 @@ private:
     RemeshReport& report_;
     LocalEditor editor_;
     const Reference& reference_;
+    const detail::VoxelSides* sides_;
     mutable std::vector<LocalEditor::RingEntry> ring_; ///< scratch
+    std::vector<TriangleCorners> before_, after_;      ///< scratch of carries_a_centre()
 };
 
 /// Largest distance from a vertex of `result` to the input (patch vertices to their patch, others to any
@@ -388,13 +419,13 @@ std::size_t slab_count(const InterfaceComplex& complex, const RemeshOptions& opt
 /// more than the gap: slabs.h), and puts the whole together. Independent of the thread count.
 InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector<Slab>& slabs,
                               const std::vector<char>& run, const Reference& reference, const RemeshOptions& options,
-                              double cell_mm, RemeshReport& report)
+                              double cell_mm, const detail::VoxelSides* sides, RemeshReport& report)
 {
     std::vector<detail::EditedSlab> edited(slabs.size());
     for (std::size_t k = 0; k < slabs.size(); ++k) edited[k].slab = slabs[k];
     std::vector<RemeshReport> reports(slabs.size());
     detail::edit_slabs(complex, slabs, run, [&](std::size_t k, detail::SlabPiece& piece) {
-        Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k],
+        Remesher remesher(std::move(piece.complex), reference, options, cell_mm, reports[k], sides,
                           slabs[k].fence(options.min_gap_mm));
         remesher.run({});
         edited[k].edited = remesher.editor().snapshot();
@@ -406,6 +437,7 @@ InterfaceComplex remesh_slabs(const InterfaceComplex& complex, const std::vector
         report.flips += part.flips;
         report.moves += part.moves;
         report.refused += part.refused;
+        report.refused_by_voxels += part.refused_by_voxels;
     }
     return detail::merge_slabs(complex, edited);
 }
@@ -472,6 +504,9 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
          .edges_per_mm = options.edge_per_thickness,
          .min_edge_mm = options.min_edge_mm > 0 ? options.min_edge_mm : largest_target(options) / 3});
     report.thin_triangles = reference.sizing().thin_triangles();
+    std::optional<detail::VoxelSides> sides;
+    if (options.voxel_image != nullptr) sides.emplace(*options.voxel_image);
+    const detail::VoxelSides* sides_of_voxels = sides ? &*sides : nullptr;
     const auto began = std::chrono::steady_clock::now();
     const auto seconds = [&] {
         return format_mm(std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count(), 1);
@@ -480,7 +515,7 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     if (count > 1) {
         // Long edges are split first, over the whole: no triangle is then so long that the fences of the
         // slabs hold it back everywhere.
-        Remesher splitter(std::move(complex), reference, options, cell_mm, report);
+        Remesher splitter(std::move(complex), reference, options, cell_mm, report, sides_of_voxels);
         splitter.split_long_edges();
         complex = splitter.editor().result();
         progress.debug("remesh", concat("long edges split over the whole: ", complex.triangle_count(), " triangles (",
@@ -490,7 +525,8 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
     if (slabs.size() > 1) {
         // Slabs side by side, then bands around the cuts between them (slabs.h).
         report.slabs = slabs.size();
-        complex = remesh_slabs(complex, slabs, std::vector<char>(slabs.size(), 1), reference, options, cell_mm, report);
+        complex = remesh_slabs(complex, slabs, std::vector<char>(slabs.size(), 1), reference, options, cell_mm,
+                               sides_of_voxels, report);
         progress.debug("remesh", concat(slabs.size(), " slabs remeshed: ", complex.triangle_count(), " triangles (",
                                         seconds(), " s)"));
         progress.update("remesh", 0.8);
@@ -501,11 +537,11 @@ RemeshReport remesh(InterfaceComplex& complex, const RemeshOptions& options, con
         // slabs were remeshed.
         for (const auto& [band, edit] : seam_bands(slabs, 2.5 * largest_target(options) + options.min_gap_mm))
             bands.push_back(band), run.push_back(edit);
-        complex = remesh_slabs(complex, bands, run, reference, options, cell_mm, report);
+        complex = remesh_slabs(complex, bands, run, reference, options, cell_mm, sides_of_voxels, report);
         progress.debug("remesh", concat("the bands around the cuts remeshed: ", complex.triangle_count(),
                                         " triangles (", seconds(), " s)"));
     } else {
-        Remesher remesher(std::move(complex), reference, options, cell_mm, report);
+        Remesher remesher(std::move(complex), reference, options, cell_mm, report, sides_of_voxels);
         remesher.run(progress);
         complex = remesher.editor().result();
     }

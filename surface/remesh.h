@@ -29,6 +29,10 @@ struct RemeshOptions {
     /// limit). A layer thinner than its edges is filled with flat tets (surface/detail/layer_sizing.h).
     double edge_per_thickness = 0;
     double min_edge_mm = 0; ///< with edge_per_thickness: no target below this (0: a third of target_edge_mm)
+    /// The label image the complex was extracted from (not owned; nullptr: none). With it, no move or collapse of a
+    /// patch vertex carries the centre of a voxel next to another label across the surface
+    /// (surface/detail/voxel_sides.h): the surfaces keep the voxels' tissues where the image has them.
+    const LabelImage* voxel_image = nullptr;
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
     /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
@@ -43,9 +47,10 @@ struct RemeshReport {
     std::size_t collapses = 0;
     std::size_t flips = 0;
     std::size_t moves = 0;
-    std::size_t refused = 0;         ///< edits the validity checks (or the slabs' fences) refused
-    std::size_t slabs = 1;           ///< slabs remeshed side by side (RemeshOptions::slabs)
-    double min_angle_before_deg = 0; ///< smallest triangle angle
+    std::size_t refused = 0;           ///< edits the validity checks (or the slabs' fences) refused
+    std::size_t refused_by_voxels = 0; ///< moves and collapses that would carry a voxel centre across (voxel_image)
+    std::size_t slabs = 1;             ///< slabs remeshed side by side (RemeshOptions::slabs)
+    double min_angle_before_deg = 0;   ///< smallest triangle angle
     double min_angle_after_deg = 0;
     /// Smallest angle between neighbouring triangles around an edge that holds a tissue (edge_fan.h's
     /// smallest_sector_deg()): it bounds the dihedral angles of any tet mesh keeping the complex.

@@ -48,8 +48,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DecimateReport, triangles_before, triangles_a
                                    refused_fold, refused_intersection, refused_gap, refused_wedge, max_distance_mm)
 // Not max_distance_mm: tm-remesh writes it as max_distance_to_input_mm.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RemeshReport, triangles_before, triangles_after, splits, collapses, flips, moves,
-                                   refused, slabs, min_angle_before_deg, min_angle_after_deg, min_sector_before_deg,
-                                   min_sector_after_deg, mean_edge_after_mm, thin_triangles)
+                                   refused, refused_by_voxels, slabs, min_angle_before_deg, min_angle_after_deg,
+                                   min_sector_before_deg, min_sector_after_deg, mean_edge_after_mm, thin_triangles)
 // Not actions: tm-repair writes them with their kinds' names.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RepairReport, triangles_before, triangles_after, merged_vertices, removed_duplicates,
                                    removed_degenerate, collapsed_degenerate, flipped_triangles,

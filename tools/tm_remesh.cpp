@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/read_label_image.h"
 #include "surface/remesh.h"
+#include "tools/memory_limit.h"
 #include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "tools/surface_step.h"
@@ -45,7 +47,8 @@ std::map<std::pair<Label, Label>, double> parse_pair_lengths(const std::vector<s
 int main(int argc, char** argv)
 {
     bool check_input = false;
-    std::string input, output;
+    std::string input, output, image;
+    bool keep_voxel_sides = false;
     std::vector<std::string> pair_lengths;
     surface::RemeshOptions options;
     return tools::run_tool(
@@ -57,7 +60,8 @@ int main(int argc, char** argv)
          "input does (both are checked; the .ply output carries the stamp of its passed check, so the next of these "
          "tools does not check it again): well-shaped triangles for tm-tetra.",
          "Examples:\n  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 2\n"
-         "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --edge-mm-pair csf:skull=1.5,4:3=1.5\n"},
+         "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --edge-mm-pair csf:skull=1.5,4:3=1.5\n"
+         "  tm-remesh -i coarse.ply -o remeshed.ply --edge-mm 3 --keep-voxel-sides --image clean.nii.gz\n"},
         [&](CLI::App& app) {
             tools::add_step_files(app, input, output, check_input, "Remeshed interface complex (.ply or .vtp)");
             app.add_option("--edge-mm", options.target_edge_mm, "Target edge length")->capture_default_str();
@@ -80,6 +84,14 @@ int main(int argc, char** argv)
                            "its edges is filled with flat tets (0: no such limit)")
                 ->check(CLI::Range(0.0, 100.0))
                 ->capture_default_str();
+            app.add_flag("--keep-voxel-sides", keep_voxel_sides,
+                         "No move or collapse carries the centre of a voxel of --image next to another tissue across "
+                         "the surface, so the surfaces keep the voxels' tissues (the workflow's default: on the 1 mm "
+                         "usc19-5 head the CSF's Dice against the voxels after tm-tetra 0.963 -> 0.989, for 12% more "
+                         "tets and 12% more time here)");
+            app.add_option("--image", image,
+                           "With --keep-voxel-sides: the label image the surfaces come from (tm-prep's clean image)")
+                ->check(CLI::ExistingFile);
             app.add_option("--min-edge-mm", options.min_edge_mm,
                            "With --edge-per-thickness: no edge target below this (0: a third of --edge-mm)")
                 ->check(CLI::Range(0.0, 1e6))
@@ -93,6 +105,22 @@ int main(int argc, char** argv)
         },
         [&](tools::ToolContext& ctx) {
             tools::require_complex_output(output);
+            if (keep_voxel_sides && image.empty())
+                throw InputError("--keep-voxel-sides needs the label image the surfaces come from: give --image "
+                                 "clean.nii.gz (or leave --keep-voxel-sides out)");
+            if (!keep_voxel_sides && !image.empty())
+                throw InputError(concat("--image ", image,
+                                        " is read only for --keep-voxel-sides; give that flag, or "
+                                        "leave --image out"));
+            LabelImage voxels;
+            if (keep_voxel_sides) {
+                // The labels (2 bytes a voxel) and a flag per voxel for the ones next to another label.
+                voxels = io::read_label_image(
+                    image, {.before_voxels = tools::image_memory_check(ctx.memory, image, 3,
+                                                                       "crop it (tm-prep --crop-pad 2), or leave "
+                                                                       "--image out")});
+                options.voxel_image = &voxels;
+            }
             tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
             InterfaceComplex& complex = in.complex;
             options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, tools::tissue_table(complex, input));
@@ -109,6 +137,8 @@ int main(int argc, char** argv)
                                 {"input_checked", in.checked},
                                 {"output", output},
                                 {"max_distance_to_input_mm", report.max_distance_mm},
+                                {"keep_voxel_sides", keep_voxel_sides},
+                                {"image", image},
                                 {"seconds_remesh", seconds}});
         });
 }

@@ -1,0 +1,90 @@
+#include "surface/detail/voxel_sides.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace tissuemesh::surface::detail {
+namespace {
+
+/// Whether the ray from o along d meets triangle c (Moller and Trumbore 1997), beyond o.
+bool ray_meets(const Vec3& o, const Vec3& d, const TriangleCorners& c)
+{
+    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (det == 0) return false;
+    const Vec3 s = o - c[0];
+    const double u = dot(s, p) / det;
+    if (u < 0 || u > 1) return false;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(d, q) / det;
+    if (v < 0 || u + v > 1) return false;
+    return dot(e2, q) / det > 0;
+}
+
+/// A direction along no axis, plane diagonal or space diagonal of the grid, so that rays from voxel centres seldom
+/// run along the planes surface nets put vertices on.
+const Vec3 ray_direction = [] {
+    const Vec3 d{0.5773, 0.5801, 0.5749};
+    return (1 / norm(d)) * d;
+}();
+
+} // namespace
+
+VoxelSides::VoxelSides(const LabelImage& image) : image_(image), next_to_other_(image.voxel_count(), 0)
+{
+    const Dims& n = image.dims();
+    const auto at = [&](std::size_t i, std::size_t j, std::size_t k) { return image.at(i, j, k); };
+#pragma omp parallel for schedule(static)
+    for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(n[2]); ++kk) {
+        const auto k = static_cast<std::size_t>(kk);
+        for (std::size_t j = 0; j < n[1]; ++j)
+            for (std::size_t i = 0; i < n[0]; ++i) {
+                const Label l = at(i, j, k);
+                next_to_other_[image.linear_index(i, j, k)] =
+                    (i > 0 && at(i - 1, j, k) != l) || (i + 1 < n[0] && at(i + 1, j, k) != l) ||
+                    (j > 0 && at(i, j - 1, k) != l) || (j + 1 < n[1] && at(i, j + 1, k) != l) ||
+                    (k > 0 && at(i, j, k - 1) != l) || (k + 1 < n[2] && at(i, j, k + 1) != l);
+            }
+    }
+}
+
+bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
+                                  const std::vector<TriangleCorners>& after) const
+{
+    // The voxels whose centres lie in the index box of every corner (any orientation of the image).
+    Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+             std::numeric_limits<double>::max()};
+    Vec3 high = -1.0 * low;
+    for (const auto* triangles : {&before, &after})
+        for (const TriangleCorners& c : *triangles)
+            for (const Vec3& p : c) {
+                const Vec3 x = image_.world_to_index(p);
+                for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], x[a]), high[a] = std::max(high[a], x[a]);
+            }
+    std::array<std::int64_t, 3> from{}, to{};
+    for (int a = 0; a < 3; ++a) {
+        from[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(low[a])));
+        to[a] = std::min<std::int64_t>(static_cast<std::int64_t>(image_.dims()[a]) - 1,
+                                       static_cast<std::int64_t>(std::floor(high[a])));
+    }
+    for (std::int64_t k = from[2]; k <= to[2]; ++k)
+        for (std::int64_t j = from[1]; j <= to[1]; ++j)
+            for (std::int64_t i = from[0]; i <= to[0]; ++i) {
+                const auto [ui, uj, uk] =
+                    std::array{static_cast<std::size_t>(i), static_cast<std::size_t>(j), static_cast<std::size_t>(k)};
+                if (!next_to_other_[image_.linear_index(ui, uj, uk)]) continue;
+                const Vec3 centre =
+                    image_.index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)});
+                bool inside = false;
+                for (const auto* triangles : {&before, &after})
+                    for (const TriangleCorners& c : *triangles) inside ^= ray_meets(centre, ray_direction, c);
+                if (inside) return true;
+            }
+    return false;
+}
+
+} // namespace tissuemesh::surface::detail
