@@ -27,11 +27,11 @@ STEP_ARGS = {
 }
 SETTINGS = ("EXTRACT_METHOD", "SMOOTH", "TOOL_FLAGS", "STOP_AFTER", "REPORT_TITLE")
 # Variables a config may set that only shape the flags above (the Makefile derives REMESH_ARGS and DECIMATE_ARGS
-# from the remeshing target edge, REMESH_ARGS from the edges per layer thickness too, DECIMATE_ARGS from the distance
-# bound in voxels, EXTRACT_ARGS and ASSESS_ARGS from the priority).
-DERIVING = ("REMESH_EDGE_MM", "EDGE_PER_THICKNESS", "PRIORITY", "DECIMATE_DISTANCE_VOXELS")
+# from the remeshing target edge, REMESH_ARGS from the edges per layer thickness and the voxels' sides too,
+# DECIMATE_ARGS from the distance bound in voxels, EXTRACT_ARGS and ASSESS_ARGS from the priority).
+DERIVING = ("REMESH_EDGE_MM", "EDGE_PER_THICKNESS", "PRIORITY", "DECIMATE_DISTANCE_VOXELS", "REMESH_KEEP_VOXEL_SIDES")
 # Environment variables that would change what make prints (make reads its variables from the environment).
-_MAKE_ENVIRONMENT = re.compile(r"^(.*_ARGS|EXTRACT_METHOD|SMOOTH|REMESH_EDGE_MM|EDGE_PER_THICKNESS|DECIMATE_DISTANCE_VOXELS|PRIORITY|TOOL_FLAGS|STOP_AFTER|REPORT_TITLE|BIN|DATA|OUT|IMAGE|LABELS|PRESET|PHANTOM.*|"
+_MAKE_ENVIRONMENT = re.compile(r"^(.*_ARGS|EXTRACT_METHOD|SMOOTH|REMESH_EDGE_MM|EDGE_PER_THICKNESS|DECIMATE_DISTANCE_VOXELS|REMESH_KEEP_VOXEL_SIDES|PRIORITY|TOOL_FLAGS|STOP_AFTER|REPORT_TITLE|BIN|DATA|OUT|IMAGE|LABELS|PRESET|PHANTOM.*|"
                                r"COHORT.*|MAKEFLAGS|MFLAGS|MAKELEVEL|MAKEFILES|GNUMAKEFLAGS)$")
 
 
