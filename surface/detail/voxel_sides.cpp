@@ -74,9 +74,9 @@ bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
     for (std::int64_t k = from[2]; k <= to[2]; ++k)
         for (std::int64_t j = from[1]; j <= to[1]; ++j)
             for (std::int64_t i = from[0]; i <= to[0]; ++i) {
-                const auto [ui, uj, uk] =
-                    std::array{static_cast<std::size_t>(i), static_cast<std::size_t>(j), static_cast<std::size_t>(k)};
-                if (!next_to_other_[image_.linear_index(ui, uj, uk)]) continue;
+                if (!next_to_other_[image_.linear_index(static_cast<std::size_t>(i), static_cast<std::size_t>(j),
+                                                        static_cast<std::size_t>(k))])
+                    continue;
                 const Vec3 centre =
                     image_.index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)});
                 bool inside = false;
