@@ -105,6 +105,29 @@ TEST(SmoothDecimateCli, BoundsTheDistanceInVoxelsOfTheImage)
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+TEST(SmoothDecimateCli, RemeshKeepsTheVoxelsSidesOfTheImageItIsGiven)
+{
+    const TempDir dir;
+    const Inputs in = write_inputs(dir); // 6 mm voxels
+    const auto kept =
+        run_cli("tm-remesh", {"-i", in.surface, "-o", (dir / "k.ply").string(), "--edge-mm", "12", "--keep-voxel-sides",
+                              "--image", in.image, "--json", (dir / "k.json").string()});
+    ASSERT_EQ(kept.exit_code, 0) << kept.err;
+    const nlohmann::json k = testing::read_json((dir / "k.json").string());
+    EXPECT_TRUE(k.at("keep_voxel_sides").get<bool>());
+    EXPECT_GT(k.at("refused_by_voxels").get<std::size_t>(), 0u);
+    EXPECT_TRUE(surface::check_complex(io::read_surface((dir / "k.ply").string())).ok());
+    // Refused, nothing written: the flag without an image, an image without the flag.
+    const std::string out = (dir / "out.ply").string();
+    const auto no_image = run_cli("tm-remesh", {"-i", in.surface, "-o", out, "--edge-mm", "12", "--keep-voxel-sides"});
+    EXPECT_EQ(no_image.exit_code, 2);
+    EXPECT_NE(no_image.err.find("give --image"), std::string::npos) << no_image.err;
+    const auto idle_image = run_cli("tm-remesh", {"-i", in.surface, "-o", out, "--edge-mm", "12", "--image", in.image});
+    EXPECT_EQ(idle_image.exit_code, 2);
+    EXPECT_NE(idle_image.err.find("only for --keep-voxel-sides"), std::string::npos) << idle_image.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(SmoothDecimateCli, RefusesUnfitInputBadOptionsAndLossyFormats)
 {
     const TempDir dir;
