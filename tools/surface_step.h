@@ -35,6 +35,19 @@ inline void require_complex_output(const std::string& output)
                                         "triangle); other formats would lose the tissues"));
 }
 
+/// A surface step's --image goes with one option that reads it (`option`, given or not): refuses the option without an
+/// image (`otherwise`: what to do instead) and an image without the option, before any work is done.
+inline void require_image_with(const std::string& option, bool given, const std::string& image,
+                               const std::string& otherwise)
+{
+    if (given && image.empty())
+        throw InputError(concat(option, " needs the label image the surfaces come from: give --image clean.nii.gz (or ",
+                                otherwise, ")"));
+    if (!given && !image.empty())
+        throw InputError(
+            concat("--image ", image, " is read only for ", option, "; give that option, or leave --image out"));
+}
+
 /// The complex a surface step read, and whether its full check ran.
 struct FitInput {
     InterfaceComplex complex;

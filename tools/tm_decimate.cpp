@@ -85,19 +85,14 @@ int main(int argc, char** argv)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
+            tools::require_image_with("--max-distance-voxels", distance_voxels > 0, image,
+                                      "the bound in mm with --max-distance-mm");
             if (distance_voxels > 0) {
-                if (image.empty())
-                    throw InputError("--max-distance-voxels needs the label image the surfaces come from: give "
-                                     "--image clean.nii.gz (or the bound in mm with --max-distance-mm)");
                 const Vec3 spacing = io::read_label_image_spacing(image);
                 voxel_mm = std::min({spacing[0], spacing[1], spacing[2]});
                 options.max_distance_mm = distance_voxels * voxel_mm;
                 ctx.log(concat("distance bound ", format_mm(options.max_distance_mm, 3), " mm: ", distance_voxels,
                                " of the ", format_mm(voxel_mm, 3), " mm voxels of ", image));
-            } else if (!image.empty()) {
-                throw InputError(concat("--image ", image,
-                                        " is read only for --max-distance-voxels; give that "
-                                        "bound, or leave --image out"));
             }
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
             tools::require_complex_output(output);

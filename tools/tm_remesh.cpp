@@ -105,13 +105,9 @@ int main(int argc, char** argv)
         },
         [&](tools::ToolContext& ctx) {
             tools::require_complex_output(output);
-            if (keep_voxel_sides && image.empty())
-                throw InputError("--keep-voxel-sides needs the label image the surfaces come from: give --image "
-                                 "clean.nii.gz (or leave --keep-voxel-sides out)");
-            if (!keep_voxel_sides && !image.empty())
-                throw InputError(concat("--image ", image,
-                                        " is read only for --keep-voxel-sides; give that flag, or "
-                                        "leave --image out"));
+            tools::require_image_with("--keep-voxel-sides", keep_voxel_sides, image, "leave --keep-voxel-sides out");
+            // The complex first: an unfit one is refused before the image is read.
+            tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
             LabelImage voxels;
             if (keep_voxel_sides) {
                 // The labels (2 bytes a voxel) and a flag per voxel for the ones next to another label.
@@ -121,7 +117,6 @@ int main(int argc, char** argv)
                                                                        "--image out")});
                 options.voxel_image = &voxels;
             }
-            tools::FitInput in = tools::read_fit_complex(input, check_input, ctx);
             InterfaceComplex& complex = in.complex;
             options.target_edge_mm_by_pair = parse_pair_lengths(pair_lengths, tools::tissue_table(complex, input));
             surface::RemeshReport report;

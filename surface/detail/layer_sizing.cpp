@@ -6,29 +6,9 @@
 #include <optional>
 
 #include "surface/detail/box_index.h"
+#include "surface/detail/triangle_distance.h"
 
 namespace tissuemesh::surface::detail {
-namespace {
-
-/// Where the ray from o along unit d first meets triangle c, within `reach` (Moller and Trumbore 1997).
-std::optional<double> ray_hit(const Vec3& o, const Vec3& d, const TriangleCorners& c, double reach)
-{
-    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
-    const Vec3 p = cross(d, e2);
-    const double det = dot(e1, p);
-    if (std::abs(det) < 1e-14 * dot(e1, e1)) return std::nullopt; // parallel to the plane
-    const Vec3 s = o - c[0];
-    const double u = dot(s, p) / det;
-    if (u < 0 || u > 1) return std::nullopt;
-    const Vec3 q = cross(s, e1);
-    const double v = dot(d, q) / det;
-    if (v < 0 || u + v > 1) return std::nullopt;
-    const double t = dot(e2, q) / det;
-    if (!(t > 0 && t <= reach)) return std::nullopt;
-    return t;
-}
-
-} // namespace
 
 LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, const LayerSizingOptions& options)
     : target_mm_(options.target_edge_mm)
@@ -97,7 +77,8 @@ LayerSizing::LayerSizing(const InterfaceComplex& complex, Label background, cons
                 ray.low[a] = std::min(centre[a], end[a]), ray.high[a] = std::max(centre[a], end[a]);
             index.visit(ray, [&](std::uint32_t u) {
                 if (u == t) return;
-                if (const std::optional<double> hit = ray_hit(centre, d, corners(u), thinnest)) thinnest = *hit;
+                if (const std::optional<double> hit = ray_meets_triangle(centre, d, corners(u), thinnest))
+                    thinnest = *hit;
             });
         }
     }

@@ -1,6 +1,7 @@
 #include "surface/detail/triangle_distance.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tissuemesh::surface::detail {
 
@@ -62,6 +63,23 @@ double triangle_distance(const TriangleCorners& a, const TriangleCorners& b)
         for (int m = 0; m < 3; ++m) best = std::min(best, segment_distance(a[k], a[(k + 1) % 3], b[m], b[(m + 1) % 3]));
     }
     return best;
+}
+
+std::optional<double> ray_meets_triangle(const Vec3& o, const Vec3& d, const TriangleCorners& c, double reach)
+{
+    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (std::abs(det) < 1e-14 * dot(e1, e1)) return std::nullopt; // parallel to the plane
+    const Vec3 s = o - c[0];
+    const double u = dot(s, p) / det;
+    if (u < 0 || u > 1) return std::nullopt;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(d, q) / det;
+    if (v < 0 || u + v > 1) return std::nullopt;
+    const double t = dot(e2, q) / det;
+    if (!(t > 0 && t <= reach)) return std::nullopt;
+    return t;
 }
 
 } // namespace tissuemesh::surface::detail

@@ -1,8 +1,10 @@
 // Euclidean distances between points, segments and triangles (double precision), for gap checks and
-// projections onto a reference surface. Not exact: callers compare against tolerances, never zero.
+// projections onto a reference surface, and rays against triangles, for measures (layer thickness, which side of a
+// surface a voxel centre is on). Not exact: callers compare against tolerances, never zero.
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "core/vec3.h"
 
@@ -22,5 +24,9 @@ double segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Ve
 /// Distance between two closed triangles, assuming they do not intersect (then the minimum is attained
 /// at a vertex of one of them or between two edges).
 double triangle_distance(const TriangleCorners& a, const TriangleCorners& b);
+
+/// Where the ray from o along unit d first meets triangle c, beyond o and within `reach` (Moller and Trumbore
+/// 1997); none for a ray parallel to the triangle's plane.
+std::optional<double> ray_meets_triangle(const Vec3& o, const Vec3& d, const TriangleCorners& c, double reach);
 
 } // namespace tissuemesh::surface::detail

@@ -9,28 +9,13 @@
 namespace tissuemesh::surface::detail {
 namespace {
 
-/// Whether the ray from o along d meets triangle c (Moller and Trumbore 1997), beyond o.
-bool ray_meets(const Vec3& o, const Vec3& d, const TriangleCorners& c)
-{
-    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
-    const Vec3 p = cross(d, e2);
-    const double det = dot(e1, p);
-    if (det == 0) return false;
-    const Vec3 s = o - c[0];
-    const double u = dot(s, p) / det;
-    if (u < 0 || u > 1) return false;
-    const Vec3 q = cross(s, e1);
-    const double v = dot(d, q) / det;
-    if (v < 0 || u + v > 1) return false;
-    return dot(e2, q) / det > 0;
-}
-
 /// A direction along no axis, plane diagonal or space diagonal of the grid, so that rays from voxel centres seldom
 /// run along the planes surface nets put vertices on.
 const Vec3 ray_direction = [] {
     const Vec3 d{0.5773, 0.5801, 0.5749};
     return (1 / norm(d)) * d;
 }();
+constexpr double infinity = std::numeric_limits<double>::infinity();
 
 } // namespace
 
@@ -81,7 +66,8 @@ bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
                     image_.index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)});
                 bool inside = false;
                 for (const auto* triangles : {&before, &after})
-                    for (const TriangleCorners& c : *triangles) inside ^= ray_meets(centre, ray_direction, c);
+                    for (const TriangleCorners& c : *triangles)
+                        inside ^= ray_meets_triangle(centre, ray_direction, c, infinity).has_value();
                 if (inside) return true;
             }
     return false;

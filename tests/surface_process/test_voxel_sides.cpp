@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 #include <vector>
 
 #include "image/phantom.h"
 #include "surface/check_complex.h"
 #include "surface/decimate.h"
+#include "surface/detail/triangle_distance.h"
 #include "surface/detail/voxel_sides.h"
 #include "surface/extract_surface_nets.h"
 #include "surface/remesh.h"
@@ -54,13 +56,10 @@ std::size_t centres_on_the_wrong_side(const LabelImage& image, const InterfaceCo
 {
     const Vec3 d = (1 / norm(Vec3{0.5773, 0.5801, 0.5749})) * Vec3{0.5773, 0.5801, 0.5749};
     const auto crosses = [&](const Vec3& o, const Triangle& t) {
-        const Vec3 a = complex.vertices[t[0]], e1 = complex.vertices[t[1]] - a, e2 = complex.vertices[t[2]] - a;
-        const Vec3 p = cross(d, e2);
-        const double det = dot(e1, p);
-        if (det == 0) return false;
-        const Vec3 s = o - a, q = cross(s, e1);
-        const double u = dot(s, p) / det, v = dot(d, q) / det;
-        return u >= 0 && v >= 0 && u + v <= 1 && dot(e2, q) / det > 0;
+        return surface::detail::ray_meets_triangle(
+                   o, d, {complex.vertices[t[0]], complex.vertices[t[1]], complex.vertices[t[2]]},
+                   std::numeric_limits<double>::infinity())
+            .has_value();
     };
     std::size_t wrong = 0;
     const Dims& n = image.dims();
