@@ -22,7 +22,6 @@ LocalEditor::LocalEditor(InterfaceComplex complex, const LocalLimits& limits, do
     if (!(cell_mm > 0)) cell_mm = 1;
     classify_all();
     filed_.resize(triangles_.size());
-    filed_boxes_.resize(triangles_.size());
     stamp_.assign(triangles_.size(), 0);
     rebuild_grid(cell_mm);
     count_pieces();
@@ -196,7 +195,7 @@ void LocalEditor::file(std::uint32_t t)
 {
     const CellRange r = cells_of(triangles_[t]);
     filed_[t] = r;
-    const Box box = filed_boxes_[t] = box_of(triangles_[t]);
+    const Box box = box_of(triangles_[t]);
     const CellEntry entry{t, compact(Box3{box.low, box.high})};
     for (std::size_t k = r[2]; k <= r[5]; ++k)
         for (std::size_t j = r[1]; j <= r[4]; ++j)
@@ -253,7 +252,6 @@ std::uint32_t LocalEditor::new_triangle(const Triangle& t, const LabelPair& side
     alive_.push_back(1);
     piece_of_.push_back({no_piece, no_piece});
     filed_.push_back({});
-    filed_boxes_.push_back({});
     stamp_.push_back(0);
     const auto id = static_cast<std::uint32_t>(triangles_.size() - 1);
     for (const std::uint32_t v : t) stars_[v].push_back(id);
@@ -276,7 +274,6 @@ void LocalEditor::undo()
     alive_.resize(triangles_before_edit_);
     piece_of_.resize(triangles_before_edit_);
     filed_.resize(triangles_before_edit_);
-    filed_boxes_.resize(triangles_before_edit_);
     stamp_.resize(triangles_before_edit_);
     positions_.resize(vertices_before_edit_);
     stars_.resize(vertices_before_edit_);
@@ -434,8 +431,8 @@ bool LocalEditor::small_pieces(std::uint32_t v, std::vector<SmallPiece>& out, st
     return clear;
 }
 
-template <typename Visit>
-bool LocalEditor::any_in_cells(const CellRange& r, const Box& box, const Visit& visit)
+template <typename Near, typename Visit>
+bool LocalEditor::any_in_cells(const CellRange& r, const Box& box, const Near& near, const Visit& visit)
 {
     // The entries' boxes first: most triangles of a cell are far from the box, and they are in the cell's own
     // memory, where the triangles' own are scattered.
@@ -444,11 +441,11 @@ bool LocalEditor::any_in_cells(const CellRange& r, const Box& box, const Visit& 
         for (std::size_t j = r[1]; j <= r[4]; ++j)
             for (std::size_t i = r[0]; i <= r[3]; ++i)
                 for (const CellEntry& e : cells_[i + grid_dims_[0] * (j + grid_dims_[1] * k)]) {
-                    if (!boxes_overlap(bounds, e.box)) continue;
+                    if (!boxes_overlap(bounds, e.box) || !near(e.box)) continue;
                     const std::uint32_t u = e.triangle;
                     if (stamp_[u] == query_ || !alive_[u]) continue;
                     stamp_[u] = query_;
-                    if (visit(u)) return true;
+                    if (visit(u, e.box)) return true;
                 }
     return false;
 }
@@ -462,15 +459,18 @@ bool LocalEditor::path_crosses(std::uint32_t v, const Vec3& from, const Vec3& to
         r[a] = cell_at(path.low[a], a), r[3 + a] = cell_at(path.high[a], a);
     }
     ++query_;
-    return any_in_cells(r, path, [&](std::uint32_t u) {
-        const Triangle& tri = triangles_[u];
-        if (has(tri, v) || !overlap(box_of(tri), path)) return false;
-        const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
-        const int side_from = orientation(p, q, s, from), side_to = orientation(p, q, s, to);
-        if (side_from * side_to > 0 || (side_from == 0 && side_to == 0)) return false;
-        const int e0 = orientation(from, to, p, q), e1 = orientation(from, to, q, s), e2 = orientation(from, to, s, p);
-        return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
-    });
+    return any_in_cells(
+        r, path, [](const CompactBox&) { return true; },
+        [&](std::uint32_t u, const CompactBox&) {
+            const Triangle& tri = triangles_[u];
+            if (has(tri, v) || !overlap(box_of(tri), path)) return false;
+            const Vec3 &p = positions_[tri[0]], &q = positions_[tri[1]], &s = positions_[tri[2]];
+            const int side_from = orientation(p, q, s, from), side_to = orientation(p, q, s, to);
+            if (side_from * side_to > 0 || (side_from == 0 && side_to == 0)) return false;
+            const int e0 = orientation(from, to, p, q), e1 = orientation(from, to, q, s),
+                      e2 = orientation(from, to, s, p);
+            return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+        });
 }
 
 bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, const std::vector<Prior>& before)
@@ -495,12 +495,22 @@ bool LocalEditor::surroundings_ok(const std::vector<std::uint32_t>& changed, con
     for (int a = 0; a < 3; ++a) r[a] = cell_at(all.low[a], a), r[3 + a] = cell_at(all.high[a], a);
     ++query_;
     for (const std::uint32_t t : changed) stamp_[t] = query_;
-    const bool offender = any_in_cells(r, all, [&](std::uint32_t u) {
-        const Box& ub = filed_boxes_[u]; // not changed by the edit: as filed
-        if (!overlap(ub, all)) return false;
+    // A triangle not changed by the edit is judged by the box it was filed with, as the grid holds it (in single
+    // precision, rounded outwards: a few more pairs judged, the same answers).
+    const auto near_changed = [&](const CompactBox& ub, std::size_t n) {
+        const Box& b = boxes[n];
+        return !(ub.high[0] < b.low[0] || b.high[0] < ub.low[0] || ub.high[1] < b.low[1] || b.high[1] < ub.low[1] ||
+                 ub.high[2] < b.low[2] || b.high[2] < ub.low[2]);
+    };
+    const auto near = [&](const CompactBox& ub) {
+        for (std::size_t n = 0; n < changed.size(); ++n)
+            if (near_changed(ub, n)) return true;
+        return false;
+    };
+    const bool offender = any_in_cells(r, all, near, [&](std::uint32_t u, const CompactBox& ub) {
         for (std::size_t n = 0; n < changed.size(); ++n) {
             const std::uint32_t t = changed[n];
-            if (!overlap(ub, boxes[n]) || share_vertex(triangles_[t], triangles_[u])) continue;
+            if (!near_changed(ub, n) || share_vertex(triangles_[t], triangles_[u])) continue;
             if (triangles_meet(positions_, triangles_[t], triangles_[u])) {
                 ++counters_.intersection;
                 return true;

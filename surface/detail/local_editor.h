@@ -116,10 +116,11 @@ private:
     struct Box {
         Vec3 low, high;
     };
-    /// Calls visit(u) for every alive triangle filed in the cells of r, whose box may overlap `box`, and not
-    /// yet stamped with the current query (stamping it); true at the first visit that returns true.
-    template <typename Visit>
-    bool any_in_cells(const CellRange& r, const Box& box, const Visit& visit);
+    /// Calls visit(u, its filed box) for every alive triangle filed in the cells of r, whose box may overlap `box`
+    /// and passes near(its filed box), and not yet stamped with the current query (stamping it); true at the first
+    /// visit that returns true.
+    template <typename Near, typename Visit>
+    bool any_in_cells(const CellRange& r, const Box& box, const Near& near, const Visit& visit);
     /// Whether vertex v, moved in a straight line from `from` to `to`, passes through a triangle outside its
     /// star (exact). Each step of a smoothing or relaxation may be valid where it ends and still carry a vertex
     /// through the surface: a small closed piece (a tetrahedron of four triangles around a two-voxel pocket)
@@ -193,7 +194,6 @@ private:
     };
     std::vector<std::vector<CellEntry>> cells_;
     std::vector<CellRange> filed_;
-    std::vector<Box> filed_boxes_; ///< per triangle: its box when filed (the edits refile what they change)
     // The edit in progress: what it changed, for undo.
     std::vector<Saved> saved_;
     /// Stars as they were before the edit: (vertex, start, size) into saved_star_items_ (flat, so that saving

@@ -16,6 +16,12 @@ const Vec3 ray_direction = [] {
     return (1 / norm(d)) * d;
 }();
 constexpr double infinity = std::numeric_limits<double>::infinity();
+/// Two unit directions across the ray and across each other.
+const std::array<Vec3, 2> across = [] {
+    const Vec3 first = cross(ray_direction, Vec3{1, 0, 0});
+    const Vec3 u = (1 / norm(first)) * first;
+    return std::array<Vec3, 2>{u, cross(ray_direction, u)};
+}();
 
 } // namespace
 
@@ -40,16 +46,38 @@ VoxelSides::VoxelSides(const LabelImage& image) : image_(image), next_to_other_(
 bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
                                   const std::vector<TriangleCorners>& after) const
 {
+    // Each triangle's shadow along the ray: the box of its corners in two directions across the ray, and how far
+    // along the ray it reaches. A ray can only meet a triangle whose shadow holds its origin, and that reaches
+    // beyond it; the shadows are widened by far more than any rounding of the exact test, which then decides.
+    constexpr double widen = 1e-6; // mm
+    struct Shadow {
+        double low1, high1, low2, high2, reach;
+    };
+    constexpr std::size_t few = 64;
+    std::array<Shadow, few> kept{};
+    std::vector<Shadow> many;
+    const std::size_t count = before.size() + after.size();
+    if (count > few) many.resize(count);
+    Shadow* shadows = count > few ? many.data() : kept.data();
     // The voxels whose centres lie in the index box of every corner (any orientation of the image).
     Vec3 low{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
              std::numeric_limits<double>::max()};
     Vec3 high = -1.0 * low;
+    std::size_t n = 0;
     for (const auto* triangles : {&before, &after})
-        for (const TriangleCorners& c : *triangles)
+        for (const TriangleCorners& c : *triangles) {
+            Shadow& s = shadows[n++];
+            s = {infinity, -infinity, infinity, -infinity, -infinity};
             for (const Vec3& p : c) {
                 const Vec3 x = image_.world_to_index(p);
                 for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], x[a]), high[a] = std::max(high[a], x[a]);
+                const double x1 = dot(p, across[0]), x2 = dot(p, across[1]);
+                s.low1 = std::min(s.low1, x1), s.high1 = std::max(s.high1, x1);
+                s.low2 = std::min(s.low2, x2), s.high2 = std::max(s.high2, x2);
+                s.reach = std::max(s.reach, dot(p, ray_direction));
             }
+            s.low1 -= widen, s.high1 += widen, s.low2 -= widen, s.high2 += widen, s.reach += widen;
+        }
     std::array<std::int64_t, 3> from{}, to{};
     for (int a = 0; a < 3; ++a) {
         from[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(low[a])));
@@ -64,10 +92,16 @@ bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
                     continue;
                 const Vec3 centre =
                     image_.index_to_world({static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)});
+                const double x1 = dot(centre, across[0]), x2 = dot(centre, across[1]),
+                             depth = dot(centre, ray_direction);
                 bool inside = false;
+                n = 0;
                 for (const auto* triangles : {&before, &after})
-                    for (const TriangleCorners& c : *triangles)
+                    for (const TriangleCorners& c : *triangles) {
+                        const Shadow& s = shadows[n++];
+                        if (x1 < s.low1 || x1 > s.high1 || x2 < s.low2 || x2 > s.high2 || depth > s.reach) continue;
                         inside ^= ray_meets_triangle(centre, ray_direction, c, infinity).has_value();
+                    }
                 if (inside) return true;
             }
     return false;
