@@ -137,16 +137,20 @@ private:
         return length;
     }
 
+    /// Every edge (a, b), a < b, sorted: each vertex's from its star, in vertex order (a sort of a few
+    /// neighbours each instead of one of all the edges).
     std::vector<Edge> edges() const
     {
         std::vector<Edge> result;
-        for (std::uint32_t t = 0; t < editor_.triangle_slots(); ++t) {
-            if (!editor_.triangle_alive(t)) continue;
-            const Triangle& tri = editor_.triangle(t);
-            for (int k = 0; k < 3; ++k) result.push_back(std::minmax(tri[k], tri[(k + 1) % 3]));
+        result.reserve(3 * editor_.triangle_count() / 2 + 16);
+        for (std::uint32_t a = 0; a < editor_.vertex_slots(); ++a) {
+            const std::size_t first = result.size();
+            for (const std::uint32_t t : editor_.star(a))
+                for (const std::uint32_t b : editor_.triangle(t))
+                    if (b > a) result.emplace_back(a, b);
+            std::sort(result.begin() + static_cast<std::ptrdiff_t>(first), result.end());
+            result.erase(std::unique(result.begin() + static_cast<std::ptrdiff_t>(first), result.end()), result.end());
         }
-        std::sort(result.begin(), result.end());
-        result.erase(std::unique(result.begin(), result.end()), result.end());
         return result;
     }
 

@@ -40,15 +40,23 @@ public:
         : input_(input), cell_mm_(cell_mm), sizing_(input, input.background, sizing)
     {
         std::vector<CompactBox> boxes(input.triangle_count());
-        std::vector<std::uint32_t> ids(input.triangle_count());
-        for (std::uint32_t t = 0; t < input.triangle_count(); ++t)
-            boxes[t] = compact(bounding_box(corners(t))), ids[t] = t;
-        triangles_ = BoxIndex(boxes, ids);
-        std::map<std::pair<std::uint32_t, std::uint32_t>, int> count;
+        std::map<std::pair<Label, Label>, std::vector<std::uint32_t>> by_pair;
+        for (std::uint32_t t = 0; t < input.triangle_count(); ++t) {
+            boxes[t] = compact(bounding_box(corners(t)));
+            by_pair[unordered(input.sides[t])].push_back(t);
+        }
+        for (const auto& [pair, ids] : by_pair) patches_.emplace(pair, BoxIndex(boxes, ids));
+        std::vector<std::uint32_t> ids;
+        // Junction edges: those of three triangles or more, in edge order.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+        edges.reserve(3 * input.triangles.size());
         for (const Triangle& t : input.triangles)
-            for (int k = 0; k < 3; ++k) ++count[std::minmax(t[k], t[(k + 1) % 3])];
-        for (const auto& [edge, n] : count)
-            if (n >= 3) junction_.push_back(edge);
+            for (int k = 0; k < 3; ++k) edges.push_back(std::minmax(t[k], t[(k + 1) % 3]));
+        std::sort(edges.begin(), edges.end());
+        for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+            while (j < edges.size() && edges[j] == edges[i]) ++j;
+            if (j - i >= 3) junction_.push_back(edges[i]);
+        }
         boxes.resize(junction_.size());
         ids.resize(junction_.size());
         for (std::uint32_t s = 0; s < junction_.size(); ++s) boxes[s] = compact(bounding_box(segment(s))), ids[s] = s;
@@ -70,8 +78,9 @@ public:
     /// near triangles, the first in the input's order.
     Vec3 onto_patch(const Vec3& p, std::pair<Label, Label> pair, double reach) const
     {
-        return nearest(triangles_, p, reach, [&](std::uint32_t t, double nearest_so_far) -> std::optional<Vec3> {
-            if (unordered(input_.sides[t]) != pair) return std::nullopt;
+        const auto patch = patches_.find(pair);
+        if (patch == patches_.end()) return p;
+        return nearest(patch->second, p, reach, [&](std::uint32_t t, double nearest_so_far) -> std::optional<Vec3> {
             // The box is never further than the triangle: most candidates end here, at a fraction of the cost.
             const TriangleCorners c = corners(t);
             if (box_distance(p, bounding_box(c)) > nearest_so_far) return std::nullopt;
@@ -103,13 +112,15 @@ private:
     }
 
     /// The nearest of the points closest(i, nearest so far) gives for the items of `index` whose boxes meet
-    /// the box of half-width `reach` around p (p when none). The search box grows from a quarter cell until
-    /// it holds the nearest point found (then nothing outside it can be nearer) or reaches `reach`: the same
-    /// answer as a search of the whole reach at once, at the cost of the few items near p.
+    /// the box of half-width `reach` around p (p when none). The search box grows from a twentieth of a cell
+    /// (most points asked lie a fraction of an edge from the surface: on the 1 mm usc19-5 head remeshing took
+    /// 15.4 s starting from a quarter cell, 13.9 s from a twentieth) until it holds the nearest point found (then
+    /// nothing outside it can be nearer) or reaches `reach`: the same answer as a search of the whole reach at
+    /// once, at the cost of the few items near p.
     template <class Closest>
     Vec3 nearest(const BoxIndex& index, const Vec3& p, double reach, Closest closest) const
     {
-        for (double r = std::min(reach, 0.25 * cell_mm_);; r = std::min(reach, 2 * r)) {
+        for (double r = std::min(reach, cell_mm_ / 20);; r = std::min(reach, 2 * r)) {
             Vec3 best = p;
             double best_distance = std::numeric_limits<double>::max();
             std::uint32_t best_item = std::numeric_limits<std::uint32_t>::max();
@@ -133,8 +144,8 @@ private:
     const InterfaceComplex& input_;
     double cell_mm_;
     LayerSizing sizing_;
-    BoxIndex triangles_; ///< the input's triangles by their boxes
-    BoxIndex segments_;  ///< its junction edges by their boxes
+    std::map<std::pair<Label, Label>, BoxIndex> patches_; ///< the input's triangles by their boxes, per tissue pair
+    BoxIndex segments_;                                   ///< its junction edges by their boxes
     std::vector<std::pair<std::uint32_t, std::uint32_t>> junction_;
 };
 
