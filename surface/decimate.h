@@ -46,8 +46,8 @@ struct DecimateOptions {
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
     /// Slabs decimated side by side (in parallel); then, from the seams their fences held back, slabs cut
     /// halfway between them, side by side again; then one pass over the whole from what is left; 0: one per
-    /// 400 000 triangles, at most 8. The result depends on it, never on the thread count.
-    /// With target_triangles (a global count) there is one slab. At most max_slabs.
+    /// 400 000 triangles, at least 2 from 50 000 triangles on, at most 8. The result depends on it, never on the thread
+    /// count. With target_triangles (a global count) there is one slab. At most max_slabs.
     std::size_t slabs = 0;
     static constexpr std::size_t max_slabs = 64; ///< each slab costs a pass over the whole complex
 };

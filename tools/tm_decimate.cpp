@@ -77,9 +77,8 @@ int main(int argc, char** argv)
             app.add_option(
                    "--slabs", options.slabs,
                    "Slabs decimated side by side (in parallel), then their seams in slabs cut halfway between them, "
-                   "then "
-                   "one pass over what is left; 0: one per "
-                   "400 000 triangles, at most 8; 64 at most (the result depends on it, not on the thread count; one "
+                   "then one pass over what is left; 0: one per 400 000 triangles, at least 2 from 50 000 on, at "
+                   "most 8; 64 at most (the result depends on it, not on the thread count; one "
                    "with --target-triangles)")
                 ->check(CLI::Range(0, 64))
                 ->capture_default_str();
