@@ -156,23 +156,25 @@ private:
 
     double length(const Edge& e) const { return distance(editor_.position(e.first), editor_.position(e.second)); }
 
-    /// Whether collapsing v into w keeps every edge at w below 4/3 of its target.
-    bool keeps_edges_short(std::uint32_t v, std::uint32_t w) const
+    /// Whether collapsing v into w keeps every edge at w within `longest` times its target.
+    bool keeps_edges_short(std::uint32_t v, std::uint32_t w, double longest) const
     {
         editor_.ring(v, ring_);
         for (const LocalEditor::RingEntry& e : ring_)
             if (e.vertex != w &&
-                distance(editor_.position(e.vertex), editor_.position(w)) > 4.0 / 3.0 * target(v, e.vertex))
+                distance(editor_.position(e.vertex), editor_.position(w)) > longest * target(v, e.vertex))
                 return false;
         return true;
     }
 
-    bool may_collapse(std::uint32_t v, std::uint32_t w) const
+    /// Whether v may collapse into w: no corner, a junction vertex only along its curve, and every edge at w within
+    /// `longest` times its target.
+    bool may_collapse(std::uint32_t v, std::uint32_t w, double longest) const
     {
         const VertexKind kind = editor_.kind(v);
         if (kind == VertexKind::corner) return false;
         if (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3) return false;
-        return keeps_edges_short(v, w);
+        return keeps_edges_short(v, w, longest);
     }
 
     void collapse_short_edges()
@@ -185,7 +187,7 @@ private:
             const auto [a, b] = e;
             if (!editor_.vertex_alive(a) || !editor_.vertex_alive(b) || editor_.edge_multiplicity(a, b) == 0) continue;
             if (length(e) >= 0.8 * target(a, b)) continue;
-            if (collapse_into(a, b) || collapse_into(b, a)) ++report_.collapses;
+            if (collapse_into(a, b, 4.0 / 3.0) || collapse_into(b, a, 4.0 / 3.0)) ++report_.collapses;
             else ++report_.refused;
         }
     }
@@ -204,20 +206,7 @@ private:
                 if (const double a = detail::smallest_angle_deg(editor_.corners(t)); a < bad_deg)
                     bad.emplace_back(a, t);
         std::sort(bad.begin(), bad.end());
-        const auto may = [&](std::uint32_t v, std::uint32_t w) {
-            const VertexKind kind = editor_.kind(v);
-            if (kind == VertexKind::corner || (kind == VertexKind::curve && editor_.edge_multiplicity(v, w) < 3))
-                return false;
-            editor_.ring(v, ring_);
-            for (const LocalEditor::RingEntry& e : ring_)
-                if (e.vertex != w &&
-                    distance(editor_.position(e.vertex), editor_.position(w)) > 1.6 * target(v, e.vertex))
-                    return false;
-            return true;
-        };
-        const auto collapse = [&](std::uint32_t v, std::uint32_t w) {
-            return may(v, w) && !carries_a_centre(v, editor_.position(w), w) && editor_.try_collapse(v, w);
-        };
+        const auto collapse = [&](std::uint32_t v, std::uint32_t w) { return collapse_into(v, w, 1.6); };
         const auto collapse_either = [&](std::uint32_t a, std::uint32_t b) { return collapse(a, b) || collapse(b, a); };
         for (const auto& [angle, t] : bad) {
             if (!editor_.triangle_alive(t)) continue;
@@ -337,10 +326,11 @@ private:
         return true;
     }
 
-    /// Collapses v into w when the length rule, the voxels' sides and the editor allow it.
-    bool collapse_into(std::uint32_t v, std::uint32_t w)
+    /// Collapses v into w when may_collapse(v, w, longest), the voxels' sides and the editor allow it.
+    bool collapse_into(std::uint32_t v, std::uint32_t w, double longest)
     {
-        return may_collapse(v, w) && !carries_a_centre(v, editor_.position(w), w) && editor_.try_collapse(v, w);
+        return may_collapse(v, w, longest) && !carries_a_centre(v, editor_.position(w), w) &&
+               editor_.try_collapse(v, w);
     }
 
     /// Area-weighted normal of v's star.

@@ -34,8 +34,7 @@ struct RemeshOptions {
     /// (surface/detail/voxel_sides.h): the surfaces keep the voxels' tissues where the image has them.
     const LabelImage* voxel_image = nullptr;
     /// Slabs remeshed side by side (in parallel), then bands around the cuts between them; 0: one per
-    /// 125 000 triangles, at most 8. The result depends on it, never on the thread
-    /// count. At most max_slabs.
+    /// 125 000 triangles, at most 8. The result depends on it, never on the thread count. At most max_slabs.
     std::size_t slabs = 0;
     static constexpr std::size_t max_slabs = 64; ///< each slab costs a pass over the whole complex
 };

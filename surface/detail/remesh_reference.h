@@ -45,7 +45,7 @@ public:
             boxes[t] = compact(bounding_box(corners(t)));
             by_pair[unordered(input.sides[t])].push_back(t);
         }
-        for (const auto& [pair, ids] : by_pair) patches_.emplace(pair, BoxIndex(boxes, ids));
+        for (const auto& [pair, members] : by_pair) patches_.emplace(pair, BoxIndex(boxes, members));
         std::vector<std::uint32_t> ids;
         // Junction edges: those of three triangles or more, in edge order.
         std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;

@@ -54,7 +54,7 @@ bool VoxelSides::carries_a_centre(const std::vector<TriangleCorners>& before,
         double low1, high1, low2, high2, reach;
     };
     constexpr std::size_t few = 64;
-    std::array<Shadow, few> kept{};
+    std::array<Shadow, few> kept; // each used one is written before it is read
     std::vector<Shadow> many;
     const std::size_t count = before.size() + after.size();
     if (count > few) many.resize(count);
