@@ -37,9 +37,24 @@ public:
         std::array<std::uint32_t, 3> vertices{};
         std::uint32_t holders = 0;
         std::array<std::uint32_t, 2> tets{no_tet, no_tet};
+        std::size_t id = 0; ///< distinct per face, below id_count() (where its run of entries starts)
     };
     /// Every distinct face once, ascending by vertices.
     std::vector<Face> faces() const;
+    /// The faces whose smallest vertex is v (< vertex_count()), ascending, each passed to visit(const Face&):
+    /// faces() one bucket at a time, so that buckets can be visited side by side and nothing is stored.
+    template <typename Visit>
+    void for_each_face_at(std::uint32_t v, Visit&& visit) const
+    {
+        for (std::size_t e = start_[v]; e < start_[v + 1];) {
+            const Face face = face_at(v, e);
+            e += face.holders;
+            visit(face);
+        }
+    }
+    std::size_t vertex_count() const { return start_.empty() ? 0 : start_.size() - 1; }
+    /// A bound on Face::id: ids index arrays of this size.
+    std::size_t id_count() const { return entries_.size(); }
     /// The face with vertices {a, b, c} in any order (holders == 0 when no tet has it).
     Face find(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 

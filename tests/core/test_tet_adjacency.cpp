@@ -91,5 +91,44 @@ TEST(TetFaceAdjacencyTwice, AFaceOfThreeTetsIsCountedAndOnlyItsFirstTwoArePaired
     EXPECT_EQ(adjacency.across(2, 3), no_tet);
 }
 
+TEST(TetFaceAdjacencyTwice, FacesPerVertexAreTheFaceListWhateverTheCornerOrder)
+{
+    // The same block with each tet's corners in one of many orders: the faces' smallest vertices are counted
+    // from the tet's two smallest, which these orders put in every position.
+    const std::uint32_t n = 3, vertices = (n + 1) * (n + 1) * (n + 1);
+    const std::vector<Tet> tets = kuhn_block(n);
+    std::vector<Tet> turned = tets;
+    const int orders[6][4] = {{3, 2, 1, 0}, {1, 3, 0, 2}, {2, 0, 3, 1}, {0, 3, 1, 2}, {3, 0, 2, 1}, {2, 1, 0, 3}};
+    for (std::size_t t = 0; t < tets.size(); ++t)
+        for (int c = 0; c < 4; ++c) turned[t][c] = tets[t][orders[t % 6][c]];
+    const TetAdjacency plain(tets, vertices), adjacency(turned, vertices);
+    const std::vector<TetAdjacency::Face> faces = plain.faces();
+    std::vector<TetAdjacency::Face> visited;
+    std::set<std::size_t> ids;
+    ASSERT_EQ(adjacency.vertex_count(), vertices);
+    for (std::uint32_t v = 0; v < adjacency.vertex_count(); ++v)
+        adjacency.for_each_face_at(v, [&](const TetAdjacency::Face& face) {
+            EXPECT_EQ(face.vertices[0], v);
+            EXPECT_LT(face.id, adjacency.id_count());
+            EXPECT_EQ(adjacency.find(face.vertices[2], face.vertices[0], face.vertices[1]).id, face.id);
+            ids.insert(face.id);
+            visited.push_back(face);
+        });
+    ASSERT_EQ(visited.size(), faces.size());
+    EXPECT_EQ(ids.size(), faces.size()) << "one id per face";
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        EXPECT_EQ(visited[f].vertices, faces[f].vertices);
+        EXPECT_EQ(visited[f].holders, faces[f].holders);
+        EXPECT_EQ(visited[f].tets, faces[f].tets);
+    }
+    for (std::size_t t = 0; t < tets.size(); ++t)
+        for (int k = 0; k < 4; ++k) {
+            // Face k of the turned tet is opposite its corner k, which is corner orders[t % 6][k] of the plain one.
+            const int plain_k = orders[t % 6][k];
+            EXPECT_EQ(adjacency.across(t, k), plain.across(t, plain_k)) << "tet " << t << " face " << k;
+            EXPECT_EQ(adjacency.holders(t, k), plain.holders(t, plain_k));
+        }
+}
+
 } // namespace
 } // namespace tissuemesh
