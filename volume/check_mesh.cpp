@@ -113,40 +113,62 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     if (report.unused_nodes > 0) note(report, concat(report.unused_nodes, " nodes belong to no tetrahedron"));
     progress.update("check-mesh", 0.3);
 
-    // Marked faces: each must be a tet face with `from` behind and `to` in front (or nothing / background).
-    std::unordered_map<detail::FaceKey, std::size_t, detail::FaceKeyHash> marked;
+    // Marked faces: each must be a tet face with `from` behind and `to` in front (or nothing / background). The
+    // faces are looked up and judged side by side, then counted and noted in order.
+    std::vector<char> marked(adjacency.id_count(), 0);
+    std::vector<TetAdjacency::Face> found(mesh.faces.size());
+    std::vector<std::uint32_t> wrong_tet(mesh.faces.size(), no_tet); // the first tet on the wrong side
+    std::vector<Label> expected_label(mesh.faces.size(), 0);
+#pragma omp parallel for schedule(static)
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
         const Triangle& tri = mesh.faces[f];
-        const detail::FaceKey key = face_key(tri[0], tri[1], tri[2]);
-        marked[key] = f;
-        const TetAdjacency::Face found = adjacency.find(tri[0], tri[1], tri[2]);
+        found[f] = adjacency.find(tri[0], tri[1], tri[2]);
+        if (found[f].holders == 0) continue;
         const Vec3& a = mesh.vertices[tri[0]];
-        if (found.holders == 0) {
-            ++report.missing_interface_faces;
-            note(report, concat("interface face ", f, " near ", where(a), " is not a face of any tetrahedron"));
-            continue;
-        }
         const Vec3 normal = cross(mesh.vertices[tri[1]] - a, mesh.vertices[tri[2]] - a);
-        for (const std::uint32_t t : found.tets) {
+        for (const std::uint32_t t : found[f].tets) {
             if (t == no_tet) continue;
             Vec3 centroid{0, 0, 0};
             for (const std::uint32_t v : mesh.tets[static_cast<std::size_t>(t)])
                 centroid = centroid + 0.25 * mesh.vertices[v];
             const Label expected = dot(centroid - a, normal) > 0 ? mesh.face_sides[f].to : mesh.face_sides[f].from;
             if (mesh.tet_labels[static_cast<std::size_t>(t)] != expected) {
-                ++report.mislabelled_interface_faces;
-                note(report, concat("interface face ", f, " (", mesh.face_sides[f].from, "|", mesh.face_sides[f].to,
-                                    ") near ", where(a), " has a tetrahedron of tissue ",
-                                    mesh.tet_labels[static_cast<std::size_t>(t)], " on the side of tissue ", expected));
+                wrong_tet[f] = t, expected_label[f] = expected;
                 break;
             }
         }
     }
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+        const Vec3& a = mesh.vertices[mesh.faces[f][0]];
+        if (found[f].holders == 0) {
+            ++report.missing_interface_faces;
+            note(report, concat("interface face ", f, " near ", where(a), " is not a face of any tetrahedron"));
+            continue;
+        }
+        marked[found[f].id] = 1;
+        if (const std::uint32_t t = wrong_tet[f]; t != no_tet) {
+            ++report.mislabelled_interface_faces;
+            note(report,
+                 concat("interface face ", f, " (", mesh.face_sides[f].from, "|", mesh.face_sides[f].to, ") near ",
+                        where(a), " has a tetrahedron of tissue ", mesh.tet_labels[static_cast<std::size_t>(t)],
+                        " on the side of tissue ", expected_label[f]));
+        }
+    }
 
-    // Conformity, tissue changes across unmarked faces, closed outer boundary, tissue components.
+    // Conformity, tissue changes across unmarked faces, closed outer boundary, tissue components. Whether the two
+    // tets of each inner face lie on its two sides is judged side by side first (per face id: 1 when they overlap).
+    std::vector<char> overlapping(adjacency.id_count(), 0);
+    const auto buckets = static_cast<std::int64_t>(adjacency.vertex_count());
+#pragma omp parallel for schedule(dynamic, 4096)
+    for (std::int64_t v = 0; v < buckets; ++v)
+        adjacency.for_each_face_at(static_cast<std::uint32_t>(v), [&](const TetAdjacency::Face& face) {
+            if (face.holders == 2)
+                overlapping[face.id] =
+                    !on_opposite_sides(mesh, detail::FaceKey{face.vertices}, face.tets[0], face.tets[1]);
+        });
     UnionFind pieces(mesh.tets.size());
     std::unordered_map<std::uint64_t, int> boundary_edges;
-    for (const TetAdjacency::Face& face : adjacency.faces()) {
+    const auto judge = [&](const TetAdjacency::Face& face) {
         const detail::FaceKey key{face.vertices};
         if (face.holders > 2) {
             ++report.nonconforming_faces;
@@ -154,14 +176,14 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
                  concat("a face near ", where(mesh.vertices[key.v[0]]), " is shared by ", face.holders, " tetrahedra"));
         } else if (face.holders == 2) {
             const std::size_t t0 = face.tets[0], t1 = face.tets[1];
-            if (!on_opposite_sides(mesh, key, t0, t1)) {
+            if (overlapping[face.id]) {
                 ++report.nonconforming_faces;
                 note(report, concat("tetrahedra ", t0, " and ", t1, " overlap across a face near ",
                                     where(mesh.vertices[key.v[0]])));
             }
             if (mesh.tet_labels[t0] == mesh.tet_labels[t1])
                 pieces.unite(static_cast<std::uint32_t>(t0), static_cast<std::uint32_t>(t1));
-            else if (!marked.count(key)) {
+            else if (!marked[face.id]) {
                 ++report.unmarked_interfaces;
                 note(report,
                      concat("tissues ", mesh.tet_labels[t0], " and ", mesh.tet_labels[t1], " meet near ",
@@ -180,7 +202,8 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
                 }
             }
         }
-    }
+    };
+    for (std::uint32_t v = 0; v < adjacency.vertex_count(); ++v) adjacency.for_each_face_at(v, judge);
     for (const auto& [edge, balance] : boundary_edges)
         if (balance != 0) ++report.open_boundary_edges;
     report.open_boundary_edges /= 2; // each unmatched edge was counted in both directions

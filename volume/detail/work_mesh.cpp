@@ -63,7 +63,8 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
             add_face(mesh.faces[f], mesh.face_sides[f], true);
     // Faces the tissues or the outer boundary imply but the list lacks are kept all the same: every face of the
     // tets once (core's face adjacency, ascending by nodes), each of its tets in increasing order.
-    for (const TetAdjacency::Face& face : TetAdjacency(tets_, points_.size()).faces()) {
+    const TetAdjacency adjacency(tets_, points_.size());
+    const auto keep_face = [&](const TetAdjacency::Face& face) {
         if (face.holders > 2)
             throw InputError(concat("mesh: a face of tetrahedron ", face.tets[0], " is shared by ", face.holders,
                                     " tetrahedra; the mesh is not conforming (run tm-check-mesh)"));
@@ -83,7 +84,8 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
             add_face({tet[local[0]], tet[local[2]], tet[local[1]]}, {labels_[t], boundary ? Label{0} : labels_[other]},
                      false);
         }
-    }
+    };
+    for (std::uint32_t v = 0; v < adjacency.vertex_count(); ++v) adjacency.for_each_face_at(v, keep_face);
     for (std::uint32_t v = 0; v < points_.size(); ++v) kinds_[v] = compute_kind(v);
     journal_.clear();
 }
