@@ -51,8 +51,8 @@ struct ImproveOptions {
     /// The mesh is cut into this many parts across its longest side, improved side by side (the nodes on the
     /// faces between parts held still), then bands around those faces (and around any tet left under half the
     /// target) are improved the same way. 0: one part
-    /// per 200 000 tets (at most 8); 1: the whole mesh at once. The result depends on this, not on the
-    /// thread count.
+    /// per 200 000 tets, rounded down to an even number from two on (at most 8); 1: the whole mesh at once. The
+    /// result depends on this, not on the thread count.
     std::size_t parts = 0;
 };
 
