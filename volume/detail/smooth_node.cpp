@@ -43,6 +43,7 @@ public:
         for (const std::uint32_t t : mesh.tets_of(v)) {
             const Tet& tet = mesh.tet(t);
             tets_.push_back(tet);
+            corners_.push_back(mesh.corners(tet));
             corner_.push_back(static_cast<int>(std::find(tet.begin(), tet.end(), v) - tet.begin()));
         }
         shortest_edge_ = std::numeric_limits<double>::infinity();
@@ -107,7 +108,7 @@ public:
             for (std::size_t i = 0; i < tets_.size(); ++i) {
                 const double* six = &now.values[6 * i];
                 if (*std::min_element(six, six + 6) > now.minimum + model_band) continue;
-                TetCorners c = mesh_.corners(tets_[i]);
+                TetCorners c = corners_[i];
                 c[static_cast<std::size_t>(corner_[i])] = p;
                 const std::array<Vec3, 6> g =
                     dihedral_sine_gradients(c, corner_[i], {six[0], six[1], six[2], six[3], six[4], six[5]});
@@ -135,8 +136,11 @@ public:
                 // usc19-5 head, nodes on patches and on junction curves).
                 if (h > 0 && now.minimum - start + alpha * rate * (max_steps - step) < min_gain) break;
                 const std::optional<Vec3> q = place(p + alpha * d, alpha * std::sqrt(rate));
-                // Cheap tests first: the sines in doubles, the exact orientations only for a point that gains.
-                if (!q || !rises_above(*q, now.minimum + 1e-12, trial) || !valid(*q)) continue;
+                // Cheap tests first: the faces' distance to the reference (of the trial points on the 1 mm
+                // usc19-5 head, 39% fail there and 17% on the sines; none on the orientations), then the sines in
+                // doubles, then the exact orientations only for a point that gains.
+                if (!q || !stays_on_reference(*q) || !rises_above(*q, now.minimum + 1e-12, trial) || !positive_at(*q))
+                    continue;
                 p = *q, std::swap(now, trial), moved = true;
             }
             if (!moved) break;
@@ -163,13 +167,19 @@ private:
         return p;
     }
 
-    bool valid(const Vec3& q) const
+    /// Whether every tet of v is positively oriented with v at q (exact predicates).
+    bool positive_at(const Vec3& q) const
     {
         for (std::size_t i = 0; i < tets_.size(); ++i) {
-            TetCorners c = mesh_.corners(tets_[i]);
+            TetCorners c = corners_[i];
             c[static_cast<std::size_t>(corner_[i])] = q;
             if (!positive(c[0], c[1], c[2], c[3])) return false;
         }
+        return true;
+    }
+
+    bool stays_on_reference(const Vec3& q) const
+    {
         // A face at v must not turn over (for faces of the outer boundary the tets alone do not ensure it), and
         // must stay on its patch: as SurfaceReference::holds_triangle, less the midpoint of the edge opposite v,
         // which stays where it was. The centroids first (the farthest from the patch), then the midpoint of each
@@ -198,7 +208,7 @@ private:
         e.values.clear();
         e.minimum = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < tets_.size(); ++i) {
-            TetCorners c = mesh_.corners(tets_[i]);
+            TetCorners c = corners_[i];
             c[static_cast<std::size_t>(corner_[i])] = q;
             const std::array<double, 6> sines = dihedral_sines(c);
             const double least = *std::min_element(sines.begin(), sines.end());
@@ -214,7 +224,7 @@ private:
         Evaluation e;
         e.values.reserve(6 * tets_.size());
         for (std::size_t i = 0; i < tets_.size(); ++i) {
-            TetCorners c = mesh_.corners(tets_[i]);
+            TetCorners c = corners_[i];
             c[static_cast<std::size_t>(corner_[i])] = q;
             const std::array<double, 6> sines = dihedral_sines(c);
             e.values.insert(e.values.end(), sines.begin(), sines.end());
@@ -228,6 +238,7 @@ private:
     const SurfaceReference& reference_;
     double face_tolerance_mm_;
     std::vector<Tet> tets_;
+    std::vector<TetCorners> corners_; ///< per tet of v: its corners' points (v's own replaced at each trial)
     std::vector<int> corner_;
     std::vector<Triangle> faces_;
     std::vector<LabelPair> face_sides_;
