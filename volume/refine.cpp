@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/node_tets.h"
 #include "surface/detail/triangle_grid.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/refine_mesh.h"
@@ -25,7 +27,7 @@ struct TetState {
     bool sampled = false; ///< holds no voxel centre: error_mm3 is not in the totals
 };
 
-/// A tet by its sorted node indices, to recognise the tets a rebuild left unchanged.
+/// Four numbers as a hash key (a grid cell in a Tet).
 struct TetKeyHash {
     std::size_t operator()(const Tet& tet) const
     {
@@ -35,6 +37,7 @@ struct TetKeyHash {
     }
 };
 
+/// A tet by its sorted node indices, to recognise the tets a rebuild left unchanged.
 Tet sorted(Tet tet)
 {
     std::sort(tet.begin(), tet.end());
@@ -122,20 +125,31 @@ void assess_tets(Refinement& r, const std::vector<std::uint32_t>& which)
 /// Carries the state of unchanged tets over from `old` and assesses the new ones; returns how many.
 std::size_t reassess(Refinement& r, const TetMesh& old, const std::vector<TetState>& old_state)
 {
-    std::unordered_map<Tet, std::uint32_t, TetKeyHash> before;
-    before.reserve(old.tets.size());
-    for (std::size_t t = 0; t < old.tets.size(); ++t)
-        before.emplace(sorted(old.tets[t]), static_cast<std::uint32_t>(t));
+    // A new tet with an old one's nodes (old nodes keep their numbers) is that tet: found among the old tets at its
+    // smallest node, the first of them in order, side by side.
+    const NodeTets around = node_tets(old);
+    constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    std::vector<std::uint32_t> match(r.mesh.tets.size(), none);
+    const auto count = static_cast<std::int64_t>(r.mesh.tets.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t t = 0; t < count; ++t) {
+        const Tet key = sorted(r.mesh.tets[static_cast<std::size_t>(t)]);
+        if (key[0] >= old.vertices.size()) continue;
+        for (std::size_t k = around.offsets[key[0]]; k < around.offsets[key[0] + 1]; ++k)
+            if (sorted(old.tets[around.tets[k]]) == key) {
+                match[static_cast<std::size_t>(t)] = around.tets[k];
+                break;
+            }
+    }
     r.state.assign(r.mesh.tets.size(), {});
     std::vector<std::uint32_t> changed;
     for (std::size_t t = 0; t < r.mesh.tets.size(); ++t) {
-        const auto found = before.find(sorted(r.mesh.tets[t]));
-        if (found == before.end()) {
+        if (match[t] == none) {
             changed.push_back(static_cast<std::uint32_t>(t));
             continue;
         }
-        r.state[t] = old_state[found->second];
-        r.mesh.tet_labels[t] = old.tet_labels[found->second];
+        r.state[t] = old_state[match[t]];
+        r.mesh.tet_labels[t] = old.tet_labels[match[t]];
     }
     assess_tets(r, changed);
     return changed.size();

@@ -95,7 +95,15 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
         result.vertices.push_back(point_at(out.points, v));
     const std::size_t old_nodes = mesh.vertices.size(), placed = old_nodes + points.size();
     const NodeTets around = node_tets(mesh);
-    for (const Tet& tet : oriented(out, result.vertices)) {
+    const std::vector<Tet> tets = oriented(out, result.vertices);
+    // Each new tet's old tet (its tissue), side by side: -1 in a hole of the old mesh, -2 for a tet of Steiner
+    // points only.
+    constexpr std::int64_t unknown = -2;
+    std::vector<std::int64_t> sources(tets.size());
+    const auto count = static_cast<std::int64_t>(tets.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < count; ++i) {
+        const Tet& tet = tets[static_cast<std::size_t>(i)];
         std::int64_t source = -1;
         bool any_known = false;
         for (const std::uint32_t v : tet) {
@@ -107,13 +115,15 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
                                           result.vertices[tet[3]]);
             source = old_tet_towards(mesh, around, v, centroid);
         }
-        if (!any_known)
-            throw AlgorithmError(
-                "TetGen made a tetrahedron of Steiner points only while refining; its tissue is unknown. "
-                "Refine with a smaller --batch, or remesh with tm-tetra");
-        if (source < 0) continue; // in a hole of the old mesh
-        result.tets.push_back(tet);
-        result.tet_labels.push_back(mesh.tet_labels[static_cast<std::size_t>(source)]);
+        sources[static_cast<std::size_t>(i)] = any_known ? source : unknown;
+    }
+    if (std::find(sources.begin(), sources.end(), unknown) != sources.end())
+        throw AlgorithmError("TetGen made a tetrahedron of Steiner points only while refining; its tissue is unknown. "
+                             "Refine with a smaller --batch, or remesh with tm-tetra");
+    for (std::size_t i = 0; i < tets.size(); ++i) {
+        if (sources[i] < 0) continue; // in a hole of the old mesh
+        result.tets.push_back(tets[i]);
+        result.tet_labels.push_back(mesh.tet_labels[static_cast<std::size_t>(sources[i])]);
     }
     return result;
 }
