@@ -126,8 +126,7 @@ std::vector<TetAdjacency::Face> TetAdjacency::faces() const
 
 TetAdjacency::Face TetAdjacency::find(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
 {
-    std::array<std::uint32_t, 3> v{a, b, c};
-    std::sort(v.begin(), v.end());
+    const std::array<std::uint32_t, 3> v = ascending(a, b, c);
     if (v[0] + std::size_t{1} >= start_.size()) return {v, 0, {no_tet, no_tet}, 0};
     const auto begin = entries_.begin() + static_cast<std::ptrdiff_t>(start_[v[0]]);
     const auto end = entries_.begin() + static_cast<std::ptrdiff_t>(start_[v[0] + 1]);

@@ -99,8 +99,7 @@ int main(int argc, char** argv)
             app.add_option(
                    "--slabs", options.slabs,
                    "Slabs remeshed side by side (in parallel), then bands around their cuts; 0: one per 125 000 "
-                   "triangles, at most 8; 64 at most (the result depends on it, not on the "
-                   "thread count)")
+                   "triangles, at most 8; 64 at most (the result depends on it, not on the thread count)")
                 ->check(CLI::Range(0, 64))
                 ->capture_default_str();
         },

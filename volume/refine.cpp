@@ -37,11 +37,12 @@ struct TetKeyHash {
     }
 };
 
-/// A tet by its sorted node indices, to recognise the tets a rebuild left unchanged.
-Tet sorted(Tet tet)
+/// Whether `tet` has every node of `nodes` (four distinct nodes: the same tet), to recognise the tets a rebuild
+/// left unchanged.
+bool holds_all(const Tet& tet, const Tet& nodes)
 {
-    std::sort(tet.begin(), tet.end());
-    return tet;
+    return std::all_of(nodes.begin(), nodes.end(),
+                       [&](std::uint32_t v) { return std::find(tet.begin(), tet.end(), v) != tet.end(); });
 }
 
 struct Refinement {
@@ -133,10 +134,11 @@ std::size_t reassess(Refinement& r, const TetMesh& old, const std::vector<TetSta
     const auto count = static_cast<std::int64_t>(r.mesh.tets.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t t = 0; t < count; ++t) {
-        const Tet key = sorted(r.mesh.tets[static_cast<std::size_t>(t)]);
-        if (key[0] >= old.vertices.size()) continue;
-        for (std::size_t k = around.offsets[key[0]]; k < around.offsets[key[0] + 1]; ++k)
-            if (sorted(old.tets[around.tets[k]]) == key) {
+        const Tet& tet = r.mesh.tets[static_cast<std::size_t>(t)];
+        const std::uint32_t lowest = *std::min_element(tet.begin(), tet.end());
+        if (lowest >= old.vertices.size()) continue;
+        for (std::size_t k = around.offsets[lowest]; k < around.offsets[lowest + 1]; ++k)
+            if (holds_all(old.tets[around.tets[k]], tet)) {
                 match[static_cast<std::size_t>(t)] = around.tets[k];
                 break;
             }
