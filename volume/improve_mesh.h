@@ -50,9 +50,9 @@ struct ImproveOptions {
     std::map<Label, double> max_tet_volume_per_tissue_mm3;
     /// The mesh is cut into this many parts across its longest side, improved side by side (the nodes on the
     /// faces between parts held still), then bands around those faces (and around any tet left under half the
-    /// target) are improved the same way. 0: one part
-    /// per 200 000 tets, rounded down to an even number from two on (at most 8); 1: the whole mesh at once. The
-    /// result depends on this, not on the thread count.
+    /// target) are improved the same way. 0: one part per 200 000 tets rounded down to an even number, at least
+    /// two from 20 000 tets on and at most 8 (one under 20 000); 1: the whole mesh at once. The result depends on
+    /// this, not on the thread count.
     std::size_t parts = 0;
 };
 
