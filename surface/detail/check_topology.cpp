@@ -1,6 +1,7 @@
 #include "surface/detail/check_topology.h"
 
 #include <algorithm>
+#include <exception>
 #include <functional>
 #include <numeric>
 
@@ -185,23 +186,56 @@ void check_tissue_surfaces(DefectLog& log, CheckReport& report)
         by_tissue[complex.sides[t].to].push_back(t);
     }
     const Vec3 origin = bounding_box_centre(complex);
-    for (const auto& [tissue, triangles] : by_tissue) {
-        TissueCheck& check = report.tissues[tissue];
-        check.triangles = triangles.size();
-        const std::vector<EdgeUse> uses = edge_uses(complex, tissue, triangles);
-        UnionFind components(triangles.size());
-        for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
-            end = begin;
-            while (end < uses.size() && uses[end].key == uses[begin].key) {
-                components.unite(uses[begin].local, uses[end].local);
-                ++end;
+    // The tissues side by side (1 mm usc19-5 head's 2.67 M extracted triangles: 0.53 -> 0.3 s on two cores), each
+    // keeping the uses of its edges that break a rule; those are logged afterwards, tissue by tissue as before, so
+    // the report does not depend on the threads.
+    struct Tissue {
+        Label label;
+        const std::vector<std::uint32_t>* triangles;
+        std::vector<std::vector<EdgeUse>> broken; ///< per edge that breaks a rule (check_edge), its uses
+        std::size_t components = 0;
+        double volume_mm3 = 0;
+    };
+    std::vector<Tissue> tissues;
+    for (const auto& [tissue, triangles] : by_tissue) tissues.push_back({tissue, &triangles, {}, 0, 0});
+    std::exception_ptr failure;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t i = 0; i < tissues.size(); ++i) {
+        try {
+            Tissue& tissue = tissues[i];
+            const std::vector<std::uint32_t>& triangles = *tissue.triangles;
+            const std::vector<EdgeUse> uses = edge_uses(complex, tissue.label, triangles);
+            UnionFind components(triangles.size());
+            for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
+                end = begin;
+                int balance = 0;
+                while (end < uses.size() && uses[end].key == uses[begin].key) {
+                    components.unite(uses[begin].local, uses[end].local);
+                    balance += uses[end].direction;
+                    ++end;
+                }
+                const std::size_t count = end - begin;
+                if (count % 2 == 1 || balance != 0 || count > 2)
+                    tissue.broken.emplace_back(uses.begin() + static_cast<std::ptrdiff_t>(begin),
+                                               uses.begin() + static_cast<std::ptrdiff_t>(end));
             }
-            check_edge(log, tissue, triangles, uses.data() + begin, uses.data() + end, check);
+            tissue.components = components.roots();
+            tissue.volume_mm3 = enclosed_volume(complex, tissue.label, triangles, origin);
+        } catch (...) {
+#pragma omp critical(check_tissue_surfaces_failure)
+            if (!failure) failure = std::current_exception();
         }
+    }
+    if (failure) std::rethrow_exception(failure);
+    for (const Tissue& tissue : tissues) {
+        TissueCheck& check = report.tissues[tissue.label];
+        check.triangles = tissue.triangles->size();
+        for (const std::vector<EdgeUse>& uses : tissue.broken)
+            check_edge(log, tissue.label, *tissue.triangles, uses.data(), uses.data() + uses.size(), check);
         check.closed = check.open_edges == 0;
         check.oriented = check.orientation_conflicts == 0;
-        check.components = components.roots();
-        check.volume_mm3 = enclosed_volume(complex, tissue, triangles, origin);
+        check.components = tissue.components;
+        check.volume_mm3 = tissue.volume_mm3;
     }
 }
 
