@@ -43,8 +43,9 @@ struct ImproveFlags {
             ->capture_default_str();
         app.add_option("--improve-parts", options.parts,
                        "Improver: cut the mesh into this many parts, improved side by side, then bands around the "
-                       "faces between them (0: one per 200 000 tets, an even number, at least 2 from 20 000 tets on, at "
-                       "most 8; 1: the whole mesh at once). The result depends on this, not on the thread count")
+                       "faces between them (0: one per 200 000 tets, an even number, at least 2 from 20 000 tets "
+                       "on, at most 8; 1: the whole mesh at once). The result depends on this, not on the thread "
+                       "count")
             ->check(CLI::Range(0, 64))
             ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
