@@ -202,24 +202,20 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
                    static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[1] / min_distance)) + dy),
                    static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(p[2] / min_distance)) + dz), 0};
     };
-    // Each tet's node by the placement (and by the centroid, for the fallback) side by side; then in order, each
+    // Each tet's node by the placement side by side (the tissue-change search is the cost); then in order, each
     // kept where it is free.
     const auto corners_of = [&](std::uint32_t t) {
         std::array<Vec3, 4> corners;
         for (int c = 0; c < 4; ++c) corners[c] = r.mesh.vertices[r.mesh.tets[t][c]];
         return corners;
     };
-    std::vector<Vec3> placed(batch.size()), centred(fallback ? batch.size() : 0);
+    std::vector<Vec3> placed(batch.size());
     const auto count = static_cast<std::int64_t>(batch.size());
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < count; ++i) {
         const auto k = static_cast<std::size_t>(i);
-        const std::array<Vec3, 4> corners = corners_of(batch[k]);
-        placed[k] =
-            detail::place_node(r.image, corners, r.options.placement, r.options.assess.background, r.constrained);
-        if (fallback)
-            centred[k] =
-                detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
+        placed[k] = detail::place_node(r.image, corners_of(batch[k]), r.options.placement, r.options.assess.background,
+                                       r.constrained);
     }
     for (std::size_t k = 0; k < batch.size(); ++k) {
         const std::uint32_t t = batch[k];
@@ -237,7 +233,8 @@ NewNodes place_batch(const Refinement& r, const std::vector<std::uint32_t>& batc
         };
         Vec3 p = placed[k];
         // A tissue change too close to a node: the centroid instead, so that such tets still get refined.
-        if (!is_free(p) && fallback) p = centred[k];
+        if (!is_free(p) && fallback)
+            p = detail::place_node(r.image, corners, Placement::centroid, r.options.assess.background, r.constrained);
         if (!is_free(p)) continue;
         grid[cell(p, 0, 0, 0)].push_back(static_cast<std::uint32_t>(nodes.points.size()));
         nodes.points.push_back(p);

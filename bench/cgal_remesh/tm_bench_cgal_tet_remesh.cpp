@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "io/tet_mesh_io.h"
+#include "tools/report_json.h"
 #include "tools/run_tool.h"
 #include "volume/improve_mesh.h"
 #include "volume/mark_interfaces.h"
@@ -76,6 +77,8 @@ private:
     /// Empty cubes from their filled face neighbours, ring by ring; what no ring reaches takes `mean`.
     void fill_empty(double mean)
     {
+        constexpr std::array<std::array<std::int64_t, 3>, 6> steps{
+            {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
         for (int ring = 0; ring < 8; ++ring) {
             std::vector<double> next = size_;
             bool empty_left = false;
@@ -86,8 +89,6 @@ private:
                         if (size_[c] > 0) continue;
                         double sum = 0;
                         int n = 0;
-                        const std::array<std::array<std::int64_t, 3>, 6> steps{
-                            {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}};
                         for (const auto& s : steps) {
                             const std::int64_t a = i + s[0], b = j + s[1], d = k + s[2];
                             if (a < 0 || b < 0 || d < 0 || a >= counts_[0] || b >= counts_[1] || d >= counts_[2])
@@ -154,15 +155,6 @@ TetMesh from_triangulation(const Tr& tr, const TissueNames& names)
     return mesh;
 }
 
-nlohmann::json figures_json(const volume::ShapeFigures& figures)
-{
-    return {{"tets", figures.tets},
-            {"min_dihedral_deg", figures.min_dihedral_deg},
-            {"p1_min_dihedral_deg", figures.p1_min_dihedral_deg},
-            {"tets_under_10_deg", figures.tets_under_10_deg},
-            {"tets_under_20_deg", figures.tets_under_20_deg}};
-}
-
 } // namespace
 
 int main(int argc, char** argv)
@@ -223,9 +215,12 @@ int main(int argc, char** argv)
                                " deg, 1st percentile ", format_mm(before.p1_min_dihedral_deg, 1), " -> ",
                                format_mm(after.p1_min_dihedral_deg, 1), " deg (", format_mm(remesh_seconds, 2),
                                " s remeshing, ", format_mm(built_seconds, 2), " s building)"));
-            context.summary = {{"before", figures_json(before)},  {"after", figures_json(after)},
-                               {"iterations", iterations},        {"target_edge_mm", target_edge_mm},
-                               {"size_factor", size_factor},      {"build_seconds", built_seconds},
+            context.summary = {{"before", before},
+                               {"after", after},
+                               {"iterations", iterations},
+                               {"target_edge_mm", target_edge_mm},
+                               {"size_factor", size_factor},
+                               {"build_seconds", built_seconds},
                                {"remesh_seconds", remesh_seconds}};
         });
 }
