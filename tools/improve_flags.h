@@ -1,11 +1,13 @@
 // The mesh improver's flags and log line, shared by tm-tetra, tm-refine and tm-improve.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "io/read_label_image.h"
 #include "volume/improve_mesh.h"
 
 namespace tissuemesh::tools {
@@ -15,6 +17,8 @@ struct ImproveFlags {
     bool off = false; ///< --no-improve (tm-tetra, tm-refine)
     bool keep_interfaces = false;
     CLI::Option* insert_below = nullptr;
+    std::string voxels_path;                       ///< --improve-keep-voxel-sides
+    std::shared_ptr<const LabelImage> voxel_image; ///< read by to_options()
 
     /// `with_switch`: the tool improves by default and takes --no-improve.
     void add_to(CLI::App& app, bool with_switch)
@@ -50,13 +54,22 @@ struct ImproveFlags {
             ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
                      "Improver: interface nodes stay where they are and none is added on interfaces");
+        app.add_option("--improve-keep-voxel-sides", voxels_path,
+                       "Improver: refuse interface moves, flips and splits that would carry the centre of a voxel "
+                       "of this label image (the one the surfaces were made from) across an interface: the Dice "
+                       "against it stays as meshed, the smallest angles are lower")
+            ->check(CLI::ExistingFile);
     }
 
-    /// The improver's options from the flags.
-    /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg
-    volume::ImproveOptions to_options() const
+    /// The improver's options from the flags (reading the --improve-keep-voxel-sides image).
+    /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg, or the image is bad
+    volume::ImproveOptions to_options()
     {
         volume::ImproveOptions o = options;
+        if (!voxels_path.empty()) {
+            if (!voxel_image) voxel_image = std::make_shared<const LabelImage>(io::read_label_image(voxels_path));
+            o.voxel_image = voxel_image.get();
+        }
         if (keep_interfaces) o.move_interface_nodes = false, o.insert_on_interfaces = false;
         if (insert_below != nullptr && insert_below->count() > 0) {
             // The improver works only below its target, so a higher insertion bound would act as the target.
@@ -76,15 +89,17 @@ struct ImproveFlags {
 /// "smallest dihedral 0.21 -> 18.3 deg, 1st percentile 9.1 -> 24.0 deg, ... in 1.2 s"
 inline std::string improve_line(const volume::ImproveReport& r)
 {
-    return concat("improved: smallest dihedral ", format_mm(r.before.min_dihedral_deg, 2), " -> ",
-                  format_mm(r.after.min_dihedral_deg, 2), " deg, 1st percentile ",
-                  format_mm(r.before.p1_min_dihedral_deg, 1), " -> ", format_mm(r.after.p1_min_dihedral_deg, 1),
-                  " deg, tets under 10 deg ", r.before.tets_under_10_deg, " -> ", r.after.tets_under_10_deg, " (",
-                  r.smoothed_nodes, " moves, ", r.edges_removed + r.faces_removed + r.interface_edges_flipped,
-                  " flips (", r.interface_edges_flipped, " on interfaces), ",
-                  r.nodes_inserted + r.nodes_inserted_on_interfaces, " new nodes, ", r.nodes_inserted_on_interfaces,
-                  " of them on interfaces) in ", format_mm(r.seconds, 2), " s (", format_mm(r.cpu_seconds, 2), " s CPU",
-                  r.parts > 1 ? concat("; ", r.parts, " parts, ", r.bands, " bands") : std::string(), ")");
+    return concat(
+        "improved: smallest dihedral ", format_mm(r.before.min_dihedral_deg, 2), " -> ",
+        format_mm(r.after.min_dihedral_deg, 2), " deg, 1st percentile ", format_mm(r.before.p1_min_dihedral_deg, 1),
+        " -> ", format_mm(r.after.p1_min_dihedral_deg, 1), " deg, tets under 10 deg ", r.before.tets_under_10_deg,
+        " -> ", r.after.tets_under_10_deg, " (", r.smoothed_nodes, " moves, ",
+        r.edges_removed + r.faces_removed + r.interface_edges_flipped, " flips (", r.interface_edges_flipped,
+        " on interfaces), ", r.nodes_inserted + r.nodes_inserted_on_interfaces, " new nodes, ",
+        r.nodes_inserted_on_interfaces, " of them on interfaces",
+        r.refused_by_voxels > 0 ? concat("; ", r.refused_by_voxels, " edits refused by the voxels") : std::string(),
+        ") in ", format_mm(r.seconds, 2), " s (", format_mm(r.cpu_seconds, 2), " s CPU",
+        r.parts > 1 ? concat("; ", r.parts, " parts, ", r.bands, " bands") : std::string(), ")");
 }
 
 } // namespace tissuemesh::tools

@@ -7,10 +7,12 @@
 #include <exception>
 #include <functional>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "core/error.h"
 #include "core/tet_shape.h"
+#include "surface/detail/voxel_sides.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/improver.h"
 #include "volume/detail/mesh_parts.h"
@@ -41,6 +43,21 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
     if (!(options.max_tet_volume_mm3 >= 0 && std::isfinite(options.max_tet_volume_mm3)))
         throw InputError(
             concat("tet volume bound ", options.max_tet_volume_mm3, " mm^3 is not a finite number >= 0 (0: no bound)"));
+    if (options.voxel_image != nullptr && !mesh.vertices.empty()) {
+        // A mesh beside the image would be judged against no voxel, or the wrong ones: every edit allowed, silently.
+        const auto [low, high] = options.voxel_image->world_bounds_mm();
+        Vec3 mesh_low = mesh.vertices.front(), mesh_high = mesh_low;
+        for (const Vec3& p : mesh.vertices)
+            for (int a = 0; a < 3; ++a)
+                mesh_low[a] = std::min(mesh_low[a], p[a]), mesh_high[a] = std::max(mesh_high[a], p[a]);
+        double beyond = 0;
+        for (int a = 0; a < 3; ++a) beyond = std::max({beyond, low[a] - mesh_low[a], mesh_high[a] - high[a]});
+        const Vec3 spacing = options.voxel_image->spacing_mm();
+        if (beyond > 2 * std::max({spacing[0], spacing[1], spacing[2]}))
+            throw InputError(concat("the mesh reaches ", format_mm(beyond, 1),
+                                    " mm beyond the voxel image's box; give the label image its surfaces were made "
+                                    "from (the workflow's clean.nii.gz)"));
+    }
     for (const auto& [tissue, bound] : options.max_tet_volume_per_tissue_mm3)
         if (!(bound > 0 && std::isfinite(bound)))
             throw InputError(concat("tet volume bound ", bound, " mm^3 for tissue ", tissue,
@@ -57,6 +74,7 @@ void add_counts(ImproveReport& whole, const ImproveReport& part)
     whole.interface_edges_flipped += part.interface_edges_flipped;
     whole.nodes_inserted += part.nodes_inserted;
     whole.nodes_inserted_on_interfaces += part.nodes_inserted_on_interfaces;
+    whole.refused_by_voxels += part.refused_by_voxels;
     whole.passes = std::max(whole.passes, part.passes);
 }
 
@@ -64,9 +82,9 @@ void add_counts(ImproveReport& whole, const ImproveReport& part)
 /// it shares with the rest frozen, and puts them back; flags those nodes in `seam` (per node) when given. With `seeds`
 /// (per node), a part works only from the tets at a flagged node.
 void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std::size_t count,
-                   const detail::SurfaceReference& reference, const ImproveOptions& options,
-                   const std::vector<char>& seeds, std::vector<char>* seam, ImproveReport& report,
-                   const std::function<void()>& part_done)
+                   const detail::SurfaceReference& reference, const surface::detail::VoxelSides* sides,
+                   const ImproveOptions& options, const std::vector<char>& seeds, std::vector<char>* seam,
+                   ImproveReport& report, const std::function<void()>& part_done)
 {
     const detail::PartCutter cutter(mesh);
     std::vector<std::vector<std::uint32_t>> tets(count);
@@ -88,7 +106,7 @@ void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std
                     local_seeds[v] = parts[k].from_node[v] < seeds.size() && seeds[parts[k].from_node[v]];
             }
             edited[k] = std::move(parts[k].mesh);
-            detail::improve_in_place(edited[k], reference, options, reports[k], parts[k].frozen,
+            detail::improve_in_place(edited[k], reference, sides, options, reports[k], parts[k].frozen,
                                      std::move(local_seeds));
         } catch (...) {
 #pragma omp critical(improve_part_failure)
@@ -146,8 +164,9 @@ std::vector<char> nodes_of(const TetMesh& mesh, const std::vector<char>& tets)
 /// `band_rings` rings of them, as one part. The bands can leave such a tet: on the 3 mm torso a 9.49-degree tet stayed,
 /// which this round lifts to 12.66 degrees (with 2 to 6 rings alike), as does a second improver run. Nothing happens,
 /// and nothing costs, when no tet is that low.
-void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
-                       double below, ImproveReport& report)
+void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference,
+                       const surface::detail::VoxelSides* sides, const ImproveOptions& options, double below,
+                       ImproveReport& report)
 {
     std::vector<char> seeds(mesh.tets.size(), 0);
 #pragma omp parallel for schedule(static)
@@ -158,17 +177,18 @@ void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference,
     std::vector<std::uint32_t> part_of(mesh.tets.size(), detail::no_part);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         if (around[t]) part_of[t] = 0;
-    improve_parts(mesh, part_of, 1, reference, options, start, nullptr, report, [] {});
+    improve_parts(mesh, part_of, 1, reference, sides, options, start, nullptr, report, [] {});
 }
 
 /// Improves the mesh in parts across it, then in bands around the faces between them (ImproveOptions::parts).
-void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, const ImproveOptions& options,
-                      std::size_t count, ImproveReport& report, const Progress& progress)
+void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference,
+                      const surface::detail::VoxelSides* sides, const ImproveOptions& options, std::size_t count,
+                      ImproveReport& report, const Progress& progress)
 {
     const detail::Cut cut = detail::cut_across(mesh, count);
     std::vector<char> seam(mesh.vertices.size(), 0);
     std::size_t done = 0;
-    improve_parts(mesh, cut.part_of, count, reference, options, {}, &seam, report,
+    improve_parts(mesh, cut.part_of, count, reference, sides, options, {}, &seam, report,
                   [&] { progress.update("improve", 0.8 * static_cast<double>(++done) / static_cast<double>(count)); });
     // Then around the tets near those nodes (within two rings of tets) still below the target, and any tet still
     // below half the target, with two rings of tets beyond them for the edits' room (edge rings, smoothing stars).
@@ -202,12 +222,12 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference, 
         else if (around[t]) band_of[t] = cut.nearest(mesh, t);
     }
     done = 0;
-    improve_parts(mesh, band_of, bands, reference, options, start, nullptr, report, [&] {
+    improve_parts(mesh, band_of, bands, reference, sides, options, start, nullptr, report, [&] {
         progress.update("improve", 0.8 + 0.2 * static_cast<double>(++done) / static_cast<double>(bands));
     });
     report.parts = count;
     report.bands = bands;
-    improve_last_tets(mesh, reference, options, far_target, report);
+    improve_last_tets(mesh, reference, sides, options, far_target, report);
 }
 
 /// Builds the reference with `make_reference` (or takes it, when it returns one made before) and improves `mesh`
@@ -218,11 +238,14 @@ ImproveReport run(TetMesh& mesh, MakeReference make_reference, const ImproveOpti
     const auto start = std::chrono::steady_clock::now();
     const std::clock_t cpu_start = std::clock();
     const detail::SurfaceReference& reference = make_reference();
+    std::optional<surface::detail::VoxelSides> sides;
+    if (options.voxel_image != nullptr) sides.emplace(*options.voxel_image); // flags built once, for every part
+    const surface::detail::VoxelSides* voxel_sides = sides ? &*sides : nullptr;
     ImproveReport report;
     report.before = shape_figures(mesh);
     if (const std::size_t count = part_count(mesh, options); count > 1)
-        improve_in_parts(mesh, reference, options, count, report, progress);
-    else detail::improve_in_place(mesh, reference, options, report, {}, {}, progress);
+        improve_in_parts(mesh, reference, voxel_sides, options, count, report, progress);
+    else detail::improve_in_place(mesh, reference, voxel_sides, options, report, {}, {}, progress);
     report.after = shape_figures(mesh);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "core/interface_complex.h"
+#include "core/label_image.h"
 #include "core/progress.h"
 #include "core/tet_mesh.h"
 
@@ -54,6 +55,12 @@ struct ImproveOptions {
     /// two from 20 000 tets on and at most 8 (one under 20 000); 1: the whole mesh at once. The result depends on
     /// this, not on the thread count.
     std::size_t parts = 0;
+    /// The voxels the interfaces were made from (world coordinates, as the mesh), or null. When given, an edit that
+    /// moves, flips or splits interface faces is refused when the region they sweep holds the centre of a voxel
+    /// next to another label (the rule tm-remesh --image keeps): the Dice against these voxels stays that of the
+    /// input mesh, at the cost of smaller angles (docs/volume.md). Edits that move or add junction-curve nodes
+    /// are not asked. The image must outlive the call.
+    const LabelImage* voxel_image = nullptr;
 };
 
 /// Shape figures of a mesh. A tet's smallest dihedral angle is its quality here.
@@ -78,6 +85,7 @@ struct ImproveReport {
     std::size_t interface_edges_flipped = 0; ///< 2-2 flips of interface triangles (their tets remade on both sides)
     std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
+    std::size_t refused_by_voxels = 0; ///< edits refused for carrying a voxel centre across (voxel_image)
     std::size_t passes = 0;
     std::size_t parts = 1; ///< parts improved side by side (ImproveOptions::parts)
     std::size_t bands = 0; ///< then bands around the faces between them

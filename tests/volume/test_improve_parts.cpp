@@ -108,6 +108,47 @@ TEST(ImproveWorkMesh, RollbackRestoresTheMeshExactly)
     EXPECT_TRUE(same_mesh(work.result(), start));
 }
 
+TEST(ImproveWorkMesh, SweptFacesAreTheStarBeforeAndAfter)
+{
+    const TetMesh mesh = nested_boxes();
+    WorkMesh work(mesh);
+    std::vector<std::array<Vec3, 3>> before, after;
+    // A node inside the inner box's face z = 3 (not on its edges) slides within it.
+    std::uint32_t v = 0;
+    while (v < work.node_count() && !(work.kind(v) == NodeKind::surface && work.point(v)[2] == 3 &&
+                                      work.tissues_at(v) == std::vector<Label>{1, 2}))
+        ++v;
+    ASSERT_LT(v, work.node_count()) << "no node inside the inner box's bottom face";
+    const std::size_t mark = work.mark();
+    const Vec3 from = work.point(v), to = from + Vec3{0.01, 0.01, 0};
+    work.move_node(v, to);
+    work.swept_faces(mark, before, after);
+    ASSERT_EQ(before.size(), work.faces_of(v).size());
+    ASSERT_EQ(after.size(), before.size());
+    const auto holds = [](const std::vector<std::array<Vec3, 3>>& faces, const Vec3& p) {
+        return std::all_of(faces.begin(), faces.end(),
+                           [&](const std::array<Vec3, 3>& c) { return std::find(c.begin(), c.end(), p) != c.end(); });
+    };
+    EXPECT_TRUE(holds(before, from));
+    EXPECT_TRUE(holds(after, to));
+    work.rollback(mark);
+    // Undone, nothing is swept.
+    work.swept_faces(work.mark(), before, after);
+    EXPECT_TRUE(before.empty() && after.empty());
+    // A node on a junction curve sweeps the faces of every patch at it: two cubes of tissues 1 and 2 side by side,
+    // whose shared square meets the outer faces along a curve.
+    testing::VoxelBlock block{.nx = 2, .ny = 1, .nz = 1};
+    block.labels = {1, 2};
+    WorkMesh cubes(tetrahedralize(testing::voxel_faces(block), {.improve = false}));
+    std::uint32_t c = 0;
+    while (c < cubes.node_count() && cubes.kind(c) != NodeKind::curve) ++c;
+    ASSERT_LT(c, cubes.node_count());
+    cubes.move_node(c, cubes.point(c) + Vec3{0, 0.01, 0});
+    cubes.swept_faces(0, before, after);
+    EXPECT_EQ(before.size(), cubes.faces_of(c).size());
+    EXPECT_EQ(after.size(), cubes.faces_of(c).size());
+}
+
 TEST(ImproveWorkMesh, KindsFollowTheConstraintFaces)
 {
     // Two unit cubes of tissues 1 and 2 side by side: the square they share meets the outer faces along a

@@ -7,18 +7,20 @@
 
 #include "core/progress.h"
 #include "core/tet_mesh.h"
+#include "surface/detail/voxel_sides.h"
 #include "volume/detail/surface_reference.h"
 #include "volume/improve_mesh.h"
 
 namespace tissuemesh::volume::detail {
 
-/// Improves `mesh` in place against `reference` (one thread), adding its counts to `report` (not its figures or
+/// Improves `mesh` in place against `reference` (one thread), with `sides` (or null) judging interface edits against
+/// the voxels (ImproveOptions::voxel_image), adding its counts to `report` (not its figures or
 /// times). Nodes flagged in `frozen` (per node) never change, nor any face or edge all of whose nodes are
 /// frozen (WorkMesh); with `seeds` (per node), only the tets at a flagged node are queued at the start of a
 /// pass (tets the edits make or reshape join the queue as always).
-void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const ImproveOptions& options,
-                      ImproveReport& report, std::vector<char> frozen = {}, std::vector<char> seeds = {},
-                      const Progress& progress = {});
+void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
+                      const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen = {},
+                      std::vector<char> seeds = {}, const Progress& progress = {});
 
 /// improve_mesh() against a reference built before (tetrahedralize() builds it while TetGen runs); the report's
 /// times leave its building out.

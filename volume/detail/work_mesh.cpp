@@ -362,6 +362,58 @@ std::vector<std::uint32_t> WorkMesh::take_touched()
     return touched;
 }
 
+void WorkMesh::swept_faces(std::size_t mark, std::vector<std::array<Vec3, 3>>& before,
+                           std::vector<std::array<Vec3, 3>>& after) const
+{
+    before.clear(), after.clear();
+    // Nodes moved since mark with where they were then (the first entry of each), faces added and removed.
+    std::vector<std::pair<std::uint32_t, Vec3>> moved;
+    std::vector<std::uint32_t> added, removed, at_moved;
+    auto new_nodes_from = static_cast<std::uint32_t>(points_.size());
+    for (std::size_t i = mark; i < journal_.size(); ++i) {
+        const Entry& e = journal_[i];
+        switch (e.change) {
+        case Change::node_added: new_nodes_from = std::min(new_nodes_from, e.index); break;
+        case Change::node_moved: moved.emplace_back(e.index, e.point); break;
+        case Change::face_added: added.push_back(e.index); break;
+        case Change::face_removed: removed.push_back(e.index); break;
+        default: break;
+        }
+    }
+    // Faces added since mark did not exist then: their ids are not in `before`, whatever happened to them.
+    std::sort(added.begin(), added.end());
+    const auto is_added = [&](std::uint32_t f) { return std::binary_search(added.begin(), added.end(), f); };
+    std::stable_sort(moved.begin(), moved.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    moved.erase(
+        std::unique(moved.begin(), moved.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+        moved.end());
+    for (const auto& [v, from] : moved) {
+        if (v >= new_nodes_from) continue;
+        at_moved.insert(at_moved.end(), faces_of_[v].begin(), faces_of_[v].end());
+    }
+    std::sort(at_moved.begin(), at_moved.end());
+    at_moved.erase(std::unique(at_moved.begin(), at_moved.end()), at_moved.end());
+    const auto then = [&](std::uint32_t v) -> const Vec3& {
+        const auto it = std::lower_bound(moved.begin(), moved.end(), v,
+                                         [](const auto& entry, std::uint32_t node) { return entry.first < node; });
+        return it != moved.end() && it->first == v ? it->second : points_[v];
+    };
+    const auto corners_then = [&](std::uint32_t f) {
+        const Triangle& c = faces_[f].corners;
+        return std::array<Vec3, 3>{then(c[0]), then(c[1]), then(c[2])};
+    };
+    const auto corners_now = [&](std::uint32_t f) {
+        const Triangle& c = faces_[f].corners;
+        return std::array<Vec3, 3>{points_[c[0]], points_[c[1]], points_[c[2]]};
+    };
+    for (const std::uint32_t f : removed)
+        if (!is_added(f)) before.push_back(corners_then(f));
+    for (const std::uint32_t f : added)
+        if (faces_[f].alive) after.push_back(corners_now(f));
+    for (const std::uint32_t f : at_moved)
+        if (!is_added(f)) before.push_back(corners_then(f)), after.push_back(corners_now(f)); // added: in `after`
+}
+
 WorkMesh::Balance WorkMesh::balance_since(std::size_t mark) const
 {
     Balance balance{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};

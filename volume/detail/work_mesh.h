@@ -2,6 +2,7 @@
 // constraint faces, and a journal of every edit so that a trial can be undone exactly.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -128,6 +129,13 @@ public:
         double before, after;
     };
     Balance balance_since(std::size_t mark) const;
+
+    /// The constraint faces the edits since `mark` changed: in `before` as they were at `mark` (those removed and
+    /// those at moved nodes, with the nodes where they were), in `after` as they are now (those added and those
+    /// at moved nodes). Together they bound the region the interfaces swept (at a junction-curve node, one region
+    /// between each patch's faces before and after).
+    void swept_faces(std::size_t mark, std::vector<std::array<Vec3, 3>>& before,
+                     std::vector<std::array<Vec3, 3>>& after) const;
 
 private:
     enum class Change : std::uint8_t {
