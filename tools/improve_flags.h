@@ -1,13 +1,11 @@
 // The mesh improver's flags and log line, shared by tm-tetra, tm-refine and tm-improve.
 #pragma once
 
-#include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
-#include "io/read_label_image.h"
 #include "volume/improve_mesh.h"
 
 namespace tissuemesh::tools {
@@ -17,8 +15,7 @@ struct ImproveFlags {
     bool off = false; ///< --no-improve (tm-tetra, tm-refine)
     bool keep_interfaces = false;
     CLI::Option* insert_below = nullptr;
-    std::string voxels_path;                       ///< --improve-keep-voxel-sides
-    std::shared_ptr<const LabelImage> voxel_image; ///< read by to_options()
+    bool keep_voxel_sides = false; ///< --improve-keep-voxel-sides (the tool's --image)
 
     /// `with_switch`: the tool improves by default and takes --no-improve.
     void add_to(CLI::App& app, bool with_switch)
@@ -54,22 +51,23 @@ struct ImproveFlags {
             ->capture_default_str();
         app.add_flag("--improve-keep-interfaces", keep_interfaces,
                      "Improver: interface nodes stay where they are and none is added on interfaces");
-        app.add_option("--improve-keep-voxel-sides", voxels_path,
-                       "Improver: refuse interface moves, flips and splits that would carry the centre of a voxel "
-                       "of this label image (the one the surfaces were made from) across an interface: the Dice "
-                       "against it stays as meshed, the smallest angles are lower")
-            ->check(CLI::ExistingFile);
+        app.add_flag("--improve-keep-voxel-sides", keep_voxel_sides,
+                     "Improver: no interface move, flip or split carries the centre of a voxel of --image next to "
+                     "another tissue across (but for tets left under half the target): the Dice against it stays "
+                     "as meshed, the smallest angles are lower");
     }
 
-    /// The improver's options from the flags (reading the --improve-keep-voxel-sides image).
-    /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg, or the image is bad
-    volume::ImproveOptions to_options()
+    /// The improver's options from the flags; `image` is the tool's --image (read; null when not given), which
+    /// --improve-keep-voxel-sides needs.
+    /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg, or
+    ///         --improve-keep-voxel-sides without an image
+    volume::ImproveOptions to_options(const LabelImage* image = nullptr) const
     {
         volume::ImproveOptions o = options;
-        if (!voxels_path.empty()) {
-            if (!voxel_image) voxel_image = std::make_shared<const LabelImage>(io::read_label_image(voxels_path));
-            o.voxel_image = voxel_image.get();
-        }
+        if (keep_voxel_sides && image == nullptr)
+            throw InputError("--improve-keep-voxel-sides needs the label image the surfaces come from: give --image "
+                             "clean.nii.gz (or leave --improve-keep-voxel-sides out)");
+        o.voxel_image = keep_voxel_sides ? image : nullptr;
         if (keep_interfaces) o.move_interface_nodes = false, o.insert_on_interfaces = false;
         if (insert_below != nullptr && insert_below->count() > 0) {
             // The improver works only below its target, so a higher insertion bound would act as the target.

@@ -1,10 +1,12 @@
 // tm-improve: better-shaped tets in any of our meshes, tissues and interfaces kept.
 #include "core/error.h"
+#include "io/read_label_image.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/report_json.h"
+#include "tools/surface_step.h"
 #include "tools/run_tool.h"
 #include "volume/improve_mesh.h"
 #include "volume/mark_interfaces.h"
@@ -15,7 +17,7 @@ int main(int argc, char** argv)
 {
     tools::MeshFormatFlags format_flags;
     tools::ImproveFlags improve_flags;
-    std::string input, output, surface;
+    std::string input, output, surface, image;
     return tools::run_tool(
         argc, argv,
         {"tm-improve",
@@ -40,11 +42,23 @@ int main(int argc, char** argv)
                 ->check(CLI::ExistingFile);
             format_flags.add_to(app);
             improve_flags.add_to(app, false);
+            app.add_option("--image", image,
+                           "With --improve-keep-voxel-sides: the label image the mesh was made from (tm-prep's clean "
+                           "image)");
         },
         [&](tools::ToolContext& context) {
+            tools::require_image_with("--improve-keep-voxel-sides", improve_flags.keep_voxel_sides, image,
+                                      "leave --improve-keep-voxel-sides out");
             TetMesh mesh = io::read_tet_mesh(input);
             if (mesh.faces.empty()) volume::mark_interfaces(mesh);
-            const volume::ImproveOptions options = improve_flags.to_options();
+            LabelImage voxels;
+            if (improve_flags.keep_voxel_sides)
+                voxels = io::read_label_image(
+                    image, {.before_voxels = tools::image_memory_check(context.memory, image, 3,
+                                                                       "crop it (tm-prep --crop-pad 2), or leave "
+                                                                       "--improve-keep-voxel-sides out")});
+            const volume::ImproveOptions options =
+                improve_flags.to_options(improve_flags.keep_voxel_sides ? &voxels : nullptr);
             const volume::ImproveReport report = tools::with_source(input, [&] {
                 if (surface.empty()) return volume::improve_mesh(mesh, options, context.progress);
                 const InterfaceComplex complex = io::read_surface(surface);

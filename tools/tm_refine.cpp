@@ -106,8 +106,8 @@ int main(int argc, char** argv)
             format_flags.check();
             options.placement = volume::parse_placement(placement);
             options.improve = !improve_flags.off;
-            options.improvement = improve_flags.to_options();
             const LabelImage image = io::read_label_image(image_path);
+            options.improvement = improve_flags.to_options(&image); // --improve-keep-voxel-sides: this image
             TetMesh start;
             if (!input.empty()) start = io::read_tet_mesh(input);
             volume::RefineReport report;

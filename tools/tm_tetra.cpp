@@ -6,11 +6,13 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/read_label_image.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
 #include "tools/mesh_format_options.h"
 #include "tools/report_json.h"
+#include "tools/surface_step.h"
 #include "tools/run_tool.h"
 #include "tools/tissue_arguments.h"
 #include "volume/tetrahedralize.h"
@@ -116,7 +118,7 @@ int main(int argc, char** argv)
 {
     tools::MeshFormatFlags format_flags;
     tools::ImproveFlags improve_flags;
-    std::string input, output, max_volume, max_edge;
+    std::string input, output, max_volume, max_edge, image;
     volume::TetrahedralizeOptions options;
     bool allow_steiner = false, no_quality = false, drop_cavities = false;
     return tools::run_tool(
@@ -152,15 +154,26 @@ int main(int argc, char** argv)
                          "as surfaces, not as the input triangles");
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
             improve_flags.add_to(app, true);
+            app.add_option("--image", image,
+                           "With --improve-keep-voxel-sides: the label image the surfaces come from (tm-prep's clean "
+                           "image)");
         },
         [&](tools::ToolContext& context) {
             format_flags.check();
+            tools::require_image_with("--improve-keep-voxel-sides", improve_flags.keep_voxel_sides, image,
+                                      "leave --improve-keep-voxel-sides out");
             const InterfaceComplex complex = io::read_surface(input);
             options.preserve_interfaces = !allow_steiner;
             options.improve_quality = !no_quality;
             options.mesh_background_cavities = !drop_cavities;
             options.improve = !improve_flags.off;
-            options.improvement = improve_flags.to_options();
+            LabelImage voxels;
+            if (improve_flags.keep_voxel_sides)
+                voxels = io::read_label_image(
+                    image, {.before_voxels = tools::image_memory_check(context.memory, image, 3,
+                                                                       "crop it (tm-prep --crop-pad 2), or leave "
+                                                                       "--improve-keep-voxel-sides out")});
+            options.improvement = improve_flags.to_options(improve_flags.keep_voxel_sides ? &voxels : nullptr);
             const tools::TissueTable tissues = tools::tissue_table(complex, input);
             if (!max_volume.empty()) parse_sizes(max_volume, tissues, "--max-volume", false, options);
             if (!max_edge.empty()) parse_sizes(max_edge, tissues, "--max-edge-mm", true, options);
