@@ -17,9 +17,11 @@ namespace tissuemesh::volume {
 /// them, as if it were moved by an infinitesimal step along (1, e, e^2) in voxel-index space (e -> 0):
 /// on a face plane, the side the face's normal points to when its first non-zero component (x, then y,
 /// then z) is positive. Each face's test is evaluated once per face in a canonical vertex order, so two
-/// tets sharing a face can never both claim (or both refuse) a centre on it. Orientation and spacing of
-/// the image are honoured (tests run in continuous index coordinates).
-/// Cost: linear in voxels covered by the tets' bounding boxes plus tets.
+/// tets sharing a face can never both claim (or both refuse) a centre on it. The rule is exact only as far as
+/// the plane tests are: a centre on an edge or a node of the mesh may be refused by every tet around it when they
+/// round differently, so a centre no tet claims goes to the first tet it lies within 1e-9 voxel of. Orientation and
+/// spacing of the image are honoured (tests run in continuous index coordinates). Cost: linear in voxels covered by the
+/// tets' bounding boxes plus tets.
 /// @pre  mesh tets are positively oriented (TetMesh's invariant) and the mesh is conforming
 std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& image, const Progress& progress = {});
 

@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "io/surface_io.h"
@@ -58,6 +60,50 @@ TEST(TetraCli, JunctionPhantomBecomesAConformingMeshMatchingTheVoxels)
     const auto splits = report["improvement"]["nodes_inserted_on_interfaces"].get<std::size_t>();
     EXPECT_GE(faces, surface.triangles.size());
     EXPECT_LE(faces, surface.triangles.size() + 4 * splits);
+}
+
+TEST(TetraCli, KeepingTheVoxelSidesKeepsTheDiceOfTheUnimprovedMesh)
+{
+    // The `thin` phantom's one-voxel shell through decimation and remeshing, as the workflow makes its surfaces.
+    TempDir dir;
+    make_surface(dir, "thin", "2");
+    const std::string surface = (dir / "remeshed.ply").string(), image = (dir / "thin.nii.gz").string();
+    const std::string decimated = (dir / "decimated.ply").string();
+    ASSERT_EQ(run_cli("tm-decimate", {"-i", (dir / "surface.ply").string(), "-o", decimated, "--max-distance-mm", "0.5",
+                                      "--max-edge-mm", "8", "--max-normal-change-deg", "45", "-q"})
+                  .exit_code,
+              0);
+    ASSERT_EQ(run_cli("tm-remesh",
+                      {"-i", decimated, "-o", surface, "--edge-mm", "6", "--keep-voxel-sides", "--image", image, "-q"})
+                  .exit_code,
+              0);
+    const auto mesh_and_check = [&](const std::string& name, std::vector<std::string> flags) {
+        std::vector<std::string> args{
+            "-i", surface, "-o", (dir / (name + ".msh")).string(), "--json", (dir / (name + ".json")).string(), "-q"};
+        args.insert(args.end(), flags.begin(), flags.end());
+        const auto tetra = run_cli("tm-tetra", args);
+        EXPECT_EQ(tetra.exit_code, 0) << tetra.err;
+        const auto check = run_cli("tm-check-mesh", {(dir / (name + ".msh")).string(), "--image", image, "--json",
+                                                     (dir / (name + "-check.json")).string(), "-q"});
+        EXPECT_EQ(check.exit_code, 0) << check.err;
+        return read_json(dir / (name + "-check.json"));
+    };
+    const nlohmann::json meshed = mesh_and_check("meshed", {"--no-improve"});
+    const nlohmann::json kept = mesh_and_check("kept", {"--improve-keep-voxel-sides", "--image", image});
+    const nlohmann::json report = read_json(dir / "kept.json");
+    EXPECT_GT(report["improvement"]["refused_by_voxels"].get<std::size_t>(), 0u);
+    EXPECT_GT(kept["min_dihedral_deg"].get<double>(), meshed["min_dihedral_deg"].get<double>());
+    for (const auto& [label, tissue] : meshed["tissues"].items())
+        EXPECT_GE(kept["tissues"][label]["dice"].get<double>(), tissue["dice"].get<double>() - 1e-5) << label;
+    // Refused, nothing written: the switch without an image, an image without the switch.
+    const std::string out = (dir / "out.msh").string();
+    const auto no_image = run_cli("tm-tetra", {"-i", surface, "-o", out, "--improve-keep-voxel-sides"});
+    EXPECT_EQ(no_image.exit_code, 2);
+    EXPECT_NE(no_image.err.find("give --image"), std::string::npos) << no_image.err;
+    const auto idle_image = run_cli("tm-tetra", {"-i", surface, "-o", out, "--image", image});
+    EXPECT_EQ(idle_image.exit_code, 2);
+    EXPECT_NE(idle_image.err.find("only for --improve-keep-voxel-sides"), std::string::npos) << idle_image.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(TetraCli, EveryOutputFormatReadsBackWithItsTissues)
