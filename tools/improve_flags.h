@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
+#include "io/read_label_image.h"
+#include "tools/memory_limit.h"
 #include "volume/improve_mesh.h"
 
 namespace tissuemesh::tools {
@@ -57,14 +59,26 @@ struct ImproveFlags {
                      "as meshed, the smallest angles are lower");
     }
 
-    /// The improver's options from the flags; `image` is the tool's --image (read; null when not given), which
-    /// --improve-keep-voxel-sides needs.
+    /// The tool's --image for --improve-keep-voxel-sides, its size checked against the memory limit before its voxels
+    /// are read: the labels (2 bytes a voxel) and a flag per voxel for those next to another label. An empty image
+    /// when the switch is off.
+    LabelImage read_voxel_image(const std::string& path, const MemoryLimit& memory) const
+    {
+        if (!keep_voxel_sides) return {};
+        return io::read_label_image(path,
+                                    {.before_voxels = image_memory_check(memory, path, 3,
+                                                                         "crop it (tm-prep --crop-pad 2), or leave "
+                                                                         "--improve-keep-voxel-sides out")});
+    }
+
+    /// The improver's options from the flags; `image` is the tool's --image (read; null or empty when not given),
+    /// which --improve-keep-voxel-sides needs.
     /// @throws InputError when --improve-insert-below-deg is given above --improve-target-deg, or
     ///         --improve-keep-voxel-sides without an image
     volume::ImproveOptions to_options(const LabelImage* image = nullptr) const
     {
         volume::ImproveOptions o = options;
-        if (keep_voxel_sides && image == nullptr)
+        if (keep_voxel_sides && (image == nullptr || image->empty()))
             throw InputError("--improve-keep-voxel-sides needs the label image the surfaces come from: give --image "
                              "clean.nii.gz (or leave --improve-keep-voxel-sides out)");
         o.voxel_image = keep_voxel_sides ? image : nullptr;

@@ -1,6 +1,5 @@
 // tm-improve: better-shaped tets in any of our meshes, tissues and interfaces kept.
 #include "core/error.h"
-#include "io/read_label_image.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
@@ -51,14 +50,8 @@ int main(int argc, char** argv)
                                       "leave --improve-keep-voxel-sides out");
             TetMesh mesh = io::read_tet_mesh(input);
             if (mesh.faces.empty()) volume::mark_interfaces(mesh);
-            LabelImage voxels;
-            if (improve_flags.keep_voxel_sides)
-                voxels = io::read_label_image(
-                    image, {.before_voxels = tools::image_memory_check(context.memory, image, 3,
-                                                                       "crop it (tm-prep --crop-pad 2), or leave "
-                                                                       "--improve-keep-voxel-sides out")});
-            const volume::ImproveOptions options =
-                improve_flags.to_options(improve_flags.keep_voxel_sides ? &voxels : nullptr);
+            const LabelImage voxels = improve_flags.read_voxel_image(image, context.memory);
+            const volume::ImproveOptions options = improve_flags.to_options(&voxels);
             const volume::ImproveReport report = tools::with_source(input, [&] {
                 if (surface.empty()) return volume::improve_mesh(mesh, options, context.progress);
                 const InterfaceComplex complex = io::read_surface(surface);

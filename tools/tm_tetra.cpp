@@ -6,7 +6,6 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "io/read_label_image.h"
 #include "io/surface_io.h"
 #include "io/tet_mesh_io.h"
 #include "tools/improve_flags.h"
@@ -167,13 +166,8 @@ int main(int argc, char** argv)
             options.improve_quality = !no_quality;
             options.mesh_background_cavities = !drop_cavities;
             options.improve = !improve_flags.off;
-            LabelImage voxels;
-            if (improve_flags.keep_voxel_sides)
-                voxels = io::read_label_image(
-                    image, {.before_voxels = tools::image_memory_check(context.memory, image, 3,
-                                                                       "crop it (tm-prep --crop-pad 2), or leave "
-                                                                       "--improve-keep-voxel-sides out")});
-            options.improvement = improve_flags.to_options(improve_flags.keep_voxel_sides ? &voxels : nullptr);
+            const LabelImage voxels = improve_flags.read_voxel_image(image, context.memory);
+            options.improvement = improve_flags.to_options(&voxels);
             const tools::TissueTable tissues = tools::tissue_table(complex, input);
             if (!max_volume.empty()) parse_sizes(max_volume, tissues, "--max-volume", false, options);
             if (!max_edge.empty()) parse_sizes(max_edge, tissues, "--max-edge-mm", true, options);
