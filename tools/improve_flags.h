@@ -56,7 +56,7 @@ struct ImproveFlags {
         app.add_flag("--improve-keep-voxel-sides", keep_voxel_sides,
                      "Improver: no interface move, flip or split carries the centre of a voxel of --image next to "
                      "another tissue across (but for tets left under half the target): the Dice against it stays "
-                     "as meshed, the smallest angles are lower");
+                     "as meshed, the smallest angles may be a little lower");
     }
 
     /// The tool's --image for --improve-keep-voxel-sides, its size checked against the memory limit before its voxels

@@ -56,10 +56,12 @@ struct ImproveOptions {
     /// this, not on the thread count.
     std::size_t parts = 0;
     /// The voxels the interfaces were made from (world coordinates, as the mesh), or null. When given, an edit that
-    /// moves, flips or splits interface faces is refused when the region they sweep holds the centre of a voxel
-    /// next to another label (the rule tm-remesh --image keeps): the Dice against these voxels stays that of the
-    /// input mesh, at the cost of smaller angles (docs/volume.md). Edits that move or add junction-curve nodes
-    /// are not asked. The image must outlive the call.
+    /// moves, flips or splits interface faces (junction-curve nodes included) is undone when the region they sweep
+    /// holds the centre of a voxel next to another label (the rule of tm-remesh --keep-voxel-sides), and the tet's
+    /// next edit tried: the Dice against these voxels stays that of the input mesh, the smallest angles a little
+    /// lower (docs/volume.md). A last pass over the tets still under half the target does not ask the voxels.
+    /// The image must outlive the call.
+    /// @throws InputError (from improve_mesh()) when the mesh reaches two voxels beyond the image's box
     const LabelImage* voxel_image = nullptr;
 };
 
