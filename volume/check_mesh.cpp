@@ -214,7 +214,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     progress.update("check-mesh", 0.6);
 
     if (image != nullptr && !image->empty()) {
-        const std::vector<std::int32_t> owner = rasterize_tets(mesh, *image, progress);
+        const std::vector<std::int32_t> owner = rasterize_tets(mesh, *image, adjacency, progress);
         std::map<Label, std::size_t> in_image, in_mesh, both;
         for (std::size_t v = 0; v < owner.size(); ++v) {
             const Label truth = image->labels()[v];

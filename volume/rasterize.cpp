@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/tet_adjacency.h"
-
 namespace tissuemesh::volume {
 namespace {
 
@@ -62,11 +60,16 @@ std::int32_t near_mark(std::size_t t) { return -2 - static_cast<std::int32_t>(t)
 
 std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& image, const Progress& progress)
 {
+    return rasterize_tets(mesh, image, TetAdjacency(mesh.tets, mesh.vertices.size()), progress);
+}
+
+std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& image, const TetAdjacency& adjacency,
+                                         const Progress& progress)
+{
     std::vector<std::int32_t> owner(image.voxel_count(), -1);
     std::vector<Vec3> points(mesh.vertices.size());
     for (std::size_t v = 0; v < points.size(); ++v) points[v] = image.world_to_index(mesh.vertices[v]);
     const Dims& dims = image.dims();
-    const TetAdjacency adjacency(mesh.tets, mesh.vertices.size());
     ProgressTicker ticker(progress, "rasterize", mesh.tets.size());
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
@@ -99,7 +102,6 @@ std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& 
     }
     for (std::int32_t& o : owner)
         if (o < -1) o = -o - 2; // only near a tet: that tet
-
     return owner;
 }
 

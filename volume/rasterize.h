@@ -6,6 +6,7 @@
 
 #include "core/label_image.h"
 #include "core/progress.h"
+#include "core/tet_adjacency.h"
 #include "core/tet_mesh.h"
 
 namespace tissuemesh::volume {
@@ -24,5 +25,8 @@ namespace tissuemesh::volume {
 /// tets' bounding boxes plus tets.
 /// @pre  mesh tets are positively oriented (TetMesh's invariant) and the mesh is conforming
 std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& image, const Progress& progress = {});
+/// The same with the mesh's face adjacency built before (it tells the outer boundary's faces).
+std::vector<std::int32_t> rasterize_tets(const TetMesh& mesh, const LabelImage& image, const TetAdjacency& adjacency,
+                                         const Progress& progress = {});
 
 } // namespace tissuemesh::volume
