@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "core/error.h"
+#include "surface/detail/voxel_sides.h"
 #include "volume/detail/flips.h"
 #include "volume/detail/insert_node.h"
 #include "volume/detail/interface_flip.h"

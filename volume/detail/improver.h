@@ -7,9 +7,12 @@
 
 #include "core/progress.h"
 #include "core/tet_mesh.h"
-#include "surface/detail/voxel_sides.h"
 #include "volume/detail/surface_reference.h"
 #include "volume/improve_mesh.h"
+
+namespace tissuemesh::surface::detail {
+class VoxelSides;
+} // namespace tissuemesh::surface::detail
 
 namespace tissuemesh::volume::detail {
 
