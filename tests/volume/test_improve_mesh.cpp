@@ -16,6 +16,7 @@
 #include "surface/extract_surface_nets.h"
 #include "surface/remesh.h"
 #include "volume/check_mesh.h"
+#include "volume/detail/improver.h"
 #include "volume/detail/insert_node.h"
 #include "volume/detail/interface_flip.h"
 #include "volume/detail/mesh_parts.h"
@@ -161,6 +162,44 @@ TEST(ImproveMesh, CurvedInterfacesStayOnTheComplexAndTheRunIsDeterministic)
     EXPECT_EQ(again.vertices, mesh.vertices);
     EXPECT_EQ(again.tets, mesh.tets);
     EXPECT_EQ(again.faces, mesh.faces);
+}
+
+/// The volume allowance given to one run of the improver bounds each tissue's drift in mm^3, whatever its volume in the
+/// mesh: improve_mesh() gives the last round after the parts (a few hundred tets) its share of the whole mesh's.
+TEST(ImproveMesh, AVolumeAllowanceBoundsEachTissuesDrift)
+{
+    const InterfaceComplex complex = two_spheres();
+    const TetMesh start = tetrahedralize(complex, {.max_volume_mm3 = 3, .improve = false});
+    const detail::SurfaceReference reference(complex);
+    const auto before = volumes(start);
+    const auto largest_drift = [&](const std::map<Label, double>& allowance) {
+        TetMesh mesh = start;
+        ImproveReport report;
+        detail::improve_in_place(mesh, reference, nullptr, {}, report, {}, {}, allowance);
+        expect_valid(mesh);
+        std::map<Label, double> drift;
+        for (const auto& [label, volume] : volumes(mesh)) drift[label] = std::abs(volume - before.at(label));
+        return std::pair{drift, report.smoothed_nodes};
+    };
+    // None allowed: every move of a node on the spheres changes a volume, so only inner nodes move.
+    const auto [none, moves_without] = largest_drift({{1, 0.0}, {2, 0.0}});
+    for (const auto& [label, drift] : none) EXPECT_LT(drift, 1e-9 * before.at(label)) << "tissue " << label;
+    // The default: ImproveOptions::max_volume_change (2e-4) of each tissue's volume.
+    const auto [by_default, moves_by_default] = largest_drift({});
+    for (const auto& [label, drift] : by_default) EXPECT_LE(drift, 2e-4 * before.at(label) * (1 + 1e-9));
+    // Ten times the default, in mm^3: the drift may exceed the default's bound, never the allowance.
+    std::map<Label, double> wide;
+    for (const auto& [label, volume] : before) wide[label] = 2e-3 * volume;
+    const auto [widened, moves_widened] = largest_drift(wide);
+    double beyond_default = 0;
+    for (const auto& [label, drift] : widened) {
+        EXPECT_LE(drift, wide.at(label) * (1 + 1e-9)) << "tissue " << label;
+        beyond_default = std::max(beyond_default, drift / (2e-4 * before.at(label)));
+    }
+    std::printf("[ figures  ] two spheres: %zu, %zu, %zu node moves with no, the default and ten times the default "
+                "volume change; the last drifts %.2f times the default's bound\n",
+                moves_without, moves_by_default, moves_widened, beyond_default);
+    EXPECT_LT(moves_without, moves_widened);
 }
 
 /// Without a complex the mesh's own faces are the reference: the same invariants.

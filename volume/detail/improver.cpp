@@ -40,9 +40,10 @@ class Improver {
 public:
     /// Nodes flagged in `frozen` never change (WorkMesh); with `seeds` (per node), only tets at a flagged node
     /// are queued at the start of a pass (tets the edits make or reshape join as always).
+    /// `allowance`: as improve_in_place()'s volume_allowance_mm3.
     Improver(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
-             const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen = {},
-             std::vector<char> seeds = {})
+             const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen, std::vector<char> seeds,
+             const std::map<Label, double>& allowance)
         : mesh_(mesh), work_(mesh, std::move(frozen)), seeds_(std::move(seeds)), reference_(reference), sides_(sides),
           options_(options), report_(report), target_(sine_of_deg(options.target_dihedral_deg)),
           insert_bar_(sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
@@ -50,6 +51,10 @@ public:
           face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
           start_volumes_(work_.tissue_volumes())
     {
+        for (const auto& [label, volume] : start_volumes_) {
+            const auto it = allowance.find(label);
+            allowed_drift_[label] = it != allowance.end() ? it->second : options.max_volume_change * std::abs(volume);
+        }
     }
 
     void run(const Progress& progress)
@@ -249,7 +254,8 @@ private:
         bool kept = true;
         for (const auto& [label, volume] : work_.tissue_volumes()) {
             const double from = start_volumes_.count(label) ? start_volumes_.at(label) : 0;
-            const double drift = std::abs(volume - from), allowed = options_.max_volume_change * std::abs(from);
+            const double drift = std::abs(volume - from),
+                         allowed = allowed_drift_.count(label) ? allowed_drift_.at(label) : 0;
             if (drift > allowed && drift > committed_drift_[label] + 1e-12 * std::abs(from)) kept = false;
         }
         if (kept)
@@ -291,6 +297,7 @@ private:
     ImproveReport& report_;
     double target_, insert_bar_, face_tolerance_mm_;
     std::map<Label, double> start_volumes_, committed_drift_;
+    std::map<Label, double> allowed_drift_;  ///< per tissue, how far its volume may drift from start_volumes_ (mm^3)
     std::int64_t clock_ = 0;                 ///< commits so far
     std::vector<std::int64_t> node_changed_; ///< per node: the commit that last changed a tet around it
     std::vector<std::int64_t> node_tried_;   ///< per node: the clock of its last failed smoothing (-1: none)
@@ -309,9 +316,11 @@ private:
 
 void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
                       const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen,
-                      std::vector<char> seeds, const Progress& progress)
+                      std::vector<char> seeds, const std::map<Label, double>& volume_allowance_mm3,
+                      const Progress& progress)
 {
-    Improver(mesh, reference, sides, options, report, std::move(frozen), std::move(seeds)).run(progress);
+    Improver(mesh, reference, sides, options, report, std::move(frozen), std::move(seeds), volume_allowance_mm3)
+        .run(progress);
 }
 
 } // namespace tissuemesh::volume::detail

@@ -3,6 +3,7 @@
 // node insertion.
 #pragma once
 
+#include <map>
 #include <vector>
 
 #include "core/progress.h"
@@ -20,10 +21,14 @@ namespace tissuemesh::volume::detail {
 /// the voxels (ImproveOptions::voxel_image), adding its counts to `report` (not its figures or
 /// times). Nodes flagged in `frozen` (per node) never change, nor any face or edge all of whose nodes are
 /// frozen (WorkMesh); with `seeds` (per node), only the tets at a flagged node are queued at the start of a
-/// pass (tets the edits make or reshape join the queue as always).
+/// pass (tets the edits make or reshape join the queue as always). `volume_allowance_mm3`: per tissue, how far its
+/// volume in `mesh` may drift (mm^3); a tissue it does not list may drift ImproveOptions::max_volume_change of its
+/// volume in `mesh` (right for a whole mesh; a part of one gets its share of the whole's allowance from
+/// improve_mesh()).
 void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
                       const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen = {},
-                      std::vector<char> seeds = {}, const Progress& progress = {});
+                      std::vector<char> seeds = {}, const std::map<Label, double>& volume_allowance_mm3 = {},
+                      const Progress& progress = {});
 
 /// improve_mesh() against a reference built before (tetrahedralize() builds it while TetGen runs); the report's
 /// times leave its building out.
