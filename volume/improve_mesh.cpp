@@ -90,11 +90,12 @@ std::map<Label, double> tissue_volumes(const TetMesh& mesh)
 /// it shares with the rest frozen, and puts them back; flags those nodes in `seam` (per node) when given. With `seeds`
 /// (per node), a part works only from the tets at a flagged node. With `allowance` (mm^3 per tissue; one part only),
 /// the part's tissue volumes may drift that far, else ImproveOptions::max_volume_change of their volumes in the part.
+/// `last`: no round follows (detail::improve_in_place()).
 void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std::size_t count,
                    const detail::SurfaceReference& reference, const surface::detail::VoxelSides* sides,
                    const ImproveOptions& options, const std::vector<char>& seeds, std::vector<char>* seam,
                    ImproveReport& report, const std::function<void()>& part_done,
-                   const std::map<Label, double>& allowance = {})
+                   const std::map<Label, double>& allowance = {}, bool last = false)
 {
     const detail::PartCutter cutter(mesh);
     std::vector<std::vector<std::uint32_t>> tets(count);
@@ -117,7 +118,7 @@ void improve_parts(TetMesh& mesh, const std::vector<std::uint32_t>& part_of, std
             }
             edited[k] = std::move(parts[k].mesh);
             detail::improve_in_place(edited[k], reference, sides, options, reports[k], parts[k].frozen,
-                                     std::move(local_seeds), allowance);
+                                     std::move(local_seeds), allowance, last);
         } catch (...) {
 #pragma omp critical(improve_part_failure)
             if (!failure) failure = std::current_exception();
@@ -196,7 +197,7 @@ void improve_last_tets(TetMesh& mesh, const detail::SurfaceReference& reference,
     for (const auto& [label, volume] : tissue_volumes(mesh))
         allowance[label] = options.max_volume_change * std::abs(volume);
     improve_parts(
-        mesh, part_of, 1, reference, sides, options, start, nullptr, report, [] {}, allowance);
+        mesh, part_of, 1, reference, sides, options, start, nullptr, report, [] {}, allowance, true);
 }
 
 /// Improves the mesh in parts across it, then in bands around the faces between them (ImproveOptions::parts).
@@ -264,7 +265,7 @@ ImproveReport run(TetMesh& mesh, MakeReference make_reference, const ImproveOpti
     report.before = shape_figures(mesh);
     if (const std::size_t count = part_count(mesh, options); count > 1)
         improve_in_parts(mesh, reference, voxel_sides, options, count, report, progress);
-    else detail::improve_in_place(mesh, reference, voxel_sides, options, report, {}, {}, {}, progress);
+    else detail::improve_in_place(mesh, reference, voxel_sides, options, report, {}, {}, {}, true, progress);
     report.after = shape_figures(mesh);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     report.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;

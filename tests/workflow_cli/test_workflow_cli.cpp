@@ -224,14 +224,15 @@ TEST(WorkflowCliLong, LiverMeshesWithEveryTetAtTenDegreesOrMore)
     expect_real_volume_meshed_well("samples/liver.inr.gz", "");
 }
 
-// The usc19-5 head resampled by tm-prep to 0.85 mm voxels (nearest neighbour), as a head segmented finer than the
-// atlas would come: 12.6 M voxels, 2.3 M tets. Measured 2026-12-07: 11.18 degrees after tm-tetra. (The same head
-// resampled outside tm-prep kept a 9.1-degree tet until the improver's last round was allowed its share of the whole
-// mesh's volume change, docs/volume.md; this mesh never had it.) About 2.5 min on 2 idle cores.
+// The usc19-5 head resampled by tm-prep to 0.7 mm voxels (nearest neighbour), as a head segmented finer than the
+// atlas would come: 22.6 M voxels, 2.6 M tets. Measured 2026-12-07: 10.28 degrees after tm-tetra (10.12 without the
+// improver's last-round widening of the face bound), 10.79 after tm-refine. The same head resampled outside tm-prep
+// kept tets of 9.14 (0.85 mm) and 8.92 degrees (0.7 mm) before this session's changes to the improver's last round
+// (docs/volume.md). About 5 min on 2 idle cores.
 TEST(WorkflowCliLong, HeadAtFinerVoxelsMeshesWithEveryTetAtTenDegreesOrMore)
 {
     expect_real_volume_meshed_well("samples/usc19-5_head.nii.gz", "samples/usc19-5_head.json",
-                                   {"PREP_ARGS=--spacing-mm 0.85 --nearest --fill-holes-under 8 --crop-pad 2"});
+                                   {"PREP_ARGS=--spacing-mm 0.7 --nearest --fill-holes-under 8 --crop-pad 2"});
 }
 
 } // namespace

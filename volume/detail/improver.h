@@ -23,12 +23,14 @@ namespace tissuemesh::volume::detail {
 /// frozen (WorkMesh); with `seeds` (per node), only the tets at a flagged node are queued at the start of a
 /// pass (tets the edits make or reshape join the queue as always). `volume_allowance_mm3`: per tissue, how far its
 /// volume in `mesh` may drift (mm^3); a tissue it does not list may drift ImproveOptions::max_volume_change of its
-/// volume in `mesh` (right for a whole mesh; a part of one gets its share of the whole's allowance from
-/// improve_mesh()).
+/// volume in `mesh` (right for a whole mesh and its parts; improve_mesh() gives its last round, a few hundred tets,
+/// that fraction of the whole mesh's volumes). `last`: no later round follows (a whole mesh, or improve_mesh()'s last
+/// round), so a tet left under half the target gets its edits again with the faces allowed further from the reference
+/// (improver.cpp).
 void improve_in_place(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
                       const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen = {},
                       std::vector<char> seeds = {}, const std::map<Label, double>& volume_allowance_mm3 = {},
-                      const Progress& progress = {});
+                      bool last = true, const Progress& progress = {});
 
 /// improve_mesh() against a reference built before (tetrahedralize() builds it while TetGen runs); the report's
 /// times leave its building out.
