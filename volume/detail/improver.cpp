@@ -136,6 +136,10 @@ private:
             for (std::size_t k = 0;
                  last_ && change == Change::none && improving_ < waived_below_ && k < rescue_face_factors.size(); ++k) {
                 work_.rollback(0);
+                // Every edit again: the failed moves and the insertion tried are remembered.
+                for (const std::uint32_t v : work_.tet(w.tet))
+                    if (v < node_tried_.size()) node_tried_[v] = -1;
+                if (w.tet < insertion_tried_.size()) insertion_tried_[w.tet] = never;
                 face_factor_ = rescue_face_factors[k];
                 change = improve(w.tet, insert, false);
                 face_factor_ = 1;
