@@ -228,7 +228,7 @@ TEST(WorkflowCliLong, LiverMeshesWithEveryTetAtTenDegreesOrMore)
 // atlas would come: 22.6 M voxels, 2.6 M tets. Measured 2026-12-07: 10.28 degrees after tm-tetra (10.12 without the
 // improver's last-round widening of the face bound), 10.79 after tm-refine. The same head resampled outside tm-prep
 // kept tets of 9.14 (0.85 mm) and 8.92 degrees (0.7 mm) before this session's changes to the improver's last round
-// (docs/volume.md). About 5 min on 2 idle cores.
+// (docs/volume.md). About 5-7 min on 2 cores.
 TEST(WorkflowCliLong, HeadAtFinerVoxelsMeshesWithEveryTetAtTenDegreesOrMore)
 {
     expect_real_volume_meshed_well("samples/usc19-5_head.nii.gz", "samples/usc19-5_head.json",
