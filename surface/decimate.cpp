@@ -44,6 +44,11 @@ void validate(const DecimateOptions& options)
     if (options.edge_per_thickness > 0 && !(options.mode == DecimateMode::curvature && options.max_edge_mm > 0))
         throw InputError("decimate: an edge per thickness bounds the edges of curvature mode under a max edge; give "
                          "a max edge as well (tm-decimate --max-edge-mm)");
+    if (!(options.contract_block_mm >= 0))
+        throw InputError(
+            concat("decimate: contraction block ", options.contract_block_mm, " mm must not be negative (0: off)"));
+    if (options.contract_block_mm > 0 && options.mode != DecimateMode::curvature)
+        throw InputError("decimate: contraction in blocks is a step of curvature mode; drop it in size mode");
     if (options.slabs > options.max_slabs)
         throw InputError(concat("decimate: ", options.slabs, " slabs is more than the ", options.max_slabs,
                                 " allowed; give at most ", options.max_slabs, " (0: chosen by size)"));
@@ -95,7 +100,7 @@ Carried slab_carried(const InterfaceComplex& complex, const Carried& carried, de
 InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried, const std::vector<Slab>& slabs,
                                    const std::vector<std::uint32_t>* seeds, const DecimateOptions& options,
                                    const detail::LayerSizing& sizing, DecimateReport& report, const Progress& progress,
-                                   std::vector<std::uint32_t>& seams)
+                                   std::vector<std::uint32_t>& seams, const Vec3& block_origin)
 {
     const auto began = std::chrono::steady_clock::now();
     std::vector<Piece> pieces(slabs.size());
@@ -112,6 +117,7 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
             if (seeds)
                 for (std::uint32_t v = 0; v < slab.from_vertex.size(); ++v)
                     if (std::binary_search(seeds->begin(), seeds->end(), slab.from_vertex[v])) own_seeds.push_back(v);
+            if (!seeds && options.contract_block_mm > 0) decimator.contract_blocks(block_origin);
             decimator.collapse_all({}, seeds ? &own_seeds : nullptr);
             decimator.hand_over(slab.from_vertex, pieces[k]);
         },
@@ -135,6 +141,9 @@ InterfaceComplex decimate_in_slabs(InterfaceComplex&& complex, Carried& carried,
         for (const auto& [v, quadric] : piece.quadrics) carried.quadrics[v] = quadric;
         seams.insert(seams.end(), piece.fenced.begin(), piece.fenced.end());
         report.collapses += piece.report.collapses;
+        report.contractions += piece.report.contractions;
+        report.contracted_vertices += piece.report.contracted_vertices;
+        report.contractions_refused += piece.report.contractions_refused;
         report.refused_by_distance += piece.report.refused_by_distance;
         report.refused_by_length += piece.report.refused_by_length;
         report.refused_by_checks += piece.report.refused_by_checks;
@@ -179,21 +188,29 @@ DecimateReport decimate(InterfaceComplex& complex, const DecimateOptions& option
                                      {.target_edge_mm = 0.75 * options.max_edge_mm,
                                       .edges_per_mm = options.edge_per_thickness,
                                       .min_edge_mm = 0.25 * options.max_edge_mm});
+    // The contraction's blocks: one grid over the whole complex, whatever the slabs.
+    Vec3 block_origin{0, 0, 0};
+    if (!complex.vertices.empty()) {
+        block_origin = complex.vertices.front();
+        for (const Vec3& p : complex.vertices)
+            for (int a = 0; a < 3; ++a) block_origin[a] = std::min(block_origin[a], p[a]);
+    }
     std::vector<std::uint32_t> seams;
     if (pieces > 1) {
         const std::vector<Slab> slabs = detail::cut_into_slabs(complex, pieces);
         report.slabs = slabs.size();
-        complex =
-            decimate_in_slabs(std::move(complex), carried, slabs, nullptr, options, sizing, report, progress, seams);
+        complex = decimate_in_slabs(std::move(complex), carried, slabs, nullptr, options, sizing, report, progress,
+                                    seams, block_origin);
         if (const std::vector<Slab> between = detail::slabs_between(slabs); !between.empty()) {
             std::vector<std::uint32_t> left;
             complex = decimate_in_slabs(std::move(complex), carried, between, &seams, options, sizing, report, progress,
-                                        left);
+                                        left, block_origin);
             seams = std::move(left);
         }
     }
     const double cell_mm = 2 * detail::mean_edge_length(complex);
     Decimator decimator(std::move(complex), std::move(carried), cell_mm, options, sizing, report);
+    if (pieces == 1 && options.contract_block_mm > 0) decimator.contract_blocks(block_origin);
     decimator.collapse_all(progress, pieces > 1 ? &seams : nullptr);
     if (options.mode == DecimateMode::size) decimator.split_long_edges();
     complex = decimator.result();

@@ -44,8 +44,9 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(SmoothReport, iterations, moves, refused_by_i
                                    fixed_vertices, mean_displacement_mm, max_displacement_mm)
 // Not refused_by_checks (the sum of the five refusals after it).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DecimateReport, triangles_before, triangles_after, collapses, splits, slabs,
-                                   refused_by_distance, refused_by_length, refused_topology, refused_shape,
-                                   refused_fold, refused_intersection, refused_gap, refused_wedge, max_distance_mm)
+                                   contractions, contracted_vertices, contractions_refused, refused_by_distance,
+                                   refused_by_length, refused_topology, refused_shape, refused_fold,
+                                   refused_intersection, refused_gap, refused_wedge, max_distance_mm)
 // Not max_distance_mm: tm-remesh writes it as max_distance_to_input_mm.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(RemeshReport, triangles_before, triangles_after, splits, collapses, flips, moves,
                                    refused, refused_by_voxels, slabs, min_angle_before_deg, min_angle_after_deg,

@@ -15,7 +15,7 @@ int main(int argc, char** argv)
 {
     bool check_input = false;
     std::string input, output, mode = "curvature", image;
-    double distance_voxels = 0, voxel_mm = 0;
+    double distance_voxels = 0, voxel_mm = 0, block_voxels = 0;
     surface::DecimateOptions options;
     return tools::run_tool(
         argc, argv,
@@ -49,8 +49,8 @@ int main(int argc, char** argv)
                 ->check(CLI::PositiveNumber)
                 ->excludes(in_mm);
             app.add_option("--image", image,
-                           "With --max-distance-voxels: the label image the surfaces come from (only its header "
-                           "is read)")
+                           "With --max-distance-voxels or --contract-blocks-voxels: the label image the surfaces come "
+                           "from (only its header is read)")
                 ->check(CLI::ExistingFile);
             app.add_option("--max-edge-mm", options.max_edge_mm,
                            "Curvature mode only: no collapse may leave an edge longer than this (0: no bound); before "
@@ -74,6 +74,17 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--target-edge-mm", options.target_edge_mm, "Size mode: target edge length")
                 ->capture_default_str();
+            CLI::Option* block_in_mm =
+                app.add_option("--contract-blocks-mm", options.contract_block_mm,
+                               "Curvature mode: before the collapses, contract the vertices of one patch inside each "
+                               "cube of this edge into one of them, where every check of a collapse and the bounds "
+                               "allow (0: off); the collapses go on from there")
+                    ->check(CLI::NonNegativeNumber)
+                    ->capture_default_str();
+            app.add_option("--contract-blocks-voxels", block_voxels,
+                           "The same cube's edge in voxels of --image (its smallest spacing)")
+                ->check(CLI::NonNegativeNumber)
+                ->excludes(block_in_mm);
             app.add_option(
                    "--slabs", options.slabs,
                    "Slabs decimated side by side (in parallel), then their seams in slabs cut halfway between them, "
@@ -84,14 +95,19 @@ int main(int argc, char** argv)
                 ->capture_default_str();
         },
         [&](tools::ToolContext& ctx) {
-            tools::require_image_with("--max-distance-voxels", distance_voxels > 0, image,
-                                      "the bound in mm with --max-distance-mm");
+            tools::require_image_with(block_voxels > 0 ? "--contract-blocks-voxels" : "--max-distance-voxels",
+                                      distance_voxels > 0 || block_voxels > 0, image,
+                                      "give lengths in mm: --max-distance-mm, --contract-blocks-mm");
             if (distance_voxels > 0) {
                 const Vec3 spacing = io::read_label_image_spacing(image);
                 voxel_mm = std::min({spacing[0], spacing[1], spacing[2]});
                 options.max_distance_mm = distance_voxels * voxel_mm;
                 ctx.log(concat("distance bound ", format_mm(options.max_distance_mm, 3), " mm: ", distance_voxels,
                                " of the ", format_mm(voxel_mm, 3), " mm voxels of ", image));
+            }
+            if (block_voxels > 0) {
+                const Vec3 spacing = io::read_label_image_spacing(image);
+                options.contract_block_mm = block_voxels * std::min({spacing[0], spacing[1], spacing[2]});
             }
             options.mode = mode == "size" ? surface::DecimateMode::size : surface::DecimateMode::curvature;
             tools::require_complex_output(output);
@@ -112,6 +128,7 @@ int main(int argc, char** argv)
                                 {"max_distance_voxels", distance_voxels},
                                 {"voxel_mm", voxel_mm},
                                 {"max_edge_mm", options.max_edge_mm},
+                                {"contract_block_mm", options.contract_block_mm},
                                 {"edge_per_thickness", options.edge_per_thickness},
                                 {"max_normal_change_deg", options.max_normal_change_deg},
                                 {"seconds_decimate", seconds}});

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace tissuemesh::surface::detail {
 
@@ -87,6 +88,117 @@ void Decimator::collapse_all(const Progress& progress, const std::vector<std::ui
                             1.0 - static_cast<double>(editor_.triangle_count()) / static_cast<double>(start));
         }
     }
+}
+
+void Decimator::contract_blocks(const Vec3& origin)
+{
+    const double block = options_.contract_block_mm;
+    struct Item {
+        std::array<std::int64_t, 3> cube;
+        LabelPair side;
+        std::uint32_t v;
+        auto key() const { return std::tuple(cube, side.from, side.to); }
+    };
+    std::vector<Item> items;
+    for (std::uint32_t v = 0; v < editor_.vertex_slots(); ++v) {
+        if (!editor_.vertex_alive(v) || editor_.kind(v) != VertexKind::patch) continue;
+        Item item{{}, editor_.side(editor_.star(v).front()), v};
+        for (int a = 0; a < 3; ++a)
+            item.cube[a] = static_cast<std::int64_t>(std::floor((editor_.position(v)[a] - origin[a]) / block));
+        items.push_back(item);
+    }
+    std::sort(items.begin(), items.end(),
+              [](const Item& a, const Item& b) { return std::tuple(a.key(), a.v) < std::tuple(b.key(), b.v); });
+    std::vector<std::uint32_t> group, cluster;
+    std::vector<char> taken;
+    for (std::size_t i = 0; i < items.size();) {
+        std::size_t j = i;
+        group.clear();
+        while (j < items.size() && items[j].key() == items[i].key()) group.push_back(items[j++].v);
+        i = j;
+        if (group.size() < 2) continue;
+        // The group's pieces joined by edges, each from its lowest vertex.
+        taken.assign(group.size(), 0);
+        for (std::size_t seed = 0; seed < group.size(); ++seed) {
+            if (taken[seed]) continue;
+            taken[seed] = 1;
+            cluster.assign(1, group[seed]);
+            for (std::size_t n = 0; n < cluster.size(); ++n) {
+                editor_.ring(cluster[n], ring_);
+                for (const LocalEditor::RingEntry& e : ring_) {
+                    const auto it = std::lower_bound(group.begin(), group.end(), e.vertex);
+                    if (it == group.end() || *it != e.vertex) continue;
+                    const std::size_t k = static_cast<std::size_t>(it - group.begin());
+                    if (!taken[k]) taken[k] = 1, cluster.push_back(e.vertex);
+                }
+            }
+            if (cluster.size() < 2) continue;
+            std::sort(cluster.begin(), cluster.end());
+            // The member where the cluster's planes meet best (the quadric error of the collapses into it).
+            Quadric q = quadrics_[cluster.front()];
+            for (std::size_t n = 1; n < cluster.size(); ++n) q += quadrics_[cluster[n]];
+            std::uint32_t r = cluster.front();
+            double best = std::numeric_limits<double>::max();
+            for (const std::uint32_t c : cluster) {
+                const Vec3& p = editor_.position(c);
+                const double e = q(OpenMesh::Vec3d(p[0], p[1], p[2]));
+                if (e < best) best = e, r = c;
+            }
+            if (contract(cluster, r)) {
+                ++report_.contractions;
+                report_.contracted_vertices += cluster.size() - 1;
+            } else {
+                ++report_.contractions_refused;
+            }
+        }
+    }
+}
+
+bool Decimator::contract(const std::vector<std::uint32_t>& cluster, std::uint32_t r)
+{
+    std::vector<std::uint32_t>& targets = targets_;
+    std::vector<std::uint32_t>& sources = sources_;
+    std::vector<std::pair<std::size_t, std::uint32_t>>& assignment = assignment_;
+    std::vector<TriangleCorners>& shapes = shapes_;
+    targets.clear(), sources.clear(), assignment.clear(), shapes.clear();
+    const auto in_cluster = [&](std::uint32_t x) { return std::binary_search(cluster.begin(), cluster.end(), x); };
+    double worst = 0;
+    const Vec3& at = editor_.position(r);
+    // Asked by the editor once the disc is known to be one: the new edges and the distance bound.
+    const auto within_bounds = [&] {
+        for (const std::uint32_t c : cluster)
+            for (const std::uint32_t t : editor_.star(c)) {
+                const Triangle& tri = editor_.triangle(t);
+                std::uint32_t first = 3, inside = 0;
+                for (std::uint32_t k = 0; k < 3; ++k)
+                    if (in_cluster(tri[k])) first = std::min(first, k), ++inside;
+                if (tri[first] != c) continue; // once
+                sources.push_back(t);
+                if (inside > 1) continue;
+                TriangleCorners corners = editor_.corners(t);
+                corners[first] = at;
+                // A new edge from r no longer than the bounds, or than the edge from c it replaces.
+                if (options_.max_edge_mm > 0)
+                    for (const std::uint32_t k : {(first + 1) % 3, (first + 2) % 3}) {
+                        const Vec3& x = editor_.position(tri[k]);
+                        const double length = distance(at, x);
+                        if (length <= distance(editor_.position(c), x)) continue;
+                        if (length > options_.max_edge_mm ||
+                            (options_.edge_per_thickness > 0 && length > 4.0 / 3.0 * sizing_.at(0.5 * (at + x))))
+                            return false;
+                    }
+                targets.push_back(t);
+                shapes.push_back(corners);
+            }
+        return assign_samples(sources, shapes, assignment, worst);
+    };
+    if (!editor_.try_contract(cluster, r, within_bounds)) return false;
+    for (const std::uint32_t t : sources) samples_[t].clear();
+    for (const auto& [i, s] : assignment) samples_[targets[i]].push_back(s);
+    for (const std::uint32_t c : cluster)
+        if (c != r) quadrics_[r] += quadrics_[c];
+    report_.max_distance_mm = std::max(report_.max_distance_mm, worst);
+    return true;
 }
 
 void Decimator::split_long_edges()

@@ -60,6 +60,11 @@ public:
     /// are tried when a collapse changes their neighbourhood).
     void collapse_all(const Progress& progress, const std::vector<std::uint32_t>* seeds = nullptr);
 
+    /// DecimateOptions::contract_block_mm: the patch vertices of each block (cubes of that edge from `origin`, the
+    /// same for every slab) and patch, joined by edges, contracted into the one their quadrics place best, where
+    /// the editor's checks, the edge bound and the distance bound allow; in the order of the blocks.
+    void contract_blocks(const Vec3& origin);
+
     void split_long_edges();
 
     InterfaceComplex result() const { return editor_.result(); }
@@ -115,6 +120,9 @@ private:
 
     /// keeps_edges_short() with the ring of v already in ring_.
     bool short_enough(std::uint32_t v, std::uint32_t w) const;
+
+    /// Contracts `cluster` into r (LocalEditor::try_contract) if the edge and distance bounds allow it.
+    bool contract(const std::vector<std::uint32_t>& cluster, std::uint32_t r);
 
     /// After a split at m, each sample of the split triangles goes to the nearer half.
     void redistribute_samples(std::uint32_t m);

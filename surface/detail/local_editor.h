@@ -90,6 +90,13 @@ public:
     bool try_flip(std::uint32_t v, std::uint32_t w);
     /// Moves v to p (the caller keeps curve vertices on their curves and corners in place).
     bool try_move(std::uint32_t v, const Vec3& p);
+    /// Contracts `cluster` (connected patch vertices of one patch, `r` among them) into r, which stays
+    /// where it is: the triangles around the cluster, which must form a disc whose rim has at least 4 vertices, become
+    /// the fan of r over that rim (the rim's triangles keep their slots; those with two or three cluster vertices
+    /// die). The same as collapsing the others into r one by one, judged once, as a collapse is. `veto` as for
+    /// try_collapse(). Returns whether it was applied.
+    bool try_contract(const std::vector<std::uint32_t>& cluster, std::uint32_t r,
+                      const std::function<bool()>& veto = {});
 
     /// The complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
@@ -217,7 +224,7 @@ private:
     // their own. One editor is used by one thread at a time (slabs have an editor each).
     struct EditScratch {
         std::vector<RingEntry> around_v, around_w;
-        std::vector<std::uint32_t> common, changed, dying, parents;
+        std::vector<std::uint32_t> common, changed, dying, parents, rim;
         std::vector<std::pair<Label, int>> uses;
         std::vector<Prior> prior;
         std::vector<SmallPiece> pieces_before, pieces_at_w, pieces_after;

@@ -201,6 +201,158 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     return true;
 }
 
+bool LocalEditor::try_contract(const std::vector<std::uint32_t>& cluster, std::uint32_t r,
+                               const std::function<bool()>& veto)
+{
+    if (cluster.size() < 2 || std::find(cluster.begin(), cluster.end(), r) == cluster.end()) return false;
+    const auto in_cluster = [&](std::uint32_t x) {
+        return std::find(cluster.begin(), cluster.end(), x) != cluster.end();
+    };
+    for (const std::uint32_t c : cluster)
+        if (!vertex_alive(c) || kinds_[c] != VertexKind::patch) {
+            ++counters_.topology;
+            return false;
+        }
+    // The disc: the triangles around the cluster, all of one patch. A triangle with one cluster vertex holds an
+    // edge of the rim (its other two, in its own order); the others die.
+    std::vector<std::uint32_t>& changed = edit_.changed;
+    std::vector<std::uint32_t>& dying = edit_.dying;
+    std::vector<std::uint32_t>& rim = edit_.rim; // pairs: the rim edge of changed[i] is rim[2i] -> rim[2i + 1]
+    changed.clear(), dying.clear(), rim.clear();
+    const LabelPair side = sides_[stars_[r].front()];
+    std::size_t disc = 0;
+    for (const std::uint32_t c : cluster)
+        for (const std::uint32_t t : stars_[c]) {
+            const Triangle& tri = triangles_[t];
+            int inside = 0, first = -1;
+            for (int k = 0; k < 3; ++k)
+                if (in_cluster(tri[k])) {
+                    if (first < 0) first = k;
+                    ++inside;
+                }
+            if (tri[first] != c) continue; // each triangle once: from its first cluster vertex
+            if (!(sides_[t] == side)) {
+                ++counters_.topology;
+                return false;
+            }
+            ++disc;
+            if (inside > 1) {
+                dying.push_back(t);
+                continue;
+            }
+            changed.push_back(t);
+            rim.push_back(tri[(first + 1) % 3]);
+            rim.push_back(tri[(first + 2) % 3]);
+        }
+    // One simple cycle of at least 4 rim edges, each with a triangle beyond it (a junction edge may have more: the
+    // fans' order and the sector rule judge those), and a disc's count of triangles (Euler: 2 per cluster vertex,
+    // plus one per rim edge, less 2): anything else is no disc.
+    const std::size_t m = changed.size();
+    if (m < 4 || disc != m + 2 * cluster.size() - 2) {
+        ++counters_.topology;
+        return false;
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+        if (edge_multiplicity(rim[2 * i], rim[2 * i + 1]) < 2) {
+            ++counters_.topology;
+            return false;
+        }
+        for (std::size_t j = 0; j < i; ++j)
+            if (rim[2 * i] == rim[2 * j] || rim[2 * i + 1] == rim[2 * j + 1]) {
+                ++counters_.topology;
+                return false;
+            }
+    }
+    std::size_t walked = 1;
+    for (std::uint32_t at = rim[1]; at != rim[0]; ++walked) {
+        std::size_t i = 0;
+        while (i < m && rim[2 * i] != at) ++i;
+        if (i == m || walked > m) {
+            ++counters_.topology;
+            return false;
+        }
+        at = rim[2 * i + 1];
+    }
+    if (walked != m) {
+        ++counters_.topology;
+        return false;
+    }
+    // Each new triangle against the one it replaces, as for a collapse; new edges no longer than the bound.
+    for (std::size_t i = 0; i < m; ++i) {
+        const std::uint32_t t = changed[i];
+        Triangle now = triangles_[t];
+        for (std::uint32_t& x : now)
+            if (in_cluster(x)) x = r;
+        if (!shape_ok(now, triangles_[t], true)) return false;
+        if (limits_.max_edge_mm > 0)
+            for (const std::uint32_t x : {rim[2 * i], rim[2 * i + 1]})
+                if (distance(positions_[x], positions_[r]) > limits_.max_edge_mm && edge_multiplicity(r, x) == 0) {
+                    ++counters_.shape;
+                    return false;
+                }
+    }
+    for (const std::uint32_t c : cluster)
+        if (!inside_fence(stars_[c])) {
+            ++counters_.fence;
+            return false;
+        }
+    if (veto && !veto()) return false;
+    std::vector<Prior>& prior = edit_.prior;
+    prior.clear();
+    for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
+    // Every triangle of the disc lies in one piece per tissue (the patch's two), which r's triangles stay joined in.
+    std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
+    std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
+    const bool pieces_clear = small_pieces(r, pieces_before, dying.size());
+    const auto apply = [&] {
+        begin_edit();
+        for (const std::uint32_t c : cluster) save_star(c);
+        for (const std::uint32_t x : rim) save_star(x);
+        for (const std::uint32_t t : dying) {
+            save(t);
+            alive_[t] = 0;
+            recount(t, -1);
+            for (const std::uint32_t x : triangles_[t])
+                if (!in_cluster(x)) remove_from_star(x, t);
+        }
+        for (const std::uint32_t t : changed) {
+            save(t);
+            for (std::uint32_t& x : triangles_[t])
+                if (in_cluster(x)) x = r;
+        }
+        for (const std::uint32_t c : cluster) stars_[c].clear();
+        stars_[r] = changed;
+    };
+    apply();
+    const auto sectors_before = [&] {
+        undo();
+        double before = 360;
+        for (const std::uint32_t c : cluster) before = std::min(before, smallest_sector_deg(stars_[c]));
+        apply();
+        return before;
+    };
+    if (!sectors_ok(stars_[r], sectors_before) || !surroundings_ok(changed, prior)) {
+        undo();
+        return false;
+    }
+    if (!pieces_clear && (small_pieces(r, pieces_after), !pieces_ok(pieces_before, pieces_after))) {
+        ++counters_.topology;
+        undo();
+        return false;
+    }
+    for (const std::uint32_t t : dying) unfile(t);
+    for (const std::uint32_t t : changed) {
+        unfile(t);
+        file(t);
+    }
+    alive_count_ -= dying.size();
+    reclassify(r);
+    for (const std::uint32_t c : cluster)
+        if (c != r) kinds_[c] = VertexKind::corner;
+    ++counters_.accepted;
+    return true;
+}
+
 std::optional<std::uint32_t> LocalEditor::try_split(std::uint32_t v, std::uint32_t w, const Vec3& p)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return std::nullopt;

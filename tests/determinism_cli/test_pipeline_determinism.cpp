@@ -48,8 +48,10 @@ void run_pipeline(const TempDir& dir, const std::string& threads)
         {"tm-extract",
          {"-i", at("clean.nii.gz"), "--labels", at("image.labels.json"), "-o", at("nets.ply"), "--method",
           "surface-nets"}},
+        // With the workflow's contraction before the collapses (3 mm voxels, blocks of 1.5 voxels).
         {"tm-decimate",
-         {"-i", at("nets.ply"), "-o", at("nets-decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
+         {"-i", at("nets.ply"), "-o", at("nets-decimated.ply"), "--max-distance-mm", "1", "--slabs", "3",
+          "--contract-blocks-mm", "4.5"}},
         // Decimation and remeshing in slabs (in parallel): the bytes must not depend on the threads.
         {"tm-decimate", {"-i", at("smooth.ply"), "-o", at("decimated.ply"), "--max-distance-mm", "1", "--slabs", "3"}},
         {"tm-remesh", {"-i", at("decimated.ply"), "-o", at("remeshed.ply"), "--edge-mm", "4", "--slabs", "2"}},
