@@ -134,17 +134,21 @@ void Decimator::contract_blocks(const Vec3& origin)
             }
             if (cluster.size() < 2) continue;
             std::sort(cluster.begin(), cluster.end());
-            // The member where the cluster's planes meet best (the quadric error of the collapses into it).
+            // The members in the order of the quadric error of the collapses into them (where the cluster's planes
+            // meet best first): the first that passes is kept.
             Quadric q = quadrics_[cluster.front()];
             for (std::size_t n = 1; n < cluster.size(); ++n) q += quadrics_[cluster[n]];
-            std::uint32_t r = cluster.front();
-            double best = std::numeric_limits<double>::max();
+            std::vector<std::pair<double, std::uint32_t>>& order = enqueue_scratch_;
+            order.clear();
             for (const std::uint32_t c : cluster) {
                 const Vec3& p = editor_.position(c);
-                const double e = q(OpenMesh::Vec3d(p[0], p[1], p[2]));
-                if (e < best) best = e, r = c;
+                order.emplace_back(q(OpenMesh::Vec3d(p[0], p[1], p[2])), c);
             }
-            if (contract(cluster, r)) {
+            std::sort(order.begin(), order.end());
+            const bool done = std::any_of(order.begin(), order.end(), [&](const std::pair<double, std::uint32_t>& o) {
+                return contract(cluster, o.second);
+            });
+            if (done) {
                 ++report_.contractions;
                 report_.contracted_vertices += cluster.size() - 1;
             } else {
