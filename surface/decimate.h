@@ -44,10 +44,10 @@ struct DecimateOptions {
     double target_edge_mm = 0;
     /// Size mode: target edge length per tissue pair (either order), overriding target_edge_mm.
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
-    /// Before the collapses, the patch vertices in each cube of this edge (a grid over the whole complex) that are
-    /// joined by edges are contracted into one of them, the one their quadrics place best, where every check of a
-    /// collapse and the distance bound allow it: most of the work of decimating a fine extraction in a fraction of
-    /// the checks (0: off).
+    /// Curvature mode: before the collapses, the patch vertices in each cube of this edge (one grid over the whole
+    /// complex) that are joined by edges are contracted into one of them, the first in the order of their summed
+    /// quadrics' error that every check of a collapse and the bounds allow. One judgement for a few vertices: on the
+    /// 1 mm usc19-5 head, with 1.5 voxels, half the vertices decimation removes and a seventh of its CPU (0: off).
     double contract_block_mm = 0;
     /// Slabs decimated side by side (in parallel); then, from the seams their fences held back, slabs cut
     /// halfway between them, side by side again; then one pass over the whole from what is left; 0: one per
