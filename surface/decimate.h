@@ -46,8 +46,8 @@ struct DecimateOptions {
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
     /// Curvature mode: before the collapses, the patch vertices in each cube of this edge (one grid over the whole
     /// complex) that are joined by edges are contracted into one of them, the first in the order of their summed
-    /// quadrics' error that every check of a collapse and the bounds allow. One judgement for a few vertices: on the
-    /// 1 mm usc19-5 head, with 1.5 voxels, half the vertices decimation removes and a seventh of its CPU (0: off).
+    /// quadrics' error that every check of a collapse, the edge bound and half the distance bound allow (0: off). One
+    /// judgement for a few vertices, but not measurably faster at equal fidelity (docs/surfaces.md).
     double contract_block_mm = 0;
     /// Slabs decimated side by side (in parallel); then, from the seams their fences held back, slabs cut
     /// halfway between them, side by side again; then one pass over the whole from what is left; 0: one per

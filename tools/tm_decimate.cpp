@@ -75,10 +75,11 @@ int main(int argc, char** argv)
             app.add_option("--target-edge-mm", options.target_edge_mm, "Size mode: target edge length")
                 ->capture_default_str();
             CLI::Option* block_in_mm =
-                app.add_option("--contract-blocks-mm", options.contract_block_mm,
-                               "Curvature mode: before the collapses, contract the vertices of one patch inside each "
-                               "cube of this edge into one of them, where every check of a collapse and the bounds "
-                               "allow (0: off); the collapses go on from there")
+                app.add_option(
+                       "--contract-blocks-mm", options.contract_block_mm,
+                       "Curvature mode: before the collapses, contract the vertices of one patch inside each "
+                       "cube of this edge into one of them, where every check of a collapse, the edge bound and "
+                       "half the distance bound allow (0: off); the collapses go on from there")
                     ->check(CLI::NonNegativeNumber)
                     ->capture_default_str();
             app.add_option("--contract-blocks-voxels", block_voxels,

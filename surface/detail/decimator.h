@@ -104,10 +104,11 @@ private:
     std::optional<std::uint32_t> collapse_cheapest(std::uint32_t v);
 
     /// Assigns each sample of the `sources` triangles to the nearest of `shapes`; false as soon as one is
-    /// further than the bound. A shape whose bounding sphere is further than the best so far is skipped
+    /// further than `bound` (mm). A shape whose bounding sphere is further than the best so far is skipped
     /// (the answer is the same, most closest-point computations are saved).
     bool assign_samples(const std::vector<std::uint32_t>& sources, const std::vector<TriangleCorners>& shapes,
-                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst) const;
+                        std::vector<std::pair<std::size_t, std::uint32_t>>& assignment, double& worst,
+                        double bound) const;
 
     /// Collapses v into w if the editor and the distance bound allow it. The bound is asked (through the
     /// editor's veto, after its cheap local checks) of the triangles around w after the collapse.
