@@ -116,6 +116,11 @@ private:
     using Prior = std::pair<std::uint32_t, std::array<Vec3, 3>>; ///< a changed triangle and its corners before
 
     bool shape_ok(const Triangle& now, const Triangle& before, bool check_tilt);
+    /// The end of a collapse or contraction applied around `kept` (edit_ holds its changed, dying and prior
+    /// triangles and the small pieces before): judged by the sector rule, the surroundings and the small pieces, undone
+    /// when refused, else its triangles filed again.
+    template <class Before>
+    bool judge_merge(std::uint32_t kept, Before sectors_before, bool pieces_clear);
     /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).

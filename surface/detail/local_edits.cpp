@@ -45,6 +45,28 @@ bool pieces_ok(const std::vector<SmallPiece>& before, const std::vector<SmallPie
 
 } // namespace
 
+template <class Before>
+bool LocalEditor::judge_merge(std::uint32_t kept, Before sectors_before, bool pieces_clear)
+{
+    if (!sectors_ok(stars_[kept], sectors_before) || !surroundings_ok(edit_.changed, edit_.prior)) {
+        undo();
+        return false;
+    }
+    if (!pieces_clear &&
+        (small_pieces(kept, edit_.pieces_after), !pieces_ok(edit_.pieces_before, edit_.pieces_after))) {
+        ++counters_.topology;
+        undo();
+        return false;
+    }
+    for (const std::uint32_t t : edit_.dying) unfile(t);
+    for (const std::uint32_t t : edit_.changed) {
+        unfile(t);
+        file(t);
+    }
+    alive_count_ -= edit_.dying.size();
+    return true;
+}
+
 bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::function<bool()>& veto)
 {
     if (v == w || !vertex_alive(v) || !vertex_alive(w)) return false;
@@ -131,7 +153,6 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
     std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
     std::vector<SmallPiece>& pieces_at_w = edit_.pieces_at_w;
-    std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
     // The tissues of the dying triangles are one piece at v and at w: looked at once, from v. When every piece
     // at v and w has more than 24 triangles beyond the dying ones, more than 24 remain joined at w.
     std::array<Label, 8> dying_tissues{};
@@ -180,21 +201,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
         apply();
         return before;
     };
-    if (!sectors_ok(stars_[w], sectors_before) || !surroundings_ok(changed, prior)) {
-        undo();
-        return false;
-    }
-    if (!pieces_clear && (small_pieces(w, pieces_after), !pieces_ok(pieces_before, pieces_after))) {
-        ++counters_.topology;
-        undo();
-        return false;
-    }
-    for (const std::uint32_t t : dying) unfile(t);
-    for (const std::uint32_t t : changed) {
-        unfile(t);
-        file(t);
-    }
-    alive_count_ -= dying.size();
+    if (!judge_merge(w, sectors_before, pieces_clear)) return false;
     reclassify(w, &common);
     kinds_[v] = VertexKind::corner;
     ++counters_.accepted;
@@ -302,7 +309,6 @@ bool LocalEditor::try_contract(const std::vector<std::uint32_t>& cluster, std::u
     for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
     // Every triangle of the disc lies in one piece per tissue (the patch's two), which r's triangles stay joined in.
     std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
-    std::vector<SmallPiece>& pieces_after = edit_.pieces_after;
     const bool pieces_clear = small_pieces(r, pieces_before, dying.size());
     const auto apply = [&] {
         begin_edit();
@@ -331,21 +337,7 @@ bool LocalEditor::try_contract(const std::vector<std::uint32_t>& cluster, std::u
         apply();
         return before;
     };
-    if (!sectors_ok(stars_[r], sectors_before) || !surroundings_ok(changed, prior)) {
-        undo();
-        return false;
-    }
-    if (!pieces_clear && (small_pieces(r, pieces_after), !pieces_ok(pieces_before, pieces_after))) {
-        ++counters_.topology;
-        undo();
-        return false;
-    }
-    for (const std::uint32_t t : dying) unfile(t);
-    for (const std::uint32_t t : changed) {
-        unfile(t);
-        file(t);
-    }
-    alive_count_ -= dying.size();
+    if (!judge_merge(r, sectors_before, pieces_clear)) return false;
     reclassify(r);
     for (const std::uint32_t c : cluster)
         if (c != r) kinds_[c] = VertexKind::corner;
