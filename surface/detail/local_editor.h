@@ -121,6 +121,8 @@ private:
     /// when refused, else its triangles filed again.
     template <class Before>
     bool judge_merge(std::uint32_t kept, Before sectors_before, bool pieces_clear);
+    /// edit_.prior: each of edit_.changed with its corners now (before the edit is applied).
+    void keep_prior();
     /// Judges the triangles `changed` (alive, at current positions) against their surroundings: stars of
     /// their vertices, triangles from the grid, junction fans. `before` maps each to its prior corners (for
     /// the gap rule; none for new triangles).

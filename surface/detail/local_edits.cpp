@@ -45,6 +45,12 @@ bool pieces_ok(const std::vector<SmallPiece>& before, const std::vector<SmallPie
 
 } // namespace
 
+void LocalEditor::keep_prior()
+{
+    edit_.prior.clear();
+    for (const std::uint32_t t : edit_.changed) edit_.prior.emplace_back(t, corners(triangles_[t]));
+}
+
 template <class Before>
 bool LocalEditor::judge_merge(std::uint32_t kept, Before sectors_before, bool pieces_clear)
 {
@@ -148,9 +154,7 @@ bool LocalEditor::try_collapse(std::uint32_t v, std::uint32_t w, const std::func
     }
     if (veto && !veto()) return false;
     // Apply, judge, and undo when refused.
-    std::vector<Prior>& prior = edit_.prior;
-    prior.clear();
-    for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
+    keep_prior();
     std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
     std::vector<SmallPiece>& pieces_at_w = edit_.pieces_at_w;
     // The tissues of the dying triangles are one piece at v and at w: looked at once, from v. When every piece
@@ -304,9 +308,7 @@ bool LocalEditor::try_contract(const std::vector<std::uint32_t>& cluster, std::u
             return false;
         }
     if (veto && !veto()) return false;
-    std::vector<Prior>& prior = edit_.prior;
-    prior.clear();
-    for (const std::uint32_t t : changed) prior.emplace_back(t, corners(triangles_[t]));
+    keep_prior();
     // Every triangle of the disc lies in one piece per tissue (the patch's two), which r's triangles stay joined in.
     std::vector<SmallPiece>& pieces_before = edit_.pieces_before;
     const bool pieces_clear = small_pieces(r, pieces_before, dying.size());
