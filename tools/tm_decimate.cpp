@@ -80,11 +80,11 @@ int main(int argc, char** argv)
                        "Curvature mode: before the collapses, contract the vertices of one patch inside each "
                        "cube of this edge into one of them, where every check of a collapse, the edge bound and "
                        "half the distance bound allow (0: off); the collapses go on from there")
-                    ->check(CLI::NonNegativeNumber)
+                    ->check(CLI::Range(0.0, 1000.0))
                     ->capture_default_str();
             app.add_option("--contract-blocks-voxels", block_voxels,
                            "The same cube's edge in voxels of --image (its smallest spacing)")
-                ->check(CLI::NonNegativeNumber)
+                ->check(CLI::Range(0.0, 1000.0))
                 ->excludes(block_in_mm);
             app.add_option(
                    "--slabs", options.slabs,

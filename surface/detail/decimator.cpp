@@ -170,30 +170,28 @@ bool Decimator::contract(const std::vector<std::uint32_t>& cluster, std::uint32_
     const Vec3& at = editor_.position(r);
     // Asked by the editor once the disc is known to be one: the new edges and the distance bound.
     const auto within_bounds = [&] {
-        for (const std::uint32_t c : cluster)
-            for (const std::uint32_t t : editor_.star(c)) {
-                const Triangle& tri = editor_.triangle(t);
-                std::uint32_t first = 3, inside = 0;
-                for (std::uint32_t k = 0; k < 3; ++k)
-                    if (in_cluster(tri[k])) first = std::min(first, k), ++inside;
-                if (tri[first] != c) continue; // once
-                sources.push_back(t);
-                if (inside > 1) continue;
-                TriangleCorners corners = editor_.corners(t);
-                corners[first] = at;
-                // A new edge from r no longer than the bounds, or than the edge from c it replaces.
-                if (options_.max_edge_mm > 0)
-                    for (const std::uint32_t k : {(first + 1) % 3, (first + 2) % 3}) {
-                        const Vec3& x = editor_.position(tri[k]);
-                        const double length = distance(at, x);
-                        if (length <= distance(editor_.position(c), x)) continue;
-                        if (length > options_.max_edge_mm ||
-                            (options_.edge_per_thickness > 0 && length > 4.0 / 3.0 * sizing_.at(0.5 * (at + x))))
-                            return false;
-                    }
-                targets.push_back(t);
-                shapes.push_back(corners);
-            }
+        for (const std::uint32_t t : editor_.pending_changed()) {
+            sources.push_back(t);
+            const Triangle& tri = editor_.triangle(t);
+            const auto k = static_cast<std::size_t>(std::find_if(tri.begin(), tri.end(), in_cluster) - tri.begin());
+            const Vec3& from = editor_.position(tri[k]);
+            TriangleCorners corners = editor_.corners(t);
+            corners[k] = at;
+            // A new edge from r no longer than the bounds, or than the edge from the cluster vertex it replaces.
+            if (options_.max_edge_mm > 0)
+                for (const std::size_t o : {(k + 1) % 3, (k + 2) % 3}) {
+                    const Vec3& x = editor_.position(tri[o]);
+                    const double length = distance(at, x);
+                    if (length <= distance(from, x)) continue;
+                    if (length > options_.max_edge_mm ||
+                        (options_.edge_per_thickness > 0 && length > 4.0 / 3.0 * sizing_.at(0.5 * (at + x))))
+                        return false;
+                }
+            targets.push_back(t);
+            shapes.push_back(corners);
+        }
+        const std::vector<std::uint32_t>& dying = editor_.pending_dying();
+        sources.insert(sources.end(), dying.begin(), dying.end());
         // Half the distance bound: a contraction spends the budget wherever its block lies, where the cheapest-first
         // collapses would spend it where the surface is flattest (with the whole bound the one-voxel layers of the
         // 2 mm sphere head and the thin shell lost 0.003-0.004 of their Dice; with half, none).

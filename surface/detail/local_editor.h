@@ -97,6 +97,10 @@ public:
     /// try_collapse(). Returns whether it was applied.
     bool try_contract(const std::vector<std::uint32_t>& cluster, std::uint32_t r,
                       const std::function<bool()>& veto = {});
+    /// While a veto of try_contract() is asked: the triangles the contraction reshapes (each with one cluster vertex,
+    /// which becomes r) and those it removes.
+    const std::vector<std::uint32_t>& pending_changed() const { return edit_.changed; }
+    const std::vector<std::uint32_t>& pending_dying() const { return edit_.dying; }
 
     /// The complex, compacted (dead vertices and triangles dropped, order otherwise kept).
     InterfaceComplex result() const;
