@@ -21,8 +21,9 @@ int main(int argc, char** argv)
         {"tm-check-mesh",
          "Checks a labelled tet mesh: conformity (faces shared by two tets on opposite sides), no inverted or flat "
          "tets "
-         "(volume under 1e-9 of the longest edge cubed: four coplanar nodes), closed "
-         "outer boundary, every interface face a tet face with the right tissues on both sides, per-tissue volumes and "
+         "(volume under 1e-9 of the longest edge cubed: four coplanar nodes), a closed "
+         "outer boundary that does not pass through itself (tets overlapping), every interface face a tet face with "
+         "the right tissues on both sides, per-tissue volumes and "
          "connected pieces, quality (dihedral angles, radius-edge ratio), and with --image the voxel agreement per "
          "tissue "
          "(Dice), and with --surface how far its interfaces lie from the complex it was made from. Exit 0 when fit for "

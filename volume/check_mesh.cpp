@@ -9,6 +9,7 @@
 #include "core/tet_adjacency.h"
 #include "core/tet_shape.h"
 #include "core/union_find.h"
+#include "surface/detail/cgal_intersections.h"
 #include "volume/detail/face_map.h"
 #include "volume/rasterize.h"
 
@@ -50,6 +51,28 @@ double longest_edge(const TetMesh& mesh, const Tet& tet)
         for (int j = i + 1; j < 4; ++j)
             longest = std::max(longest, distance(mesh.vertices[tet[i]], mesh.vertices[tet[j]]));
     return longest;
+}
+
+/// Counts and notes the pairs of outer-boundary faces that cross (exact predicates). A face with collinear corners
+/// belongs to a flat tet, counted already, and is left out.
+void count_boundary_crossings(const TetMesh& mesh, const std::vector<Triangle>& outer_faces, MeshCheckReport& report)
+{
+    std::vector<std::uint32_t> candidates;
+    for (std::uint32_t f = 0; f < outer_faces.size(); ++f) {
+        const Triangle& c = outer_faces[f];
+        if (!surface::detail::are_collinear(mesh.vertices[c[0]], mesh.vertices[c[1]], mesh.vertices[c[2]]))
+            candidates.push_back(f);
+    }
+    const auto crossings = surface::detail::find_intersecting_pairs(mesh.vertices, outer_faces, candidates);
+    report.boundary_crossings = crossings.size();
+    const auto corners = [&](std::uint32_t f) {
+        const Triangle& c = outer_faces[f];
+        return std::array<Vec3, 3>{mesh.vertices[c[0]], mesh.vertices[c[1]], mesh.vertices[c[2]]};
+    };
+    for (const auto& [a, b] : crossings)
+        note(report, concat("the outer boundary passes through itself near ",
+                            where(surface::detail::intersection_point(corners(a), corners(b))),
+                            ": the tetrahedra behind its two faces there overlap"));
 }
 
 } // namespace
@@ -168,6 +191,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
         });
     UnionFind pieces(mesh.tets.size());
     std::unordered_map<std::uint64_t, int> boundary_edges;
+    std::vector<Triangle> outer_faces;
     const auto judge = [&](const TetAdjacency::Face& face) {
         const detail::FaceKey key{face.vertices};
         if (face.holders > 2) {
@@ -195,6 +219,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
             const Tet& tet = mesh.tets[face.tets[0]];
             for (const auto& local : local_faces) {
                 if (face_key(tet[local[0]], tet[local[1]], tet[local[2]]) != key) continue;
+                outer_faces.push_back({tet[local[0]], tet[local[1]], tet[local[2]]});
                 for (int e = 0; e < 3; ++e) {
                     const std::uint64_t from = tet[local[e]], to = tet[local[(e + 1) % 3]];
                     boundary_edges[from << 32 | to] += 1;
@@ -209,6 +234,7 @@ MeshCheckReport check_mesh(const TetMesh& mesh, const LabelImage* image, const P
     report.open_boundary_edges /= 2; // each unmatched edge was counted in both directions
     if (report.open_boundary_edges > 0)
         note(report, concat(report.open_boundary_edges, " edges of the outer boundary are open"));
+    count_boundary_crossings(mesh, outer_faces, report);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t)
         if (pieces.find(static_cast<std::uint32_t>(t)) == t) ++report.tissues[mesh.tet_labels[t]].components;
     progress.update("check-mesh", 0.6);

@@ -38,6 +38,9 @@ struct MeshCheckReport {
     std::size_t flat_tets = 0;
     std::size_t nonconforming_faces = 0; ///< faces shared by more than two tets
     std::size_t open_boundary_edges = 0; ///< edges of the outer boundary not matched by a reverse edge
+    /// Pairs of outer-boundary faces that meet other than at the nodes and edges they share: the boundary passes
+    /// through itself, and the tets behind the two faces overlap (no tet need be inverted for that).
+    std::size_t boundary_crossings = 0;
     std::size_t unused_nodes = 0;
     std::size_t missing_interface_faces = 0;     ///< marked faces that are not tet faces
     std::size_t mislabelled_interface_faces = 0; ///< marked faces whose tets disagree with the face's tissues
@@ -47,13 +50,15 @@ struct MeshCheckReport {
     std::vector<std::string> problems; ///< one line each, with a location in mm (capped)
 
     /// How many defects of the tets and their faces there are: inverted or flat tets, non-conforming faces, open
-    /// boundary edges, missing, mislabelled or unmarked interface faces (unused nodes are not counted).
+    /// or self-crossing outer boundary, missing, mislabelled or unmarked interface faces (unused nodes are not
+    /// counted).
     std::size_t tet_defects() const
     {
-        return inverted_tets + flat_tets + nonconforming_faces + open_boundary_edges + missing_interface_faces +
-               mislabelled_interface_faces + unmarked_interfaces;
+        return inverted_tets + flat_tets + nonconforming_faces + open_boundary_edges + boundary_crossings +
+               missing_interface_faces + mislabelled_interface_faces + unmarked_interfaces;
     }
-    /// True when the mesh is fit for FEM: conforming, no inverted tets, closed boundary, interfaces right.
+    /// True when the mesh is fit for FEM: conforming, no inverted tets, a closed boundary that does not cross
+    /// itself, interfaces right.
     bool ok() const { return tet_defects() == 0 && unused_nodes == 0; }
 };
 

@@ -103,5 +103,36 @@ TEST(CheckMesh, FindsInvertedMissingAndUnmarkedFaces)
     EXPECT_FALSE(report.ok());
 }
 
+TEST(CheckMesh, FindsAnOuterBoundaryThatPassesThroughItself)
+{
+    // Two positive tets with no node in common: apart, the mesh is fit; with the second pushed into the first,
+    // no tet is inverted and every face has one tet, but the outer boundary crosses itself and the tets overlap.
+    TetMesh apart;
+    apart.vertices = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {3, 3, 3}, {5, 3, 3}, {3, 5, 3}, {3, 3, 5}};
+    apart.tets = {{0, 1, 2, 3}, {4, 5, 6, 7}};
+    apart.tet_labels = {1, 1};
+    const MeshCheckReport fine = check_mesh(apart);
+    EXPECT_EQ(fine.boundary_crossings, 0u);
+    EXPECT_TRUE(fine.ok()) << (fine.problems.empty() ? "" : fine.problems.front());
+
+    TetMesh folded = apart;
+    for (std::size_t v = 4; v < 8; ++v) folded.vertices[v] = folded.vertices[v] - Vec3{2.8, 2.8, 2.8};
+    const MeshCheckReport report = check_mesh(folded);
+    EXPECT_EQ(report.inverted_tets + report.flat_tets + report.nonconforming_faces + report.open_boundary_edges, 0u);
+    EXPECT_GT(report.boundary_crossings, 0u);
+    EXPECT_FALSE(report.ok());
+    ASSERT_FALSE(report.problems.empty());
+    EXPECT_NE(report.problems.front().find("passes through itself"), std::string::npos) << report.problems.front();
+
+    // Two tets sharing one node meet only there: not a crossing.
+    TetMesh touching;
+    touching.vertices = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 4}, {0, 2, 4}, {0, 0, 4}};
+    touching.tets = {{0, 1, 2, 3}, {3, 4, 5, 6}};
+    touching.tet_labels = {1, 1};
+    const MeshCheckReport touching_report = check_mesh(touching);
+    EXPECT_EQ(touching_report.boundary_crossings, 0u);
+    EXPECT_TRUE(touching_report.ok()) << (touching_report.problems.empty() ? "" : touching_report.problems.front());
+}
+
 } // namespace
 } // namespace tissuemesh::volume
