@@ -67,7 +67,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ShapeFigures, min_dihedral_deg, max_dihedral_
                                    tets_under_10_deg, tets_under_20_deg, tets)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ImproveReport, before, after, smoothed_nodes, edges_removed, faces_removed,
                                    interface_edges_flipped, nodes_inserted, nodes_inserted_on_interfaces,
-                                   refused_by_voxels, passes, parts, bands, seconds, cpu_seconds)
+                                   refused_by_voxels, refused_crossing_boundary, passes, parts, bands, seconds,
+                                   cpu_seconds)
 // Not input_vertices; not switches and seconds: tm-tetra writes them as tetgen_switches and
 // tetrahedralize_seconds; not improved and improvement: tm-tetra writes the improvement when there is one.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TetrahedralizeReport, input_triangles, nodes, tets, steiner_points, interface_faces,
@@ -79,7 +80,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueAssessment, image_voxels, mesh_voxels, 
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueMeshStats, tets, volume_mm3, components, voxel_volume_mm3, dice)
 // Not tissues, quality, problems: tm-check-mesh writes the tissues with their names and some quality figures.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MeshCheckReport, nodes, tets, faces, inverted_tets, flat_tets, nonconforming_faces,
-                                   open_boundary_edges, unused_nodes, missing_interface_faces,
+                                   open_boundary_edges, boundary_crossings, unused_nodes, missing_interface_faces,
                                    mislabelled_interface_faces, unmarked_interfaces)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(InterfaceDistance, nodes, max_node_mm, mean_node_mm, faces, max_face_mm,
                                    mean_face_mm, unmatched_faces)

@@ -92,6 +92,8 @@ struct ImproveReport {
     std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
     std::size_t refused_by_voxels = 0; ///< edits refused for carrying a voxel centre across (voxel_image)
+    /// Edits refused because a face of the outer boundary they made or moved met another (detail/outer_boundary.h).
+    std::size_t refused_crossing_boundary = 0;
     std::size_t passes = 0;
     std::size_t parts = 1; ///< parts improved side by side (ImproveOptions::parts)
     std::size_t bands = 0; ///< then bands around the faces between them

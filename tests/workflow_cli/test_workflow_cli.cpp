@@ -224,6 +224,22 @@ TEST(WorkflowCliLong, LiverMeshesWithEveryTetAtTenDegreesOrMore)
     expect_real_volume_meshed_well("samples/liver.inr.gz", "");
 }
 
+// The liver through decimation with contraction (DECIMATE_CONTRACT_VOXELS=1.5): before the improver kept the outer
+// boundary from crossing itself, one node slid through a cleft 0.2 mm wide, and tm-refine's rebuild crashed TetGen
+// (SIGSEGV) on those faces in every try, so refinement stopped at round 0. Measured 2026-12-07: one edit refused,
+// then 3 rounds. About 25 s on 2 idle cores.
+TEST(WorkflowCliLong, LiverWithContractedSurfacesRefinesEveryRound)
+{
+    TempDir dir;
+    const fs::path out = dir / "out";
+    ASSERT_NO_FATAL_FAILURE(make_workflow(
+        {"IMAGE=" + testing::data_path("samples/liver.inr.gz").string(), "DECIMATE_CONTRACT_VOXELS=1.5"}, out));
+    EXPECT_EQ(testing::read_json(out / "check-mesh.json")["ok"], true);
+    const auto refine = testing::read_json(out / "refine.json");
+    EXPECT_EQ(refine["stop_reason"], "iteration cap");
+    EXPECT_EQ(refine["iterations"].size(), 4u) << "round 0 and three rounds";
+}
+
 // The usc19-5 head resampled by tm-prep to 0.7 mm voxels (nearest neighbour), as a head segmented finer than the
 // atlas would come: 22.6 M voxels, 2.6 M tets. Measured 2026-12-07: 10.28 degrees after tm-tetra (10.12 without the
 // improver's last-round widening of the face bound), 10.79 after tm-refine. The same head resampled outside tm-prep

@@ -13,6 +13,7 @@
 #include "volume/detail/flips.h"
 #include "volume/detail/insert_node.h"
 #include "volume/detail/interface_flip.h"
+#include "volume/detail/outer_boundary.h"
 #include "volume/detail/smooth_node.h"
 #include "volume/detail/work_mesh.h"
 
@@ -49,8 +50,9 @@ public:
     Improver(TetMesh& mesh, const SurfaceReference& reference, const surface::detail::VoxelSides* sides,
              const ImproveOptions& options, ImproveReport& report, std::vector<char> frozen, std::vector<char> seeds,
              const std::map<Label, double>& allowance, bool last)
-        : mesh_(mesh), work_(mesh, std::move(frozen)), seeds_(std::move(seeds)), reference_(reference), sides_(sides),
-          last_(last), options_(options), report_(report), target_(sine_of_deg(options.target_dihedral_deg)),
+        : mesh_(mesh), work_(mesh, std::move(frozen)), outer_(work_), seeds_(std::move(seeds)), reference_(reference),
+          sides_(sides), last_(last), options_(options), report_(report),
+          target_(sine_of_deg(options.target_dihedral_deg)),
           insert_bar_(sine_of_deg(std::min(options.insert_below_deg, options.target_dihedral_deg))),
           // Never quite zero: a node moving in a flat patch leaves its faces there up to rounding.
           face_tolerance_mm_((options.max_face_deviation + 1e-9) * reference.mean_edge_mm()),
@@ -194,7 +196,7 @@ private:
                     const std::size_t mark = work_.mark();
                     if (flip_interface_edge(work_, tet[e[0]], tet[e[1]], reference_,
                                             face_factor_ * face_tolerance_mm_) &&
-                        kept_by_voxels(mark))
+                        kept_at_interfaces(mark))
                         return Change::interface_flip;
                 }
             for (int i = 0; i < 4; ++i)
@@ -213,7 +215,7 @@ private:
                 // A node that could not be moved stays so until something around it changes.
                 if (node_tried_[v] >= node_changed_[v]) continue;
                 const std::size_t mark = work_.mark();
-                if (smooth_node(work_, v, reference_, face_factor_ * face_tolerance_mm_) && kept_by_voxels(mark))
+                if (smooth_node(work_, v, reference_, face_factor_ * face_tolerance_mm_) && kept_at_interfaces(mark))
                     return Change::move;
                 node_tried_[v] = clock_;
             }
@@ -222,7 +224,7 @@ private:
             const std::size_t mark = work_.mark();
             if (insert_for_tet(work_, t, reference_, options_.insert_on_interfaces,
                                face_factor_ * face_tolerance_mm_) &&
-                kept_by_voxels(mark))
+                kept_at_interfaces(mark))
                 return Change::insertion;
         }
         return Change::none;
@@ -253,6 +255,18 @@ private:
             if (it != options_.max_tet_volume_per_tissue_mm3.end()) return it->second;
             return options_.max_tet_volume_mm3 > 0 ? options_.max_tet_volume_mm3 : none;
         });
+    }
+
+    /// Whether the edit since `mark` keeps the outer boundary from crossing itself and, judged by the voxels, the
+    /// interfaces from carrying a voxel centre across; if not, it is undone.
+    bool kept_at_interfaces(std::size_t mark)
+    {
+        if (!outer_.clear_since(work_, mark)) {
+            ++report_.refused_crossing_boundary;
+            work_.rollback(mark);
+            return false;
+        }
+        return kept_by_voxels(mark);
     }
 
     /// Whether the interface faces the edit since `mark` changed sweep no voxel centre next to another label (when
@@ -311,6 +325,7 @@ private:
 
     TetMesh& mesh_;
     WorkMesh work_;
+    OuterBoundary outer_; ///< the outer boundary's faces, so that no edit makes it cross itself
     std::vector<char> seeds_;
     const SurfaceReference& reference_;
     const surface::detail::VoxelSides* sides_;

@@ -73,7 +73,11 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
             const std::uint32_t t = face.tets[j], other = boundary ? t : face.tets[1 - j];
             if (!boundary && labels_[other] == labels_[t]) break;
             const auto& key = face.vertices;
-            if (face_with(key[0], key[1], key[2])) break;
+            if (const auto listed = face_with(key[0], key[1], key[2])) {
+                if (boundary) outer_at_start_.push_back(*listed);
+                break;
+            }
+            if (boundary) outer_at_start_.push_back(static_cast<std::uint32_t>(faces_.size()));
             // Outward from t: the face opposite its corner (the node not on the face) turned away from it.
             const Tet& tet = tets_[t];
             const auto corner = static_cast<std::size_t>(
@@ -87,6 +91,7 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
     };
     for (std::uint32_t v = 0; v < adjacency.vertex_count(); ++v) adjacency.for_each_face_at(v, keep_face);
     for (std::uint32_t v = 0; v < points_.size(); ++v) kinds_[v] = compute_kind(v);
+    std::sort(outer_at_start_.begin(), outer_at_start_.end());
     journal_.clear();
 }
 
@@ -412,6 +417,26 @@ void WorkMesh::swept_faces(std::size_t mark, std::vector<std::array<Vec3, 3>>& b
         if (faces_[f].alive) after.push_back(corners_now(f));
     for (const std::uint32_t f : at_moved)
         if (!is_added(f)) before.push_back(corners_then(f)), after.push_back(corners_now(f)); // added: in `after`
+}
+
+void WorkMesh::faces_changed_since(std::size_t mark, std::vector<std::uint32_t>& out) const
+{
+    out.clear();
+    for (std::size_t i = mark; i < journal_.size(); ++i) {
+        const Entry& e = journal_[i];
+        if (e.change == Change::face_added) out.push_back(e.index);
+        if (e.change == Change::node_moved) out.insert(out.end(), faces_of_[e.index].begin(), faces_of_[e.index].end());
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    out.erase(std::remove_if(out.begin(), out.end(), [&](std::uint32_t f) { return !faces_[f].alive; }), out.end());
+}
+
+int WorkMesh::holders(std::uint32_t a, std::uint32_t b, std::uint32_t c) const
+{
+    int count = 0;
+    for (const std::uint32_t t : tets_of_[a]) count += alive_[t] && holds(tets_[t], b) && holds(tets_[t], c);
+    return count;
 }
 
 WorkMesh::Balance WorkMesh::balance_since(std::size_t mark) const

@@ -40,6 +40,7 @@ public:
     // ---- nodes
     std::size_t node_count() const { return points_.size(); }
     const Vec3& point(std::uint32_t v) const { return points_[v]; }
+    const std::vector<Vec3>& points() const { return points_; }
     NodeKind kind(std::uint32_t v) const { return kinds_[v]; }
     /// Whether v is frozen: it never moves, and no edit may split or flip a face or edge all of whose nodes
     /// are frozen (they may lie on a face shared with another part).
@@ -72,6 +73,9 @@ public:
 
     // ---- constraint faces
     const ConstraintFace& face(std::uint32_t f) const { return faces_[f]; }
+    std::size_t face_slots() const { return faces_.size(); } ///< alive faces and removed ones
+    /// The constraint faces on the outer boundary (one tet) when the mesh was built, ascending.
+    const std::vector<std::uint32_t>& outer_faces_at_start() const { return outer_at_start_; }
     std::optional<std::uint32_t> face_with(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
     /// Whether any constraint face holds edge ab.
     bool constrained_edge(std::uint32_t a, std::uint32_t b) const;
@@ -136,6 +140,10 @@ public:
     /// between each patch's faces before and after).
     void swept_faces(std::size_t mark, std::vector<std::array<Vec3, 3>>& before,
                      std::vector<std::array<Vec3, 3>>& after) const;
+    /// The alive constraint faces the edits since `mark` added or moved (a node of theirs moved), ascending.
+    void faces_changed_since(std::size_t mark, std::vector<std::uint32_t>& out) const;
+    /// How many alive tets hold face abc (1 on the outer boundary, 2 inside).
+    int holders(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 
 private:
     enum class Change : std::uint8_t {
@@ -176,6 +184,7 @@ private:
     std::size_t alive_count_ = 0;
     std::vector<std::uint32_t> free_slots_, freed_now_;
     std::vector<ConstraintFace> faces_;
+    std::vector<std::uint32_t> outer_at_start_;
     TissueNames names_;
     std::vector<Entry> journal_;
     std::vector<std::uint32_t> touched_;
