@@ -287,7 +287,7 @@ ImproveReport run(TetMesh& mesh, MakeReference make_reference, const ImproveOpti
         // Each part, band and last round keeps the outer boundary it holds from crossing itself
         // (detail/outer_boundary.h), not from crossing the boundary another part holds. Should the parts' boundaries
         // meet (no mesh measured did), the whole mesh is improved again at once, where every edit is judged against
-        // the whole boundary. (A mesh that came in crossed stays as it is: improving it whole would not mend that.)
+        // the whole boundary. (A mesh given crossed keeps the parts' result: improving it whole would not mend that.)
         const TetMesh unimproved = mesh;
         improve_in_parts(mesh, reference, voxel_sides, options, count, report, progress);
         if (listed_outer_faces_cross(mesh) && !listed_outer_faces_cross(unimproved)) {
