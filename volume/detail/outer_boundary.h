@@ -8,21 +8,20 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
-#include "core/vec3.h"
+#include "surface/detail/triangle_grid.h"
 
 namespace tissuemesh::volume::detail {
 
 class WorkMesh;
 
-/// The faces of the outer boundary (constraint faces with one tet) in a uniform grid. Entries are added for every
-/// face an edit makes or moves and never removed; a query reads the faces as they are now, so entries left behind by
-/// undone or later edits only cost a test.
+/// The faces of the outer boundary (constraint faces with one tet) in a uniform grid (surface's TriangleGrid). Entries
+/// are added for every face an edit makes or moves and never removed; a query reads the faces as they are now, so
+/// entries left behind by undone or later edits only cost a test.
 class OuterBoundary {
 public:
-    /// The outer-boundary faces of `mesh` now; the grid's cell is twice their mean edge.
+    /// The outer-boundary faces of `mesh` now; the grid spans its nodes, its cell twice the faces' mean edge.
     explicit OuterBoundary(const WorkMesh& mesh);
 
     /// Whether the outer-boundary faces the edits since `mark` added or moved meet no other outer-boundary face
@@ -32,20 +31,12 @@ public:
     std::size_t face_count() const { return faces_; }
 
 private:
-    using Cell = std::uint64_t;
-    template <class Visit>
-    void for_each_cell(const Vec3& low, const Vec3& high, Visit&& visit) const;
-    void insert(const WorkMesh& mesh, std::uint32_t f);
     /// Whether face f (on the outer boundary) meets another outer-boundary face.
     bool crosses(const WorkMesh& mesh, std::uint32_t f);
 
-    double cell_mm_ = 1;
-    Vec3 origin_{0, 0, 0};
     std::size_t faces_ = 0;
-    std::unordered_map<Cell, std::vector<std::uint32_t>> cells_;
-    std::vector<std::uint32_t> seen_; ///< per face: the query that last tested it
-    std::uint32_t query_ = 0;
-    std::vector<std::uint32_t> changed_;
+    surface::detail::TriangleGrid grid_;
+    std::vector<std::uint32_t> changed_, near_;
 };
 
 } // namespace tissuemesh::volume::detail
