@@ -44,6 +44,9 @@ void validate(const RemeshOptions& options)
         throw InputError(concat("remesh: min sector ", options.min_sector_deg, " deg is outside [0, 90)"));
     if (!(options.edge_per_thickness >= 0 && options.edge_per_thickness <= 100))
         throw InputError(concat("remesh: edge per thickness ", options.edge_per_thickness, " is outside [0, 100]"));
+    if (!(options.min_relax_move >= 0 && options.min_relax_move < 1))
+        throw InputError(
+            concat("remesh: min relax move ", options.min_relax_move, " of the target edge is outside [0, 1)"));
     if (!(options.min_edge_mm >= 0 && options.min_edge_mm <= 1e6))
         throw InputError(concat("remesh: min edge ", options.min_edge_mm, " mm is outside [0, 1e6]"));
 }
@@ -369,11 +372,11 @@ private:
                 target_point =
                     reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
             }
-            // A vertex within 5% of its edges' target of where relaxation would put it stays: so short a move barely
-            // changes its triangles, and judging it costs as much as any other (2% until the twentieth session; 5%:
-            // 18-30% fewer moves on the real volumes, remeshing the torso 17% and the 1 mm usc19-5 head 4% less CPU,
-            // the smallest angles after tm-tetra and the Dice as before within 0.0003; docs/surfaces.md).
-            if (distance(p, target_point) < 0.05 * edge) continue;
+            // A vertex within RemeshOptions::min_relax_move of its edges' target of where relaxation would put it
+            // stays (5%, 2% until the twentieth session: 18-30% fewer moves on the real volumes, remeshing the torso
+            // 17% and the 1 mm usc19-5 head 4% less CPU, no Dice after tm-tetra lower by more than 0.0003, its
+            // smallest angles higher or within 0.25 degree; docs/surfaces.md).
+            if (distance(p, target_point) < options_.min_relax_move * edge) continue;
             if (carries_a_centre(v, target_point)) continue;
             if (editor_.try_move(v, target_point)) ++report_.moves;
             else ++report_.refused;

@@ -17,7 +17,11 @@ struct RemeshOptions {
     /// Target edge length per tissue pair (either order), overriding target_edge_mm on that patch; an edge
     /// takes the smallest target of the patches around it.
     std::map<std::pair<Label, Label>, double> target_edge_mm_by_pair;
-    std::size_t iterations = 3;        ///< split / collapse / flip / relax rounds (docs/surfaces.md: why 3)
+    std::size_t iterations = 3; ///< split / collapse / flip / relax rounds (docs/surfaces.md: why 3)
+    /// Relaxation leaves a vertex where it is when its relaxed place is closer than this fraction of its target edge:
+    /// so short a move barely changes its triangles, and judging it costs as much as any other (docs/surfaces.md,
+    /// "Fewer idle moves again": 0.05 since the twentieth session, 0.02 before).
+    double min_relax_move = 0.05;
     double min_angle_deg = 15;         ///< no edit may create an angle below this (unless not worse)
     double max_normal_change_deg = 30; ///< one edit may tilt a triangle at most this much
     double min_gap_mm = 0.1;           ///< distance kept between patches (unless closer before)

@@ -151,6 +151,8 @@ TEST(Remesh, RejectsMissingTarget)
     EXPECT_THROW(surface::remesh(complex, {}), InputError);
     EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 2, .slabs = surface::RemeshOptions::max_slabs + 1}),
                  InputError);
+    EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 2, .min_relax_move = 1}), InputError);
+    EXPECT_THROW(surface::remesh(complex, {.target_edge_mm = 2, .min_relax_move = -0.1}), InputError);
 }
 
 /// The whole surface chain on spheres4 (issue 4's figures): extract -> smooth -> decimate -> remesh.
