@@ -372,10 +372,7 @@ private:
                 target_point =
                     reference_.onto_patch(tangential, unordered(editor_.side(editor_.star(v).front())), reach);
             }
-            // A vertex within RemeshOptions::min_relax_move of its edges' target of where relaxation would put it
-            // stays (5%, 2% until the twentieth session: 18-30% fewer moves on the real volumes, remeshing the torso
-            // 17% and the 1 mm usc19-5 head 4% less CPU, no Dice after tm-tetra lower by more than 0.0003, its
-            // smallest angles higher or within 0.25 degree; docs/surfaces.md).
+            // So short a move is not worth judging (RemeshOptions::min_relax_move; its figures: docs/surfaces.md).
             if (distance(p, target_point) < options_.min_relax_move * edge) continue;
             if (carries_a_centre(v, target_point)) continue;
             if (editor_.try_move(v, target_point)) ++report_.moves;
