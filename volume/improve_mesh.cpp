@@ -77,6 +77,7 @@ void add_counts(ImproveReport& whole, const ImproveReport& part)
     whole.nodes_inserted += part.nodes_inserted;
     whole.nodes_inserted_on_interfaces += part.nodes_inserted_on_interfaces;
     whole.refused_by_voxels += part.refused_by_voxels;
+    whole.refused_by_volume += part.refused_by_volume;
     whole.refused_crossing_boundary += part.refused_crossing_boundary;
     whole.passes = std::max(whole.passes, part.passes);
 }

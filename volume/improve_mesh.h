@@ -92,6 +92,8 @@ struct ImproveReport {
     std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
     std::size_t refused_by_voxels = 0; ///< edits refused for carrying a voxel centre across (voxel_image)
+    /// Edits of interfaces refused for changing a tissue's volume beyond ImproveOptions::max_volume_change.
+    std::size_t refused_by_volume = 0;
     /// Edits refused because a face of the outer boundary they made or moved met another (detail/outer_boundary.h).
     std::size_t refused_crossing_boundary = 0;
     std::size_t passes = 0;
