@@ -36,6 +36,13 @@ constexpr std::uint32_t never = ~0u;
 /// from the reference, one factor after the other. Nodes stay on the reference whatever the factor.
 constexpr std::array<double, 2> rescue_face_factors{2, 4};
 
+/// The value of `label` in `values`, 0 when it has none.
+double value_of(const std::map<Label, double>& values, Label label)
+{
+    const auto it = values.find(label);
+    return it != values.end() ? it->second : 0.0;
+}
+
 /// What improved a tet.
 enum class Change { none, edge_removal, face_removal, interface_flip, move, insertion };
 
@@ -276,29 +283,27 @@ private:
         return kept_by_voxels(mark);
     }
 
-    /// The change of a tissue's volume an edit may make from the mesh as it is: what volumes_kept() allows.
+    /// How far a tissue's volume may be from its start: the allowed drift, or the drift at the last commit when that is
+    /// further (interface moves and splits on curved patches change volumes a little; flips never do).
+    double drift_bound(Label label) const
+    {
+        return std::max(value_of(allowed_drift_, label),
+                        value_of(committed_drift_, label) + 1e-12 * std::abs(value_of(start_volumes_, label)));
+    }
+
+    /// The change of a tissue's volume an edit may make from the mesh as it is.
     std::pair<double, double> leeway(Label label) const
     {
-        const auto at = [](const std::map<Label, double>& volumes, Label l) {
-            const auto it = volumes.find(l);
-            return it != volumes.end() ? it->second : 0.0;
-        };
-        const double from = at(start_volumes_, label), now = at(work_.tissue_volumes(), label);
-        const double bound = std::max(at(allowed_drift_, label), at(committed_drift_, label) + 1e-12 * std::abs(from));
+        const double from = value_of(start_volumes_, label), now = value_of(work_.tissue_volumes(), label);
+        const double bound = drift_bound(label);
         return {from - bound - now, from + bound - now};
     }
 
-    /// Whether every tissue's volume is where volumes_kept() would keep it.
+    /// Whether every tissue's volume is within its drift_bound().
     bool within_bounds_of_volume() const
     {
-        const auto at = [](const std::map<Label, double>& volumes, Label l) {
-            const auto it = volumes.find(l);
-            return it != volumes.end() ? it->second : 0.0;
-        };
         return std::all_of(work_.tissue_volumes().begin(), work_.tissue_volumes().end(), [&](const auto& entry) {
-            const auto& [label, volume] = entry;
-            const double from = at(start_volumes_, label), drift = std::abs(volume - from);
-            return drift <= at(allowed_drift_, label) || drift <= at(committed_drift_, label) + 1e-12 * std::abs(from);
+            return std::abs(entry.second - value_of(start_volumes_, entry.first)) <= drift_bound(entry.first);
         });
     }
 
@@ -318,16 +323,13 @@ private:
         return false;
     }
 
-    /// Whether every tissue's volume is within the allowed change of its start, or no further from it than at the
-    /// last commit (interface moves and splits on curved patches change volumes a little; flips never do); if so, the
-    /// drifts are committed.
+    /// Whether every tissue's volume is within its drift_bound(); if so, the drifts are committed.
     bool volumes_kept()
     {
         const bool kept = within_bounds_of_volume();
         if (kept)
             for (const auto& [label, volume] : work_.tissue_volumes())
-                committed_drift_[label] =
-                    std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
+                committed_drift_[label] = std::abs(volume - value_of(start_volumes_, label));
         return kept;
     }
 
