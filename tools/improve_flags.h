@@ -111,7 +111,6 @@ inline std::string improve_line(const volume::ImproveReport& r)
         " on interfaces), ", r.nodes_inserted + r.nodes_inserted_on_interfaces, " new nodes, ",
         r.nodes_inserted_on_interfaces, " of them on interfaces",
         r.refused_by_voxels > 0 ? concat("; ", r.refused_by_voxels, " edits refused by the voxels") : std::string(),
-        r.refused_by_volume > 0 ? concat("; ", r.refused_by_volume, " by the tissue volumes") : std::string(),
         r.refused_crossing_boundary > 0
             ? concat("; ", r.refused_crossing_boundary, " refused for crossing the outer boundary")
             : std::string(),

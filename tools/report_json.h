@@ -67,8 +67,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ShapeFigures, min_dihedral_deg, max_dihedral_
                                    tets_under_10_deg, tets_under_20_deg, tets)
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ImproveReport, before, after, smoothed_nodes, edges_removed, faces_removed,
                                    interface_edges_flipped, nodes_inserted, nodes_inserted_on_interfaces,
-                                   refused_by_voxels, refused_by_volume, refused_crossing_boundary, passes, parts,
-                                   bands, seconds, cpu_seconds)
+                                   refused_by_voxels, refused_crossing_boundary, passes, parts, bands, seconds,
+                                   cpu_seconds)
 // Not input_vertices; not switches and seconds: tm-tetra writes them as tetgen_switches and
 // tetrahedralize_seconds; not improved and improvement: tm-tetra writes the improvement when there is one.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TetrahedralizeReport, input_triangles, nodes, tets, steiner_points, interface_faces,

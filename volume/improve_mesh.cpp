@@ -39,9 +39,6 @@ void validate(const TetMesh& mesh, const ImproveOptions& options)
         throw InputError(concat("volume change ", options.max_volume_change,
                                 " is outside [0, 1]; it is a fraction of each "
                                 "tissue's volume (2e-4 is the default)"));
-    if (!(options.last_round_below_deg >= 0 && options.last_round_below_deg <= 70))
-        throw InputError(concat("last round bar ", options.last_round_below_deg,
-                                " deg is outside [0, 70]; 0 gives half the target angle (the default)"));
     if (options.parts > 64)
         throw InputError(
             concat(options.parts, " mesh parts is more than the 64 allowed; give 0 (chosen by size) .. 64"));
@@ -80,7 +77,6 @@ void add_counts(ImproveReport& whole, const ImproveReport& part)
     whole.nodes_inserted += part.nodes_inserted;
     whole.nodes_inserted_on_interfaces += part.nodes_inserted_on_interfaces;
     whole.refused_by_voxels += part.refused_by_voxels;
-    whole.refused_by_volume += part.refused_by_volume;
     whole.refused_crossing_boundary += part.refused_crossing_boundary;
     whole.passes = std::max(whole.passes, part.passes);
 }
@@ -271,9 +267,7 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference,
     });
     report.parts = count;
     report.bands = bands;
-    const double last_bar =
-        options.last_round_below_deg > 0 ? detail::sine_of_deg(options.last_round_below_deg) : far_target;
-    improve_last_tets(mesh, reference, sides, options, last_bar, report);
+    improve_last_tets(mesh, reference, sides, options, far_target, report);
 }
 
 /// Builds the reference with `make_reference` (or takes it, when it returns one made before) and improves `mesh`

@@ -29,10 +29,6 @@ struct ImproveOptions {
     /// 20 degrees, improver seconds): sphere head at 2 mm 19.86 -> 20.83, 3 742 -> 217, 11.2 -> 9.6 s; usc19-5
     /// at 1 mm 21.96 -> 22.18, 4 590 -> 502, 14.3 -> 17.7 s.
     double insert_below_deg = 20;
-    /// After the parts and the bands (see `parts`), one more round around the tets still under this (degrees; 0: half
-    /// the target). Half the target costs nothing where no tet is that bad; a higher bar costs a round over the whole
-    /// mesh's tets (0.5 s on the 1 mm usc19-5 head, 0.2 s of it improving). tm-refine asks for 20 (RefineOptions).
-    double last_round_below_deg = 0;
     bool move_interface_nodes = true; ///< interface nodes slide on their interface, junction nodes along their
                                       ///< junction curve (of the reference surface), corners never move; and
                                       ///< interface edges flip where the four nodes lie (nearly) in the surface
@@ -96,8 +92,6 @@ struct ImproveReport {
     std::size_t nodes_inserted = 0;          ///< inside tissues
     std::size_t nodes_inserted_on_interfaces = 0;
     std::size_t refused_by_voxels = 0; ///< edits refused for carrying a voxel centre across (voxel_image)
-    /// Edits of interfaces refused for changing a tissue's volume beyond ImproveOptions::max_volume_change.
-    std::size_t refused_by_volume = 0;
     /// Edits refused because a face of the outer boundary they made or moved met another (detail/outer_boundary.h).
     std::size_t refused_crossing_boundary = 0;
     std::size_t passes = 0;

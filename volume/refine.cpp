@@ -422,10 +422,6 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
     if (options.improve) {
         ImproveOptions improvement = options.improvement;
         if (options.max_nodes > 0) improvement.insert = improvement.insert_on_interfaces = false; // the budget holds
-        // The last round around every tet still under 20 degrees, not only under half the target: 0.5 s on a refinement
-        // of a minute, and the 3 mm torso's refined mesh kept a tet of 10.62 degrees (in no band, above half the
-        // target), lifted to 17.91 so (twenty-first session).
-        if (improvement.last_round_below_deg == 0) improvement.last_round_below_deg = 20;
         // Delaunay-only: the interfaces are the labels' staircase faces, no surface worth sliding on; a box mesh of
         // majority tissues would also take nodes by the thousand. Flips and inner moves only.
         if (!r.constrained)

@@ -42,8 +42,7 @@ struct RefineOptions {
     /// Its options: by default tm-tetra's (flips, moves, interface nodes sliding on their interfaces, new nodes),
     /// so the refined mesh is no worse shaped than the one tm-tetra made. Interface moves and new nodes change
     /// what the tets cover a little: the error volume is then measured again (RefineReport). With a node budget
-    /// the improver adds no node; Delaunay-only, it flips and moves inner nodes only. Unless set, its last round
-    /// works around every tet still under 20 degrees (ImproveOptions::last_round_below_deg).
+    /// the improver adds no node; Delaunay-only, it flips and moves inner nodes only.
     ImproveOptions improvement{};
 };
 

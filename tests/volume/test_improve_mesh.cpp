@@ -308,8 +308,6 @@ TEST(ImproveMesh, RejectsBadOptions)
     TetMesh mesh = tetrahedralize(complex, {.improve = false});
     EXPECT_THROW(improve_mesh(mesh, complex, {.target_dihedral_deg = 0}), InputError);
     EXPECT_THROW(improve_mesh(mesh, complex, {.target_dihedral_deg = 80}), InputError);
-    EXPECT_THROW(improve_mesh(mesh, complex, {.last_round_below_deg = -1}), InputError);
-    EXPECT_THROW(improve_mesh(mesh, complex, {.last_round_below_deg = 71}), InputError);
 }
 
 // ---- In mesh parts side by side (ImproveOptions::parts): cutting and merging, frozen nodes, threads.

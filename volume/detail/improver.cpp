@@ -36,13 +36,6 @@ constexpr std::uint32_t never = ~0u;
 /// from the reference, one factor after the other. Nodes stay on the reference whatever the factor.
 constexpr std::array<double, 2> rescue_face_factors{2, 4};
 
-/// The value of `label` in `values`, 0 when it has none.
-double value_of(const std::map<Label, double>& values, Label label)
-{
-    const auto it = values.find(label);
-    return it != values.end() ? it->second : 0.0;
-}
-
 /// What improved a tet.
 enum class Change { none, edge_removal, face_removal, interface_flip, move, insertion };
 
@@ -222,8 +215,7 @@ private:
                 // A node that could not be moved stays so until something around it changes.
                 if (node_tried_[v] >= node_changed_[v]) continue;
                 const std::size_t mark = work_.mark();
-                if (smooth_node(work_, v, reference_, face_factor_ * face_tolerance_mm_, 8, leeway_) &&
-                    kept_at_interfaces(mark))
+                if (smooth_node(work_, v, reference_, face_factor_ * face_tolerance_mm_) && kept_at_interfaces(mark))
                     return Change::move;
                 node_tried_[v] = clock_;
             }
@@ -265,9 +257,8 @@ private:
         });
     }
 
-    /// Whether the edit since `mark` keeps the outer boundary from crossing itself, the tissues' volumes within their
-    /// bounds (volumes_kept()) and, judged by the voxels, the interfaces from carrying a voxel centre across; if not,
-    /// it is undone, so that the tet's next edit may be tried.
+    /// Whether the edit since `mark` keeps the outer boundary from crossing itself and, judged by the voxels, the
+    /// interfaces from carrying a voxel centre across; if not, it is undone.
     bool kept_at_interfaces(std::size_t mark)
     {
         if (!outer_.clear_since(work_, mark)) {
@@ -275,36 +266,7 @@ private:
             work_.rollback(mark);
             return false;
         }
-        if (!within_bounds_of_volume()) {
-            ++report_.refused_by_volume;
-            work_.rollback(mark);
-            return false;
-        }
         return kept_by_voxels(mark);
-    }
-
-    /// How far a tissue's volume may be from its start: the allowed drift, or the drift at the last commit when that is
-    /// further (interface moves and splits on curved patches change volumes a little; flips never do).
-    double drift_bound(Label label) const
-    {
-        return std::max(value_of(allowed_drift_, label),
-                        value_of(committed_drift_, label) + 1e-12 * std::abs(value_of(start_volumes_, label)));
-    }
-
-    /// The change of a tissue's volume an edit may make from the mesh as it is.
-    std::pair<double, double> leeway(Label label) const
-    {
-        const double from = value_of(start_volumes_, label), now = value_of(work_.tissue_volumes(), label);
-        const double bound = drift_bound(label);
-        return {from - bound - now, from + bound - now};
-    }
-
-    /// Whether every tissue's volume is within its drift_bound().
-    bool within_bounds_of_volume() const
-    {
-        return std::all_of(work_.tissue_volumes().begin(), work_.tissue_volumes().end(), [&](const auto& entry) {
-            return std::abs(entry.second - value_of(start_volumes_, entry.first)) <= drift_bound(entry.first);
-        });
     }
 
     /// Whether the interface faces the edit since `mark` changed sweep no voxel centre next to another label (when
@@ -323,13 +285,21 @@ private:
         return false;
     }
 
-    /// Whether every tissue's volume is within its drift_bound(); if so, the drifts are committed.
+    /// Whether every tissue's volume is within the allowed change of its start, or no further from it than at the
+    /// last commit (interface moves and splits on curved patches change volumes a little; flips never do).
     bool volumes_kept()
     {
-        const bool kept = within_bounds_of_volume();
+        bool kept = true;
+        for (const auto& [label, volume] : work_.tissue_volumes()) {
+            const double from = start_volumes_.count(label) ? start_volumes_.at(label) : 0;
+            const double drift = std::abs(volume - from),
+                         allowed = allowed_drift_.count(label) ? allowed_drift_.at(label) : 0;
+            if (drift > allowed && drift > committed_drift_[label] + 1e-12 * std::abs(from)) kept = false;
+        }
         if (kept)
             for (const auto& [label, volume] : work_.tissue_volumes())
-                committed_drift_[label] = std::abs(volume - value_of(start_volumes_, label));
+                committed_drift_[label] =
+                    std::abs(volume - (start_volumes_.count(label) ? start_volumes_.at(label) : 0));
         return kept;
     }
 
@@ -355,9 +325,6 @@ private:
 
     TetMesh& mesh_;
     WorkMesh work_;
-    /// leeway() for smooth_node(): a move of an interface node is tried only where the volumes allow it (on the 1 mm
-    /// sphere head 10 556 moves were made, then refused by volumes_kept(), each leaving its tet as it was).
-    const VolumeLeeway leeway_ = [this](Label label) { return leeway(label); };
     OuterBoundary outer_; ///< the outer boundary's faces, so that no edit makes it cross itself
     std::vector<char> seeds_;
     const SurfaceReference& reference_;

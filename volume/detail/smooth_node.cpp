@@ -37,8 +37,7 @@ struct Freedom {
 
 class NodeSmoother {
 public:
-    NodeSmoother(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm,
-                 const VolumeLeeway& leeway)
+    NodeSmoother(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm)
         : mesh_(mesh), v_(v), reference_(reference), face_tolerance_mm_(face_tolerance_mm)
     {
         for (const std::uint32_t t : mesh.tets_of(v)) {
@@ -46,20 +45,6 @@ public:
             tets_.push_back(tet);
             corners_.push_back(mesh.corners(tet));
             corner_.push_back(static_cast<int>(std::find(tet.begin(), tet.end(), v) - tet.begin()));
-        }
-        // Only a node between tissues changes their volumes (an inner node's star keeps its volume).
-        if (leeway && mesh.kind(v) != NodeKind::interior) {
-            for (std::size_t i = 0; i < tets_.size(); ++i) {
-                const Label label = mesh.label(mesh.tets_of(v)[i]);
-                auto it = std::find_if(tissues_leeway_.begin(), tissues_leeway_.end(),
-                                       [&](const TissueLeeway& l) { return l.label == label; });
-                if (it == tissues_leeway_.end()) {
-                    const auto [least, most] = leeway(label);
-                    it = tissues_leeway_.insert(tissues_leeway_.end(), {label, least, most, 0});
-                }
-                it->start += volume(corners_[i]);
-                tissue_of_.push_back(static_cast<std::size_t>(it - tissues_leeway_.begin()));
-            }
         }
         shortest_edge_ = std::numeric_limits<double>::infinity();
         for (const Tet& tet : tets_)
@@ -154,8 +139,7 @@ public:
                 // Cheap tests first: the faces' distance to the reference (of the trial points on the 1 mm
                 // usc19-5 head, 39% fail there and 17% on the sines; none on the orientations), then the sines in
                 // doubles, then the exact orientations only for a point that gains.
-                if (!q || !within_leeway(*q) || !stays_on_reference(*q) ||
-                    !rises_above(*q, now.minimum + 1e-12, trial) || !positive_at(*q))
+                if (!q || !stays_on_reference(*q) || !rises_above(*q, now.minimum + 1e-12, trial) || !positive_at(*q))
                     continue;
                 p = *q, std::swap(now, trial), moved = true;
             }
@@ -181,24 +165,6 @@ private:
             return reference_.onto_patch(p, pair_.from, pair_.to, reach, &patch_hint_);
         if (freedom_.kind == NodeKind::curve) return reference_.onto_curve(p, tissues_, reach);
         return p;
-    }
-
-    static double volume(const TetCorners& c) { return dot(c[1] - c[0], cross(c[2] - c[0], c[3] - c[0])) / 6; }
-
-    /// Whether, with v at q, every tissue around v changes its volume within its leeway (true without one).
-    bool within_leeway(const Vec3& q)
-    {
-        if (tissues_leeway_.empty()) return true;
-        for (TissueLeeway& l : tissues_leeway_) l.now = 0;
-        for (std::size_t i = 0; i < tets_.size(); ++i) {
-            TetCorners c = corners_[i];
-            c[static_cast<std::size_t>(corner_[i])] = q;
-            tissues_leeway_[tissue_of_[i]].now += volume(c);
-        }
-        return std::all_of(tissues_leeway_.begin(), tissues_leeway_.end(), [](const TissueLeeway& l) {
-            const double change = l.now - l.start;
-            return change >= l.least && change <= l.most;
-        });
     }
 
     /// Whether every tet of v is positively oriented with v at q (exact predicates).
@@ -274,13 +240,6 @@ private:
     std::vector<Tet> tets_;
     std::vector<TetCorners> corners_; ///< per tet of v: its corners' points (v's own replaced at each trial)
     std::vector<int> corner_;
-    /// Per tissue around an interface node: its leeway, and the volume of its tets at v at the start and now.
-    struct TissueLeeway {
-        Label label;
-        double least, most, start, now = 0;
-    };
-    std::vector<TissueLeeway> tissues_leeway_;
-    std::vector<std::size_t> tissue_of_; ///< per tet of v: its entry in tissues_leeway_
     std::vector<Triangle> faces_;
     std::vector<LabelPair> face_sides_;
     /// The edges at v on its faces: the other end and a tissue pair of a face holding it, once per pair.
@@ -322,10 +281,10 @@ Vec3 min_norm_point(const std::vector<Vec3>& points)
 }
 
 bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm,
-                 int max_steps, const VolumeLeeway& leeway)
+                 int max_steps)
 {
     if (mesh.tets_of(v).empty()) return false;
-    NodeSmoother smoother(mesh, v, reference, face_tolerance_mm, leeway);
+    NodeSmoother smoother(mesh, v, reference, face_tolerance_mm);
     if (!smoother.set_freedom()) return false;
     return smoother.run(max_steps);
 }

@@ -2,8 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
-#include <utility>
 #include <vector>
 
 #include "core/vec3.h"
@@ -17,9 +15,6 @@ namespace tissuemesh::volume::detail {
 /// active set.
 Vec3 min_norm_point(const std::vector<Vec3>& points);
 
-/// For a tissue label: how much a move may change that tissue's volume, as [least, most] in mm^3.
-using VolumeLeeway = std::function<std::pair<double, double>(Label)>;
-
 /// Moves node v to raise the smallest dihedral-angle sine over its tets: steepest ascent of that
 /// non-smooth minimum (Freitag, Jones and Plassmann's active-set method, as in Stellar): the direction is the
 /// smallest vector in the hull of the gradients of the sines within reach of the minimum, the step is where
@@ -27,10 +22,9 @@ using VolumeLeeway = std::function<std::pair<double, double>(Label)>;
 /// surface nodes along their patch and curve nodes along their junction curve of `reference`, projected back
 /// onto it after every step; corners stay. A step is taken only when every tet of v stays positively
 /// oriented (exact predicate), no constraint face at v turns over, every constraint face at v stays on the
-/// reference (SurfaceReference::holds_triangle within `face_tolerance_mm`), the minimum rises and, with `leeway`,
-/// the volume of every tissue around v changes within it.
+/// reference (SurfaceReference::holds_triangle within `face_tolerance_mm`), and the minimum rises.
 /// @returns whether v moved (the moves are edits of `mesh`, journaled like any other)
 bool smooth_node(WorkMesh& mesh, std::uint32_t v, const SurfaceReference& reference, double face_tolerance_mm,
-                 int max_steps = 8, const VolumeLeeway& leeway = {});
+                 int max_steps = 8);
 
 } // namespace tissuemesh::volume::detail
