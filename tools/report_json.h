@@ -71,8 +71,8 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(ImproveReport, before, after, smoothed_nodes,
                                    cpu_seconds)
 // Not input_vertices; not switches and seconds: tm-tetra writes them as tetgen_switches and
 // tetrahedralize_seconds; not improved and improvement: tm-tetra writes the improvement when there is one.
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TetrahedralizeReport, input_triangles, nodes, tets, steiner_points, interface_faces,
-                                   split_interface_triangles, min_dihedral_deg, max_radius_edge_ratio,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TetrahedralizeReport, input_triangles, nodes, tets, layer_points, steiner_points,
+                                   interface_faces, split_interface_triangles, min_dihedral_deg, max_radius_edge_ratio,
                                    tets_over_volume_bound)
 // Not agreeing_voxels (the Dice says it).
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(TissueAssessment, image_voxels, mesh_voxels, dice, mesh_volume_mm3, voxel_volume_mm3,

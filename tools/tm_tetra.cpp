@@ -152,6 +152,9 @@ int main(int argc, char** argv)
                          "misses them next to small input angles); interfaces kept "
                          "as surfaces, not as the input triangles");
             app.add_flag("--drop-cavities", drop_cavities, "Do not mesh background enclosed by tissues");
+            app.add_flag("--layer-points", options.layer_points,
+                         "Give TetGen nodes inside the tissue layers, about an edge off the interface vertices, so "
+                         "fewer tets span a layer from side to side (fewer slivers for the improver)");
             improve_flags.add_to(app, true);
             app.add_option("--image", image,
                            "With --improve-keep-voxel-sides: the label image the surfaces come from (tm-prep's clean "
@@ -177,8 +180,10 @@ int main(int argc, char** argv)
                 input, [&] { return volume::tetrahedralize(complex, options, context.progress, &report); });
             io::write_tet_mesh(mesh, output, format_flags.to_write_options(mesh));
             context.log(concat(report.input_triangles, " triangles -> ", report.tets, " tets, ", report.nodes,
-                               " nodes (", report.steiner_points, " added) in ", format_mm(report.seconds, 2),
-                               " s; min dihedral ", format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ",
+                               " nodes (", report.steiner_points, " added",
+                               options.layer_points ? concat(", ", report.layer_points, " inside the layers") : "",
+                               ") in ", format_mm(report.seconds, 2), " s; min dihedral ",
+                               format_mm(report.min_dihedral_deg, 1), " deg, max radius-edge ",
                                format_mm(report.max_radius_edge_ratio, 2)));
             if (report.improved) context.log(tools::improve_line(report.improvement));
             if (report.split_interface_triangles > 0 && options.preserve_interfaces)

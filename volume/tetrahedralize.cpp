@@ -13,6 +13,7 @@
 #include "surface/check_complex.h"
 #include "volume/check_mesh.h"
 #include "volume/detail/improver.h"
+#include "volume/detail/layer_points.h"
 #include "volume/detail/surface_reference.h"
 #include "volume/detail/tetgen_adapter.h"
 
@@ -263,6 +264,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     detail::TetgenInput input;
     input.points.reserve(3 * complex.vertices.size());
     for (const Vec3& v : complex.vertices) input.points.insert(input.points.end(), v.begin(), v.end());
+    const std::vector<Vec3> inside = options.layer_points ? detail::layer_points(complex) : std::vector<Vec3>{};
+    for (const Vec3& p : inside) input.points.insert(input.points.end(), p.begin(), p.end());
     input.triangles.reserve(complex.triangles.size());
     for (const Triangle& tri : complex.triangles)
         input.triangles.push_back({static_cast<int>(tri[0]), static_cast<int>(tri[1]), static_cast<int>(tri[2])});
@@ -270,7 +273,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
     input.switches = build_switches(options, !input.regions.empty());
 
     progress.info("tetra", concat("TetGen -", input.switches, " on ", complex.vertices.size(), " vertices, ",
-                                  complex.triangles.size(), " triangles"));
+                                  complex.triangles.size(), " triangles",
+                                  options.layer_points ? concat(", ", inside.size(), " nodes inside the layers") : ""));
     // The improver's reference surface is built here while TetGen runs in its child process.
     std::optional<detail::SurfaceReference> reference;
     const detail::TetgenOutput out = detail::run_tetgen(input, [&] {
@@ -295,7 +299,8 @@ TetMesh tetrahedralize(const InterfaceComplex& complex, const TetrahedralizeOpti
         report->input_triangles = complex.triangles.size();
         report->nodes = mesh.vertices.size();
         report->tets = mesh.tets.size();
-        report->steiner_points = out.points.size() / 3 - complex.vertices.size();
+        report->layer_points = inside.size();
+        report->steiner_points = out.points.size() / 3 - complex.vertices.size() - inside.size();
         report->interface_faces = mesh.faces.size();
         std::vector<std::uint32_t> faces_of(complex.triangles.size(), 0);
         for (const int marker : out.face_markers) ++faces_of[static_cast<std::size_t>(marker - 1)];

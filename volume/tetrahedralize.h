@@ -26,6 +26,8 @@ struct TetrahedralizeOptions {
     int optimisation_level = 2;                        ///< mesh optimisation passes, 0..10 (TetGen -O)
     bool mesh_background_cavities = true;              ///< keep tets of the background tissue enclosed by other tissues
                                                        ///< (they carry the background label); false drops them
+    bool layer_points = false;  ///< give TetGen nodes inside the tissue layers, about an edge off the interface
+                                ///< vertices (detail/layer_points.h), so fewer of its tets span a layer
     bool improve = true;        ///< improve TetGen's tets with improve_mesh() against the complex
                                 ///< (slivers and flat tets next to the interfaces)
     ImproveOptions improvement; ///< its options
@@ -37,6 +39,7 @@ struct TetrahedralizeReport {
     std::size_t input_triangles = 0;
     std::size_t nodes = 0;
     std::size_t tets = 0;
+    std::size_t layer_points = 0;    ///< nodes given inside the layers (options.layer_points)
     std::size_t steiner_points = 0;  ///< nodes added by TetGen (inside tissues with -Y)
     std::size_t interface_faces = 0; ///< output faces that lie on interfaces or the outer boundary
     /// Input triangles TetGen split into several faces. With -Y it keeps them whole, save rarely: on the
