@@ -1,10 +1,12 @@
 #include "volume/detail/layer_points.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <unordered_map>
+#include <vector>
 
 #include "surface/detail/triangle_distance.h"
 #include "surface/detail/triangle_grid.h"
