@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "surface/detail/rows.h"
 #include "surface/detail/triangle_distance.h"
 #include "surface/detail/triangle_grid.h"
 
@@ -75,15 +76,10 @@ std::vector<Vec3> layer_points(const InterfaceComplex& complex, const LayerPoint
     if (complex.triangles.empty()) return points;
     const std::size_t vertex_count = complex.vertices.size();
 
-    // Triangles around each vertex (compressed rows), and each vertex's mean edge length.
-    std::vector<std::uint32_t> first(vertex_count + 1, 0), around(3 * complex.triangles.size());
-    for (const Triangle& tri : complex.triangles)
-        for (const std::uint32_t v : tri) ++first[v + 1];
-    for (std::size_t v = 0; v < vertex_count; ++v) first[v + 1] += first[v];
-    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    // Triangles around each vertex, and the mean edge length.
+    const surface::detail::Rows around = surface::detail::star_rows(complex.triangles, vertex_count);
     double edge_sum = 0;
     for (std::uint32_t t = 0; t < complex.triangles.size(); ++t) {
-        for (const std::uint32_t v : complex.triangles[t]) around[fill[v]++] = t;
         const TriangleCorners c = corners(complex, t);
         edge_sum += distance(c[0], c[1]) + distance(c[1], c[2]) + distance(c[2], c[0]);
     }
@@ -102,13 +98,14 @@ std::vector<Vec3> layer_points(const InterfaceComplex& complex, const LayerPoint
     std::vector<std::uint32_t> near;
 
     for (std::uint32_t v = 0; v < vertex_count; ++v) {
-        if (first[v] == first[v + 1]) continue;
-        const LabelPair pair = complex.sides[around[first[v]]];
+        const auto star = around[v];
+        if (star.empty()) continue;
+        const LabelPair pair = complex.sides[star.front()];
         Vec3 normal{0, 0, 0};
         double area_sum = 0, edge_length = 0;
         bool one_pair = true;
-        for (std::uint32_t i = first[v]; i < first[v + 1] && one_pair; ++i) {
-            const std::uint32_t t = around[i];
+        for (const std::uint32_t t : star) {
+            if (!one_pair) break;
             const LabelPair sides = complex.sides[t];
             const TriangleCorners c = corners(complex, t);
             const Vec3 area_normal = cross(c[1] - c[0], c[2] - c[0]);
@@ -123,7 +120,7 @@ std::vector<Vec3> layer_points(const InterfaceComplex& complex, const LayerPoint
         // Skip junctions and creases (triangles around the vertex facing widely different ways).
         if (!one_pair || !(norm(normal) > 0.5 * area_sum)) continue;
         normal = (1 / norm(normal)) * normal;
-        const double h = edge_length / static_cast<double>(2 * (first[v + 1] - first[v]));
+        const double h = edge_length / static_cast<double>(2 * star.size());
         const Vec3& origin = complex.vertices[v];
 
         for (const double side : {1.0, -1.0}) {
