@@ -142,6 +142,59 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
     EXPECT_LT(interface_distance(mesh, complex).max_face_mm, 1e-9);
 }
 
+/// Insertion judges each candidate as it is tried (insert_for_tet's `kept`, the improver's voxel and outer-boundary
+/// rules): when the best candidate is refused, the next best is inserted, and what the judge refused leaves no trace.
+/// Judged once after the best was chosen, a refused best failed the tet (the liver's worst tet with
+/// tm-tetra --layer-points: 11.86 degrees, 16.30 since).
+TEST(ImproveMesh, InsertionTriesTheNextCandidateWhenTheJudgeRefusesOne)
+{
+    testing::VoxelBlock block{.nx = 8, .ny = 8, .nz = 3};
+    block.labels.assign(8 * 8 * 3, 1);
+    for (std::size_t i = 0; i < 64; ++i) block.labels[64 + i] = 2;
+    InterfaceComplex complex = testing::voxel_faces(block);
+    for (Vec3& v : complex.vertices) {
+        v[0] *= 3, v[1] *= 3;
+        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3;
+    }
+    const TetMesh mesh = tetrahedralize(complex, {.improve = false});
+    const detail::SurfaceReference reference(complex);
+    const detail::WorkMesh start(mesh);
+    std::uint32_t worst = 0;
+    for (std::uint32_t t = 1; t < start.tet_slots(); ++t)
+        if (start.quality(t) < start.quality(worst)) worst = t;
+    // Unjudged: where the best candidate puts its node.
+    detail::WorkMesh free_mesh(mesh);
+    ASSERT_TRUE(detail::insert_for_tet(free_mesh, worst, reference, true, 0.0));
+    ASSERT_EQ(free_mesh.node_count(), mesh.vertices.size() + 1);
+    const Vec3 best = free_mesh.point(static_cast<std::uint32_t>(mesh.vertices.size()));
+    // The judge refuses a node there: another candidate is inserted, and only it.
+    detail::WorkMesh judged(mesh);
+    std::size_t refused = 0, asked = 0;
+    const auto refuse_best = [&](std::size_t mark) {
+        ++asked;
+        if (distance(judged.point(static_cast<std::uint32_t>(judged.node_count() - 1)), best) > 1e-12) return true;
+        ++refused;
+        judged.rollback(mark);
+        return false;
+    };
+    ASSERT_TRUE(detail::insert_for_tet(judged, worst, reference, true, 0.0, refuse_best));
+    EXPECT_GE(refused, 1u);
+    EXPECT_GT(asked, refused);
+    ASSERT_EQ(judged.node_count(), mesh.vertices.size() + 1);
+    EXPECT_GT(distance(judged.point(static_cast<std::uint32_t>(mesh.vertices.size())), best), 1e-12);
+    EXPECT_FALSE(judged.alive(worst));
+    EXPECT_GT(judged.balance_since(0).after, judged.balance_since(0).before);
+    // A judge that refuses everything: no insertion, the mesh as it was.
+    detail::WorkMesh refused_all(mesh);
+    ASSERT_FALSE(detail::insert_for_tet(refused_all, worst, reference, true, 0.0, [&](std::size_t mark) {
+        refused_all.rollback(mark);
+        return false;
+    }));
+    EXPECT_EQ(refused_all.node_count(), mesh.vertices.size());
+    EXPECT_EQ(refused_all.tet_count(), start.tet_count());
+    EXPECT_TRUE(refused_all.alive(worst));
+}
+
 /// Two concentric spheres: nodes slide on curved patches, and stay on them.
 TEST(ImproveMesh, CurvedInterfacesStayOnTheComplexAndTheRunIsDeterministic)
 {

@@ -221,10 +221,11 @@ private:
             }
         }
         if (insert && work_.quality(t) < insert_bar_ && !at_frozen(t) && !insertion_tried(t)) {
-            const std::size_t mark = work_.mark();
-            if (insert_for_tet(work_, t, reference_, options_.insert_on_interfaces,
-                               face_factor_ * face_tolerance_mm_) &&
-                kept_at_interfaces(mark))
+            // Each candidate is judged as it is tried: one the voxels refuse leaves the others their chance (judged
+            // once, after the best was chosen, a refused best failed the tet: the liver's worst tet with
+            // tm-tetra --layer-points).
+            if (insert_for_tet(work_, t, reference_, options_.insert_on_interfaces, face_factor_ * face_tolerance_mm_,
+                               [&](std::size_t mark) { return kept_at_interfaces(mark); }))
                 return Change::insertion;
         }
         return Change::none;

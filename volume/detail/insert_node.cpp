@@ -322,16 +322,18 @@ bool apply(WorkMesh& mesh, std::uint32_t t, const Candidate& candidate, const Su
 } // namespace
 
 bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces,
-                    double face_tolerance_mm)
+                    double face_tolerance_mm, const std::function<bool(std::size_t mark)>& kept)
 {
     const std::vector<Candidate> tries = candidates(mesh, t, reference, on_interfaces);
     const double bar = mesh.quality(t) + 0.05; // tets around the new node this bad are worth a flip
+    const auto applied = [&](const Candidate& candidate, std::size_t mark) {
+        return apply(mesh, t, candidate, reference, bar, face_tolerance_mm) && (!kept || kept(mark));
+    };
     std::size_t best = tries.size();
     double best_gain = 0;
     for (std::size_t k = 0; k < tries.size(); ++k) {
         const std::size_t mark = mesh.mark();
-        const bool applied = apply(mesh, t, tries[k], reference, bar, face_tolerance_mm);
-        if (applied) {
+        if (applied(tries[k], mark)) {
             const WorkMesh::Balance balance = mesh.balance_since(mark);
             if (balance.after - balance.before > best_gain) best_gain = balance.after - balance.before, best = k;
             // Enough gain is kept as it is: the best of all candidates would add little to it.
@@ -340,7 +342,10 @@ bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& ref
         mesh.rollback(mark);
     }
     if (best == tries.size()) return false;
-    return apply(mesh, t, tries[best], reference, bar, face_tolerance_mm);
+    const std::size_t mark = mesh.mark();
+    if (applied(tries[best], mark)) return true;
+    mesh.rollback(mark);
+    return false;
 }
 
 } // namespace tissuemesh::volume::detail

@@ -2,7 +2,9 @@
 // (Bowyer-Watson) cavity inside one tissue; new nodes on interfaces lie on the reference surface.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -27,9 +29,11 @@ std::optional<std::uint32_t> insert_in_cavity(WorkMesh& mesh, std::uint32_t t, c
 /// smoothing the new node): the midpoints of t's edges and the centroids of its faces (on the reference
 /// surface where they lie on constraint faces: interface splits), its centroid, and its circumcentre as a
 /// Delaunay cavity. `on_interfaces` false leaves interface splits out; the faces an interface split makes
-/// must hold to the reference (SurfaceReference::holds_triangle with `face_tolerance_mm`).
+/// must hold to the reference (SurfaceReference::holds_triangle with `face_tolerance_mm`). When given, `kept`
+/// judges each candidate once applied (the journal's mark before it; it rolls back what it refuses), so that a
+/// refused candidate leaves the others their chance: the improver's outer-boundary and voxel rules.
 /// @returns whether a node was inserted (edits of `mesh`, journaled)
 bool insert_for_tet(WorkMesh& mesh, std::uint32_t t, const SurfaceReference& reference, bool on_interfaces,
-                    double face_tolerance_mm);
+                    double face_tolerance_mm, const std::function<bool(std::size_t mark)>& kept = {});
 
 } // namespace tissuemesh::volume::detail
