@@ -236,7 +236,7 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference,
     // ring, a node's star), which its part refused (on the 1 mm usc19-5 head's refined mesh, tets of 3.07 and 4.77
     // degrees 6.5-6.7 mm from a cut, 2-3 tets, stayed so).
     const double target = detail::sine_of_deg(options.target_dihedral_deg);
-    const double far_target = detail::sine_of_deg(0.5 * options.target_dihedral_deg);
+    const double far_target = detail::sine_of_deg(detail::waiver_fraction * options.target_dihedral_deg);
     std::vector<char> at_seam(mesh.tets.size(), 0);
     for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
         const Tet& tet = mesh.tets[t];
@@ -267,7 +267,8 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference,
     });
     report.parts = count;
     report.bands = bands;
-    improve_last_tets(mesh, reference, sides, options, far_target, report);
+    improve_last_tets(mesh, reference, sides, options,
+                      detail::sine_of_deg(detail::rescue_fraction * options.target_dihedral_deg), report);
 }
 
 /// Builds the reference with `make_reference` (or takes it, when it returns one made before) and improves `mesh`

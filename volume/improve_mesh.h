@@ -41,8 +41,9 @@ struct ImproveOptions {
     /// dihedral angle and tets under 10 degrees after tm-tetra, then tm-refine: 0.01: 3.37 deg, 307; 4.57, 51.
     /// 0.02: 3.86, 95; 5.27, 20. 0.03: 3.69, 56; 6.66, 20. 0.04: 2.11, 72; 6.69, 13, but on the liver sample
     /// TetGen then crashed rebuilding the improved mesh in tm-refine (it did not with 0.01-0.03).
-    /// In the last round, a tet left under half the target that no edit lifts gets its edits again with faces allowed
-    /// 2, then 4 times as far (improver.cpp; the 0.7 mm head's 8.92-degree sliver between two junction curves).
+    /// In the last round, a tet left under 0.95 of the target (detail::rescue_fraction) that no edit lifts gets its
+    /// edits again with faces allowed 2, then 4 times as far (improver.cpp; the 0.7 mm head's 8.92-degree sliver
+    /// between two junction curves).
     double max_face_deviation = 0.03;
     /// Each tissue's volume stays within this fraction of its start (moves and splits on curved interfaces that would
     /// take it further are refused); in parts, of its volume in the part, and in the last round after the parts, of

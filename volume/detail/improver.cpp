@@ -31,7 +31,7 @@ struct Waiting {
 };
 using Queue = std::priority_queue<Waiting, std::vector<Waiting>, std::greater<>>;
 constexpr std::uint32_t never = ~0u;
-/// For a tet under half the target that no edit lifts in the last round's last pass (Improver::rescue_pass()), the
+/// For a tet under rescue_fraction of the target that no edit lifts in the last round's last pass (rescue_pass()), the
 /// edits are tried again with the interface faces they make allowed this many times ImproveOptions::max_face_deviation
 /// from the reference, one factor after the other. Nodes stay on the reference whatever the factor.
 constexpr std::array<double, 2> rescue_face_factors{2, 4};
@@ -85,27 +85,32 @@ public:
     }
 
 private:
-    /// With the voxels judging interface edits (sides_), or in the last round (last_), one more pass for the tets left
-    /// under half the target: for those tets alone the voxels are not asked, and in the last round a tet no edit lifts
-    /// gets them again with the faces allowed further from the reference (rescue_face_factors). The floor is
-    /// 10 degrees, and a few edits cost the Dice and the surface little. A safety net: the 1 mm usc19-5 head's tm-tetra
-    /// mesh kept one of 8.37 degrees when the voxels were judged only after the tet's first edit; the head resampled
-    /// to 0.7 mm one of 8.92 degrees, a sliver between two junction curves 0.9 mm apart whose interface flip moves the
-    /// faces 3.6 times max_face_deviation (0.165 mm, a quarter voxel; it is lifted to 11.04 degrees, no Dice changed).
-    /// Earlier failures may have been the voxels' refusals, so every memory of them is dropped.
+    /// With the voxels judging interface edits (sides_), or in the last round (last_), one more pass over the tets left
+    /// under a bar, every memory of earlier failures dropped (they may have been the voxels' refusals):
+    /// - for the tets under waiver_fraction of the target the voxels are not asked. The floor is 10 degrees,
+    ///   and a few edits cost the Dice and the surface little. A safety net: the 1 mm usc19-5 head's tm-tetra mesh
+    ///   kept one of 8.37 degrees when the voxels were judged only after the tet's first edit.
+    /// - in the last round the bar is rescue_fraction of the target, and a tet under it that no edit lifts gets its
+    ///   edits again with the faces allowed further from the reference (rescue_face_factors; the voxels still asked
+    ///   above the waiver). The head resampled to 0.7 mm kept a sliver of 8.92 degrees between two junction curves 0.9
+    ///   mm apart whose interface flip moves the faces 3.6 times max_face_deviation (0.165 mm, a quarter voxel; it is
+    ///   lifted to 11.04 degrees, no Dice changed). Until the twenty-third session the bar was half the target, and
+    ///   tets of 11-17 degrees that the factors lift were left (improver.h, rescue_fraction).
     void rescue_pass(const Progress& progress)
     {
-        const double bar = sine_of_deg(0.5 * options_.target_dihedral_deg);
+        const double bar = sine_of_deg((last_ ? rescue_fraction : waiver_fraction) * options_.target_dihedral_deg);
         bool any = false;
         for (std::uint32_t t = 0; t < work_.tet_slots() && !any; ++t) any = work_.alive(t) && work_.quality(t) < bar;
         if (!any) return;
         failed_.clear(), insertion_tried_.clear();
         std::fill(node_tried_.begin(), node_tried_.end(), -1);
-        waived_below_ = bar;
+        waived_below_ = sine_of_deg(waiver_fraction * options_.target_dihedral_deg);
+        rescued_below_ = bar;
         const std::size_t changes = run_pass(options_.insert, bar);
-        waived_below_ = 0;
+        waived_below_ = 0, rescued_below_ = 0;
         progress.debug("improve",
-                       concat("pass for tets under half the target, voxels not asked: ", changes, " changes"));
+                       concat("pass for the tets under ", bar, " (sine), the voxels not asked under ",
+                              sine_of_deg(waiver_fraction * options_.target_dihedral_deg), ": ", changes, " changes"));
     }
 
     /// One pass over the tets below `below` (the target by default), worst first; the number of changes kept.
@@ -136,7 +141,8 @@ private:
             // A tet the last pass takes on that no edit lifts gets them again with the faces allowed further from the
             // reference (rescue_face_factors).
             for (std::size_t k = 0;
-                 last_ && change == Change::none && improving_ < waived_below_ && k < rescue_face_factors.size(); ++k) {
+                 last_ && change == Change::none && improving_ < rescued_below_ && k < rescue_face_factors.size();
+                 ++k) {
                 work_.rollback(0);
                 // Every edit again: the failed moves and the insertion tried are remembered.
                 for (const std::uint32_t v : work_.tet(w.tet))
@@ -332,9 +338,10 @@ private:
     const surface::detail::VoxelSides* sides_;
     bool last_; ///< no round follows this one (improve_in_place())
     std::vector<surface::detail::TriangleCorners> swept_before_, swept_after_;
-    double face_factor_ = 1;  ///< ImproveOptions::max_face_deviation times this bounds the faces an edit makes
-    double improving_ = 0;    ///< the quality of the tet being improved
-    double waived_below_ = 0; ///< the voxels are not asked for tets below this quality (rescue_pass())
+    double face_factor_ = 1;   ///< ImproveOptions::max_face_deviation times this bounds the faces an edit makes
+    double improving_ = 0;     ///< the quality of the tet being improved
+    double waived_below_ = 0;  ///< the voxels are not asked for tets below this quality (rescue_pass())
+    double rescued_below_ = 0; ///< a tet below this quality that no edit lifts gets rescue_face_factors (last_)
     const ImproveOptions& options_;
     ImproveReport& report_;
     double target_, insert_bar_, face_tolerance_mm_;
