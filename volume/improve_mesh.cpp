@@ -267,8 +267,13 @@ void improve_in_parts(TetMesh& mesh, const detail::SurfaceReference& reference,
     });
     report.parts = count;
     report.bands = bands;
-    improve_last_tets(mesh, reference, sides, options,
-                      detail::sine_of_deg(detail::rescue_fraction * options.target_dihedral_deg), report);
+    std::size_t under = 0;
+    const double rescue_target = detail::sine_of_deg(detail::rescue_fraction * options.target_dihedral_deg);
+#pragma omp parallel for schedule(static) reduction(+ : under)
+    for (std::size_t t = 0; t < mesh.tets.size(); ++t) under += min_sine_of(mesh, t) < rescue_target;
+    improve_last_tets(
+        mesh, reference, sides, options,
+        detail::sine_of_deg(detail::last_round_bar_deg(under, mesh.tets.size(), options.target_dihedral_deg)), report);
 }
 
 /// Builds the reference with `make_reference` (or takes it, when it returns one made before) and improves `mesh`

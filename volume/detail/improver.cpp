@@ -98,7 +98,14 @@ private:
     ///   tets of 11-17 degrees that the factors lift were left (improver.h, rescue_fraction).
     void rescue_pass(const Progress& progress)
     {
-        const double bar = sine_of_deg((last_ ? rescue_fraction : waiver_fraction) * options_.target_dihedral_deg);
+        const double target = options_.target_dihedral_deg;
+        double bar = sine_of_deg(waiver_fraction * target);
+        if (last_) {
+            const double high = sine_of_deg(rescue_fraction * target);
+            std::size_t under = 0;
+            for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) under += work_.alive(t) && work_.quality(t) < high;
+            bar = sine_of_deg(last_round_bar_deg(under, work_.tet_count(), target));
+        }
         bool any = false;
         for (std::uint32_t t = 0; t < work_.tet_slots() && !any; ++t) any = work_.alive(t) && work_.quality(t) < bar;
         if (!any) return;

@@ -3,6 +3,8 @@
 // node insertion.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <map>
 #include <vector>
 
@@ -28,6 +30,15 @@ constexpr double rescue_fraction = 0.95;
 /// (ImproveOptions::voxel_image) and the bands around the parts' cuts take on the tet wherever it is
 /// (improve_mesh.cpp): the floor is 10 degrees, and a few edits there cost the Dice little.
 constexpr double waiver_fraction = 0.5;
+/// The last round's bar (degrees) for a mesh of `tets` tets, `under` of them under rescue_fraction of the target:
+/// that fraction when they are few (at most 1 000, or a thousandth of the tets), else waiver_fraction, as before the
+/// twenty-third session. The last round is one part on one core: the bench and real volumes leave it 15-366 such tets
+/// (0.01-0.5 s), but the coarse 4-shell icosphere head of the fem tests (50 mm triangles over a 2 mm CSF, 31 k tets)
+/// left 5 133, and the round over them and their rings took 35 s.
+inline double last_round_bar_deg(std::size_t under, std::size_t tets, double target_deg)
+{
+    return (under <= std::max<std::size_t>(1000, tets / 1000) ? rescue_fraction : waiver_fraction) * target_deg;
+}
 
 /// Improves `mesh` in place against `reference` (one thread), with `sides` (or null) judging interface edits against
 /// the voxels (ImproveOptions::voxel_image), adding its counts to `report` (not its figures or
