@@ -111,9 +111,8 @@ TEST(ImproveMesh, FlatInterfacesKeepVolumesTissuesAndPlaces)
     EXPECT_EQ(distance.unmatched_faces, 0u);
 }
 
-/// A layer of tissue 2, 0.3 mm thick, between two blocks of tissue 1 in 3 mm steps: TetGen leaves slivers
-/// with four interface nodes in it; the improver mends them, inserting nodes on the layer's faces.
-TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
+/// A layer of tissue 2, 0.3 mm thick, between two blocks of tissue 1 in 3 mm steps (z in [3, 3.3]).
+InterfaceComplex thin_layer()
 {
     testing::VoxelBlock block{.nx = 8, .ny = 8, .nz = 3};
     block.labels.assign(8 * 8 * 3, 1);
@@ -121,8 +120,16 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
     InterfaceComplex complex = testing::voxel_faces(block);
     for (Vec3& v : complex.vertices) {
         v[0] *= 3, v[1] *= 3;
-        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3; // the layer: z in [3, 3.3]
+        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3;
     }
+    return complex;
+}
+
+/// The thin layer: TetGen leaves slivers with four interface nodes in it; the improver mends them, inserting nodes
+/// on the layer's faces.
+TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
+{
+    const InterfaceComplex complex = thin_layer();
     TetMesh mesh = tetrahedralize(complex, {.improve = false});
     const std::size_t slivers = interface_slivers(mesh, 10);
     ASSERT_GT(slivers, 0u) << "TetGen left no sliver in the layer; the test needs one";
@@ -148,14 +155,7 @@ TEST(ImproveMesh, ThinLayerSliversWithFourInterfaceNodes)
 /// tm-tetra --layer-points: 11.86 degrees, 16.30 since).
 TEST(ImproveMesh, InsertionTriesTheNextCandidateWhenTheJudgeRefusesOne)
 {
-    testing::VoxelBlock block{.nx = 8, .ny = 8, .nz = 3};
-    block.labels.assign(8 * 8 * 3, 1);
-    for (std::size_t i = 0; i < 64; ++i) block.labels[64 + i] = 2;
-    InterfaceComplex complex = testing::voxel_faces(block);
-    for (Vec3& v : complex.vertices) {
-        v[0] *= 3, v[1] *= 3;
-        v[2] = v[2] < 1.5 ? v[2] * 3 : v[2] < 2.5 ? 3.3 : 6.3;
-    }
+    const InterfaceComplex complex = thin_layer();
     const TetMesh mesh = tetrahedralize(complex, {.improve = false});
     const detail::SurfaceReference reference(complex);
     const detail::WorkMesh start(mesh);

@@ -98,8 +98,8 @@ private:
     ///   tets of 11-17 degrees that the factors lift were left (improver.h, rescue_fraction).
     void rescue_pass(const Progress& progress)
     {
-        const double target = options_.target_dihedral_deg;
-        double bar = sine_of_deg(waiver_fraction * target);
+        const double target = options_.target_dihedral_deg, waiver = sine_of_deg(waiver_fraction * target);
+        double bar = waiver;
         if (last_) {
             const double high = sine_of_deg(rescue_fraction * target);
             std::size_t under = 0;
@@ -111,13 +111,11 @@ private:
         if (!any) return;
         failed_.clear(), insertion_tried_.clear();
         std::fill(node_tried_.begin(), node_tried_.end(), -1);
-        waived_below_ = sine_of_deg(waiver_fraction * options_.target_dihedral_deg);
-        rescued_below_ = bar;
+        waived_below_ = waiver, rescued_below_ = bar;
         const std::size_t changes = run_pass(options_.insert, bar);
         waived_below_ = 0, rescued_below_ = 0;
-        progress.debug("improve",
-                       concat("pass for the tets under ", bar, " (sine), the voxels not asked under ",
-                              sine_of_deg(waiver_fraction * options_.target_dihedral_deg), ": ", changes, " changes"));
+        progress.debug("improve", concat("pass for the tets under ", bar, " (sine), the voxels not asked under ",
+                                         waiver, ": ", changes, " changes"));
     }
 
     /// One pass over the tets below `below` (the target by default), worst first; the number of changes kept.
