@@ -99,16 +99,12 @@ private:
     void rescue_pass(const Progress& progress)
     {
         const double target = options_.target_dihedral_deg, waiver = sine_of_deg(waiver_fraction * target);
-        double bar = waiver;
-        if (last_) {
-            const double high = sine_of_deg(rescue_fraction * target);
-            std::size_t under = 0;
-            for (std::uint32_t t = 0; t < work_.tet_slots(); ++t) under += work_.alive(t) && work_.quality(t) < high;
-            bar = sine_of_deg(last_round_bar_deg(under, work_.tet_count(), target));
-        }
-        bool any = false;
-        for (std::uint32_t t = 0; t < work_.tet_slots() && !any; ++t) any = work_.alive(t) && work_.quality(t) < bar;
-        if (!any) return;
+        const double high = sine_of_deg(rescue_fraction * target);
+        std::size_t under_high = 0, under_waiver = 0;
+        for (std::uint32_t t = 0; t < work_.tet_slots(); ++t)
+            if (work_.alive(t)) under_high += work_.quality(t) < high, under_waiver += work_.quality(t) < waiver;
+        const double bar = last_ ? sine_of_deg(last_round_bar_deg(under_high, work_.tet_count(), target)) : waiver;
+        if ((bar > waiver ? under_high : under_waiver) == 0) return;
         failed_.clear(), insertion_tried_.clear();
         std::fill(node_tried_.begin(), node_tried_.end(), -1);
         waived_below_ = waiver, rescued_below_ = bar;
