@@ -50,15 +50,16 @@ int main(int argc, char** argv)
         argc, argv,
         {"tm-refine",
          "Refines a tet mesh until it matches a label image (Mueller & Sachse): every round assesses the tets against "
-         "the voxels, places a node in each of the worst (by quality key: misclassified voxels + shape), and rebuilds "
-         "the Delaunay mesh with TetGen; only new tets are assessed again. Without -i: Delaunay-only, starting from a "
-         "coarse lattice over the image box, each tet taking its majority tissue (the mesh covers the box; background "
-         "tets carry label 0). With -i MESH (from tm-tetra): constrained, every interface face kept exactly and nodes "
-         "added inside the tissues only, so the error volume stays what the interfaces give while shapes and "
-         "resolution "
-         "improve; at the end the tets are improved as tm-tetra improves them (interface nodes slide on the "
+         "the voxels, places a node in each of the worst (by quality key: misclassified voxels + shape), and puts the "
+         "nodes into the mesh; only new tets are assessed again. Without -i: Delaunay-only, starting from a coarse "
+         "lattice over the image box, rebuilt by TetGen every round, each tet taking its majority tissue (the mesh "
+         "covers the box; background tets carry label 0). With -i MESH (from tm-tetra): constrained, every interface "
+         "face kept exactly and nodes added inside the tissues only, each in its Bowyer-Watson cavity (the tets "
+         "around it whose circumsphere holds it, never across an interface; every other tet stays as it was), so the "
+         "error volume stays what the interfaces give while shapes and resolution improve; at the end the tets are "
+         "improved as tm-tetra improves them (interface nodes slide on the "
          "interfaces, so the error volume is measured again; no new nodes with --max-nodes; --improve-keep-interfaces "
-         "--improve-insert-below-deg 0 keeps the last round's interfaces and nodes; --no-improve the last rebuild as "
+         "--improve-insert-below-deg 0 keeps the last round's interfaces and nodes; --no-improve the last round's mesh as "
          "it is). Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
          "tissue change walking from edge midpoints or from the centroid towards the vertices).",
          "Examples:\n  tm-refine --image head.nii.gz -o head.msh --log refine.csv --plot refine.svg "
@@ -99,6 +100,10 @@ int main(int argc, char** argv)
                 ->capture_default_str();
             app.add_option("--shape-weight", options.assess.shape_weight, "Quality key weight of the shape term")
                 ->capture_default_str();
+            app.add_flag("--rebuild-with-tetgen", options.tetgen_rebuild,
+                         "With -i: each round rebuilds the whole mesh with TetGen from its nodes and interface faces "
+                         "(slower, and the tets tm-tetra improved are made again), instead of inserting the new nodes "
+                         "into the mesh as it is, each in its Bowyer-Watson cavity");
             improve_flags.options = options.improvement;
             improve_flags.add_to(app, true);
         },

@@ -321,9 +321,11 @@ std::optional<TetMesh> rebuild(const TetMesh& mesh, NewNodes& nodes, std::string
     return std::nullopt;
 }
 
-/// One round: place nodes in the batch, rebuild, reassess. A constrained rebuild with more defects than the mesh
-/// before (TetGen's tets between close interfaces disagreeing on their tissue: the 1 mm usc19-5 head's third
-/// round) is undone, and refinement stops there: its output is never less fit for FEM than its input.
+/// One round: place nodes in the batch, put them into the mesh (cavities, or a rebuild), reassess. A constrained
+/// round whose mesh has more defects than the mesh before (TetGen's rebuild: tets between close interfaces disagreeing
+/// on their tissue, the 1 mm usc19-5 head's third round) is undone, and refinement stops there: its output is never
+/// less fit for FEM than its input. Cavities cannot make such a defect (they never cross a constraint face and keep
+/// every tet positive, exactly); the check stays as the safety net.
 RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance, InterfaceClearance* clearance,
                          RefineIteration& it, std::size_t& defects, std::string& failure)
 {
@@ -336,9 +338,24 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
     TetMesh old = r.mesh;
     const std::vector<TetState> old_state = r.state;
     if (r.constrained) {
-        std::optional<TetMesh> rebuilt = rebuild(old, nodes, failure);
-        if (!rebuilt) return RoundResult::rebuild_failed;
-        r.mesh = std::move(*rebuilt);
+        if (r.options.tetgen_rebuild) {
+            std::optional<TetMesh> rebuilt = rebuild(old, nodes, failure);
+            if (!rebuilt) return RoundResult::rebuild_failed;
+            r.mesh = std::move(*rebuilt);
+        } else {
+            std::vector<char> taken;
+            r.mesh = detail::insert_in_cavities(old, nodes.points, nodes.sources, &taken, [&](const Vec3& p) {
+                return clearance == nullptr || clearance->clear(p);
+            });
+            std::size_t kept = 0;
+            for (std::size_t k = 0; k < taken.size(); ++k)
+                if (taken[k]) nodes.points[kept] = nodes.points[k], nodes.sources[kept++] = nodes.sources[k];
+            nodes.points.resize(kept), nodes.sources.resize(kept);
+            if (nodes.points.empty()) {
+                r.mesh = std::move(old);
+                return RoundResult::no_nodes;
+            }
+        }
         const std::size_t now = fem_defects(r.mesh);
         if (now > defects) {
             r.mesh = std::move(old);
@@ -411,9 +428,13 @@ TetMesh refine(const LabelImage& image, const TetMesh* constrained, const Refine
         }
         if (round == RoundResult::rebuild_unfit) {
             rep.stop_reason = "the next round's rebuild was not fit for FEM (undone)";
-            progress.warn("refine",
-                          "TetGen's rebuild of the next round left tets disagreeing on their tissue between close "
-                          "interfaces; that round is undone and the mesh of the round before is the result");
+            progress.warn("refine", options.tetgen_rebuild
+                                        ? "TetGen's rebuild of the next round left tets disagreeing on their tissue "
+                                          "between close interfaces; that round is undone and the mesh of the round "
+                                          "before is the result"
+                                        : "the next round's mesh was less fit for FEM than the one before (a fault "
+                                          "of tm-refine's node insertion: please report it); that round is undone "
+                                          "and the mesh of the round before is the result");
             break;
         }
     }

@@ -38,12 +38,16 @@ struct RefineOptions {
                                         ///< to an interface face (0: half the smallest voxel spacing)
     AssessOptions assess;               ///< priority weights and quality key weights
     bool improve = true;                ///< improve the final mesh's tets (improve_mesh(), its own interfaces as the
-                                        ///< reference): each rebuild is a fresh constrained Delaunay mesh with slivers
+                                        ///< reference): the cavities of new nodes leave tets under the target
     /// Its options: by default tm-tetra's (flips, moves, interface nodes sliding on their interfaces, new nodes),
     /// so the refined mesh is no worse shaped than the one tm-tetra made. Interface moves and new nodes change
     /// what the tets cover a little: the error volume is then measured again (RefineReport). With a node budget
     /// the improver adds no node; Delaunay-only, it flips and moves inner nodes only.
     ImproveOptions improvement{};
+    /// Constrained: each round rebuilds the whole mesh with TetGen from its nodes and faces (the refinement before
+    /// 2026-12-08), instead of inserting the new nodes one by one into the mesh as it is (Bowyer-Watson cavities,
+    /// the rest of the tets kept).
+    bool tetgen_rebuild = false;
 };
 
 /// One round: the mesh after it (iteration 0 is the start mesh).
@@ -73,9 +77,9 @@ struct RefineReport {
 };
 
 /// Refines a tet mesh against `image` by the paper's loop: assess every tet, place one node in each of the
-/// worst ones (a batch per round, ordered by quality key), rebuild the (constrained) Delaunay mesh with
-/// TetGen, and assess only the tets that are new (unchanged tets keep their assessment, which is exactly
-/// what a full assessment would give them: the rasterization's tie rule depends on each face alone).
+/// worst ones (a batch per round, ordered by quality key), put the nodes into the mesh, and assess only the tets
+/// that are new (unchanged tets keep their assessment, which is exactly what a full assessment would give them: the
+/// rasterization's tie rule depends on each face alone).
 ///
 /// Two modes:
 ///  - Delaunay-only (`constrained == nullptr`): the start mesh is the Delaunay mesh of a lattice over the
@@ -83,10 +87,12 @@ struct RefineReport {
 ///    the box and background tets carry options.assess.background. Only tets with a positive error volume
 ///    are refined; the result's interface faces are rebuilt from the labels (mark_interfaces).
 ///  - constrained (`constrained` is a mesh from tetrahedralize()): its interface and boundary faces are kept
-///    exactly (TetGen -pY on them), new nodes go strictly inside tets, and a new tet takes the tissue of the
-///    region it lies in, so labels never cross an interface and the total error volume stays what the
-///    interfaces give (nodes improve shape and resolution, not the voxel match). The worst keys of all tets
-///    are refined.
+///    exactly, new nodes go strictly inside tets, and a new tet takes the tissue of the region it lies in, so
+///    labels never cross an interface and the total error volume stays what the interfaces give (nodes improve
+///    shape and resolution, not the voxel match). The worst keys of all tets are refined. Each node goes into the
+///    mesh as it is, by a Bowyer-Watson cavity inside its tissue (detail::insert_in_cavities(): the paper's
+///    successive Delaunay insertion; the other tets, as the improver shaped them, stay), or, with
+///    RefineOptions::tetgen_rebuild, the whole mesh is made again by TetGen (-pY) from its nodes and faces.
 /// Material-change placement samples the image (nearest voxel, outside: background) along the rays in
 /// world mm every quarter voxel, bisects the first change to 1/64 voxel, and of the changes found takes the
 /// one farthest from the tet's vertices; with none it falls back to the centroid. A node closer than
@@ -98,7 +104,7 @@ struct RefineReport {
 /// distance of new nodes to the interfaces is a rule of placement, which the improver's moves do not keep.
 /// @pre  image not empty; `constrained` (when given) passes check_mesh()
 /// @throws InputError when an option is out of range or the image is empty
-/// @throws AlgorithmError when TetGen fails
+/// @throws AlgorithmError when TetGen fails (Delaunay-only, or RefineOptions::tetgen_rebuild)
 TetMesh refine(const LabelImage& image, const TetMesh* constrained, const RefineOptions& options = {},
                const Progress& progress = {}, RefineReport* report = nullptr);
 

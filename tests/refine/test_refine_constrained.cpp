@@ -2,11 +2,15 @@
 // total error volume never rises.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <set>
+
 #include "core/error.h"
 #include "surface/detail/triangle_distance.h"
 #include "tests/support/programs.h"
 #include "volume/assess.h"
 #include "volume/check_mesh.h"
+#include "volume/detail/tet_quality.h"
 #include "volume/refine.h"
 #include "volume/tetrahedralize.h"
 
@@ -33,8 +37,8 @@ TEST_P(RefineConstrained, KeepsEveryInterfaceAndNeverRaisesTheErrorVolume)
     EXPECT_GT(refined.vertices.size(), m.mesh.vertices.size());
     const MeshCheckReport check = check_mesh(refined, &m.image);
     EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
-    // The very same interface faces: old nodes keep their indices and TetGen (-Y) splits no face; the nodes on
-    // them keep their places.
+    // The very same interface faces: old nodes keep their indices and no cavity crosses or splits a face; the nodes
+    // on them keep their places.
     EXPECT_EQ(refined.faces, m.mesh.faces);
     EXPECT_EQ(refined.face_sides, m.mesh.face_sides);
     for (const Triangle& face : m.mesh.faces)
@@ -94,6 +98,70 @@ TEST(RefineConstrainedClearance, NewNodesKeepHalfAVoxelFromEveryInterface)
                                             refined.vertices[v],
                                             {refined.vertices[f[0]], refined.vertices[f[1]], refined.vertices[f[2]]})));
     EXPECT_GE(closest, 0.5 * 4.0 - 1e-9); // 4 mm voxels
+}
+
+/// The smallest of the tets' smallest dihedral sines (detail::min_sine(): small for flat tets, whether an angle
+/// is near 0 or 180 degrees).
+double smallest_sine(const TetMesh& mesh)
+{
+    double smallest = 1;
+    for (const Tet& tet : mesh.tets)
+        smallest = std::min(smallest, detail::min_sine({mesh.vertices[tet[0]], mesh.vertices[tet[1]],
+                                                        mesh.vertices[tet[2]], mesh.vertices[tet[3]]}));
+    return smallest;
+}
+
+// Each new node goes into the mesh as it is, in its cavity: every tet without a new node is a tet of the start
+// mesh (the same nodes in the same order, the same tissue), and no cavity leaves a tet flatter than 10 degrees
+// (in sine) unless the tets it replaced were flatter still.
+TEST(RefineConstrained, NewNodesGoInCavitiesAndEveryOtherTetStays)
+{
+    const Meshed& m = junction();
+    RefineReport report;
+    const TetMesh refined = refine(m.image, &m.mesh, {.max_iterations = 2, .improve = false}, {}, &report);
+    ASSERT_EQ(report.iterations.size(), 3u) << report.stop_reason;
+    std::size_t added = 0;
+    for (const RefineIteration& it : report.iterations) added += it.added_nodes;
+    ASSERT_GT(added, 50u);
+    ASSERT_EQ(refined.vertices.size(), m.mesh.vertices.size() + added);
+    std::set<std::pair<Tet, Label>> start;
+    for (std::size_t t = 0; t < m.mesh.tets.size(); ++t) start.insert({m.mesh.tets[t], m.mesh.tet_labels[t]});
+    std::size_t kept = 0, with_new_node = 0;
+    for (std::size_t t = 0; t < refined.tets.size(); ++t) {
+        const Tet& tet = refined.tets[t];
+        if (std::any_of(tet.begin(), tet.end(), [&](std::uint32_t v) { return v >= m.mesh.vertices.size(); })) {
+            ++with_new_node;
+            continue;
+        }
+        EXPECT_TRUE(start.count({tet, refined.tet_labels[t]})) << "tet " << t << " is neither old nor at a new node";
+        ++kept;
+    }
+    EXPECT_GT(kept, start.size() / 2);
+    EXPECT_GT(with_new_node, 4 * added);
+    EXPECT_GE(smallest_sine(refined), std::min(smallest_sine(m.mesh), detail::sine_of_deg(10)));
+    const MeshCheckReport check = check_mesh(refined, &m.image);
+    EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
+}
+
+// RefineOptions::tetgen_rebuild, the refinement before cavities: every round's mesh made again by TetGen from its
+// nodes and faces, which keeps the same promise.
+TEST(RefineConstrained, TetGenRebuildKeepsEveryInterfaceToo)
+{
+    const Meshed& m = junction();
+    RefineReport report;
+    const TetMesh refined =
+        refine(m.image, &m.mesh, {.max_iterations = 1, .improve = false, .tetgen_rebuild = true}, {}, &report);
+    ASSERT_EQ(report.iterations.size(), 2u) << report.stop_reason;
+    EXPECT_GT(refined.vertices.size(), m.mesh.vertices.size());
+    const MeshCheckReport check = check_mesh(refined, &m.image);
+    EXPECT_TRUE(check.ok()) << (check.problems.empty() ? "" : check.problems.front());
+    EXPECT_EQ(refined.faces, m.mesh.faces);
+    const auto before = tissue_volumes(m.mesh), after = tissue_volumes(refined);
+    ASSERT_EQ(before.size(), after.size());
+    for (const auto& [label, volume] : before)
+        EXPECT_NEAR(after.at(label), volume, 1e-9 * volume) << "tissue " << label;
+    EXPECT_EQ(assess_elements(refined, m.image).total_error_volume_mm3,
+              report.iterations.front().total_error_volume_mm3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Placements, RefineConstrained,

@@ -1,11 +1,17 @@
 #include "volume/detail/refine_mesh.h"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
+#include <optional>
 
 #include "core/node_tets.h"
 #include "core/error.h"
+#include "volume/detail/insert_node.h"
+#include "volume/detail/smooth_node.h"
+#include "volume/detail/tet_quality.h"
 #include "volume/detail/tetgen_adapter.h"
+#include "volume/detail/work_mesh.h"
 
 namespace tissuemesh::volume::detail {
 namespace {
@@ -125,6 +131,52 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
         result.tets.push_back(tets[i]);
         result.tet_labels.push_back(mesh.tet_labels[static_cast<std::size_t>(sources[i])]);
     }
+    return result;
+}
+
+TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
+                           const std::vector<std::uint32_t>& source_tets, std::vector<char>* taken,
+                           const std::function<bool(const Vec3&)>& clear)
+{
+    // A cavity whose new tets are worse than 10 degrees and than the tets it replaces has its node moved, and is
+    // undone when that does not lift them.
+    const double sliver_sine = sine_of_deg(10);
+    WorkMesh work(mesh);
+    // Smoothing asks the reference surface only about nodes on interfaces; every new node is inside a tissue.
+    const SurfaceReference reference({}, {}, {});
+    if (taken != nullptr) taken->assign(points.size(), 0);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        // The walk to the tet holding the point starts from its old tet, or, where an earlier cavity took that, from
+        // a tet of the old tet's tissue at one of its nodes (nodes stay).
+        const std::uint32_t source = source_tets[k];
+        const Tet& old = mesh.tets[source];
+        std::optional<std::uint32_t> start;
+        if (work.alive(source) && work.tet(source) == old) start = source;
+        for (std::size_t c = 0; c < 4 && !start; ++c)
+            for (const std::uint32_t t : work.tets_of(old[c]))
+                if (work.label(t) == mesh.tet_labels[source]) {
+                    start = t;
+                    break;
+                }
+        const std::size_t mark = work.mark();
+        const std::optional<std::uint32_t> node = start ? insert_in_cavity(work, *start, points[k]) : std::nullopt;
+        if (!node) continue; // nothing changed
+        WorkMesh::Balance balance = work.balance_since(mark);
+        if (balance.after < std::min(balance.before, sliver_sine)) {
+            // A point near a face of its cavity's boundary makes a flat tet with it: the node moved to raise its
+            // tets' smallest sine (it is inside a tissue, so it moves freely).
+            smooth_node(work, *node, reference, 0);
+            balance = work.balance_since(mark);
+        }
+        if (balance.after < std::min(balance.before, sliver_sine) || (clear && !clear(work.point(*node)))) {
+            work.rollback(mark);
+            continue;
+        }
+        work.commit();
+        if (taken != nullptr) (*taken)[k] = 1;
+    }
+    TetMesh result = work.result();
+    result.faces = mesh.faces, result.face_sides = mesh.face_sides;
     return result;
 }
 

@@ -1,7 +1,9 @@
-// The Delaunay and constrained Delaunay rebuilds behind refine(): TetGen on the old nodes plus the new ones.
+// The rebuilds behind refine(): TetGen on the old nodes plus the new ones (Delaunay-only, or constrained from scratch),
+// or the new nodes inserted one by one into the mesh as it is (constrained, Bowyer-Watson cavities).
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/tet_mesh.h"
@@ -22,6 +24,21 @@ std::vector<Tet> delaunay_tets(const std::vector<Vec3>& points);
 /// @throws AlgorithmError when TetGen fails or a tet has neither an old nor a new node (Steiner points only)
 TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
                            const std::vector<std::uint32_t>& source_tets);
+
+/// `mesh` with `points` inserted one by one, each by a Bowyer-Watson cavity in the tissue of the old tet
+/// `source_tets[i]` that holds it (the improver's insert_in_cavity(): the tets around it whose circumsphere holds the
+/// point, never across a constraint face, shrunk until the point sees every face of the cavity's boundary, at most
+/// 48). Every other tet stays as it is, also where the improver shaped it; no face of mesh.faces changes. A point no
+/// cavity takes (on a face of the tet holding it) is left out. Old nodes keep their indices, the points taken follow
+/// in order; `taken` (when given) gets, per point, whether it was. Faces and names are copied.
+/// A point near a face of its cavity's boundary makes a flat tet with it: where a new tet is worse than 10 degrees
+/// and than every tet the cavity replaces, the new node is moved to raise its tets' smallest angle (as the improver
+/// smooths an inner node), and left out if that does not lift them or if it moves where `clear` (when given) says
+/// no (too near an interface).
+/// @pre  every points[i] lies inside old tet source_tets[i]; mesh's tets positively oriented and conforming
+TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
+                           const std::vector<std::uint32_t>& source_tets, std::vector<char>* taken = nullptr,
+                           const std::function<bool(const Vec3&)>& clear = {});
 
 /// `mesh` without nodes no tet uses (indices renumbered in order).
 void drop_unused_nodes(TetMesh& mesh);

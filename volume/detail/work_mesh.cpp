@@ -48,9 +48,13 @@ WorkMesh::WorkMesh(const TetMesh& mesh, std::vector<char> frozen)
         for (const std::uint32_t v : tet) ++degree[v];
     for (std::size_t v = 0; v < points_.size(); ++v) tets_of_[v].reserve(degree[v]);
     scales_.assign(points_.size(), std::numeric_limits<double>::infinity());
+    // The qualities side by side (each tet's alone: the same values whatever the threads).
+    const auto count = static_cast<std::int64_t>(tets_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t t = 0; t < count; ++t)
+        quality_[static_cast<std::size_t>(t)] = min_sine(corners(static_cast<std::uint32_t>(t)));
     for (std::uint32_t t = 0; t < tets_.size(); ++t) {
         link_tet(t);
-        quality_[t] = min_sine(corners(t));
         for (const auto& e : edge_corners) {
             const std::uint32_t a = tets_[t][e[0]], b = tets_[t][e[1]];
             const double length = distance(points_[a], points_[b]);
