@@ -59,7 +59,8 @@ int main(int argc, char** argv)
          "error volume stays what the interfaces give while shapes and resolution improve; at the end the tets are "
          "improved as tm-tetra improves them (interface nodes slide on the "
          "interfaces, so the error volume is measured again; no new nodes with --max-nodes; --improve-keep-interfaces "
-         "--improve-insert-below-deg 0 keeps the last round's interfaces and nodes; --no-improve the last round's mesh as "
+         "--improve-insert-below-deg 0 keeps the last round's interfaces and nodes; --no-improve the last round's mesh "
+         "as "
          "it is). Placements: centroid, incentre, longest-edge, material-half-edges, material-centroid (the first "
          "tissue change walking from edge midpoints or from the centroid towards the vertices).",
          "Examples:\n  tm-refine --image head.nii.gz -o head.msh --log refine.csv --plot refine.svg "
