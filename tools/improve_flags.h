@@ -42,7 +42,7 @@ struct ImproveFlags {
         app.add_option("--improve-max-face-deviation", options.max_face_deviation,
                        "Improver: interface faces it makes stay this close to the surface, as a fraction of the "
                        "surface's mean edge (0.03 of 2.4 mm edges is 0.07 mm); in the last round a tet left under "
-                       "0.95 of the target that nothing else lifts may get faces up to 4 times as far")
+                       "0.95 of the target that nothing else lifts may get faces up to 8 times as far")
             ->check(CLI::Range(0.0, 1.0))
             ->capture_default_str();
         app.add_option("--improve-parts", options.parts,
