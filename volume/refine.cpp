@@ -337,21 +337,19 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
     if (nodes.points.empty()) return RoundResult::no_nodes;
     TetMesh old = r.mesh;
     const std::vector<TetState> old_state = r.state;
+    std::size_t added = 0; // the nodes that went in
     if (r.constrained) {
         if (r.options.tetgen_rebuild) {
             std::optional<TetMesh> rebuilt = rebuild(old, nodes, failure);
             if (!rebuilt) return RoundResult::rebuild_failed;
             r.mesh = std::move(*rebuilt);
+            added = nodes.points.size(); // a retry keeps the first half
         } else {
-            std::vector<char> taken;
-            r.mesh = detail::insert_in_cavities(old, nodes.points, nodes.sources, &taken, [&](const Vec3& p) {
+            r.mesh = detail::insert_in_cavities(old, nodes.points, nodes.sources, [&](const Vec3& p) {
                 return clearance == nullptr || clearance->clear(p);
             });
-            std::size_t kept = 0;
-            for (std::size_t k = 0; k < taken.size(); ++k)
-                if (taken[k]) nodes.points[kept] = nodes.points[k], nodes.sources[kept++] = nodes.sources[k];
-            nodes.points.resize(kept), nodes.sources.resize(kept);
-            if (nodes.points.empty()) {
+            added = r.mesh.vertices.size() - old.vertices.size(); // the points a cavity took
+            if (added == 0) {
                 r.mesh = std::move(old);
                 return RoundResult::no_nodes;
             }
@@ -363,13 +361,14 @@ RoundResult refine_round(Refinement& r, std::size_t budget, double min_distance,
         }
         defects = now;
     } else {
+        added = nodes.points.size();
         r.mesh.vertices.insert(r.mesh.vertices.end(), nodes.points.begin(), nodes.points.end());
         r.mesh.tets = detail::delaunay_tets(r.mesh.vertices);
         r.mesh.tet_labels.assign(r.mesh.tets.size(), r.options.assess.background);
     }
     const std::size_t reassessed = reassess(r, old, old_state);
     it = summarize(r, it.iteration + 1);
-    it.added_nodes = nodes.points.size(), it.reassessed_tets = reassessed;
+    it.added_nodes = added, it.reassessed_tets = reassessed;
     return RoundResult::refined;
 }
 

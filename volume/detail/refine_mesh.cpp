@@ -135,8 +135,7 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
 }
 
 TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
-                           const std::vector<std::uint32_t>& source_tets, std::vector<char>* taken,
-                           const std::function<bool(const Vec3&)>& clear)
+                           const std::vector<std::uint32_t>& source_tets, const std::function<bool(const Vec3&)>& clear)
 {
     // A cavity whose new tets are worse than 10 degrees and than the tets it replaces has its node moved, and is
     // undone when that does not lift them.
@@ -144,7 +143,6 @@ TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
     WorkMesh work(mesh);
     // Smoothing asks the reference surface only about nodes on interfaces; every new node is inside a tissue.
     const SurfaceReference reference({}, {}, {});
-    if (taken != nullptr) taken->assign(points.size(), 0);
     for (std::size_t k = 0; k < points.size(); ++k) {
         // The walk to the tet holding the point starts from its old tet, or, where an earlier cavity took that, from
         // a tet of the old tet's tissue at one of its nodes (nodes stay).
@@ -173,7 +171,6 @@ TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
             continue;
         }
         work.commit();
-        if (taken != nullptr) (*taken)[k] = 1;
     }
     TetMesh result = work.result();
     result.faces = mesh.faces, result.face_sides = mesh.face_sides;

@@ -30,14 +30,14 @@ TetMesh insert_constrained(const TetMesh& mesh, const std::vector<Vec3>& points,
 /// point, never across a constraint face, shrunk until the point sees every face of the cavity's boundary, at most
 /// 48). Every other tet stays as it is, also where the improver shaped it; no face of mesh.faces changes. A point no
 /// cavity takes (on a face of the tet holding it) is left out. Old nodes keep their indices, the points taken follow
-/// in order; `taken` (when given) gets, per point, whether it was. Faces and names are copied.
+/// in order (so the result's extra nodes are their count). Faces and names are copied.
 /// A point near a face of its cavity's boundary makes a flat tet with it: where a new tet is worse than 10 degrees
 /// and than every tet the cavity replaces, the new node is moved to raise its tets' smallest angle (as the improver
 /// smooths an inner node), and left out if that does not lift them or if it moves where `clear` (when given) says
 /// no (too near an interface).
 /// @pre  every points[i] lies inside old tet source_tets[i]; mesh's tets positively oriented and conforming
 TetMesh insert_in_cavities(const TetMesh& mesh, const std::vector<Vec3>& points,
-                           const std::vector<std::uint32_t>& source_tets, std::vector<char>* taken = nullptr,
+                           const std::vector<std::uint32_t>& source_tets,
                            const std::function<bool(const Vec3&)>& clear = {});
 
 /// `mesh` without nodes no tet uses (indices renumbered in order).
